@@ -1,0 +1,67 @@
+#pragma once
+/// Numeric policies: the one place where a control block learns whether it
+/// computes in float or in fixed point.
+///
+/// A block is written once as a template on a policy `N` and touches numbers
+/// only through `N`'s types and the free functions below, which are
+/// overloaded for `float` and for every `Fixed<I, F>`:
+///
+///   - `num::from_double<T>(x)`  design-time conversion (coefficients, limits)
+///   - `num::to_double(x)`       for tests, logs and the host side
+///   - `num::mul<Out>(a, b)`     product into the wanted type (fixed point:
+///                               one rounding, saturated)
+///   - `num::clamp(x, lo, hi)`   saturating clamp
+///
+/// Coefficients are designed in double once, at `init()`, then quantized.
+
+#include <cstdint>
+
+#include "mrd/num/fixed.hpp"
+
+namespace mrd::num {
+
+template <class T>
+constexpr T from_double(double v) noexcept {
+  if constexpr (requires { T::from_double(v); }) {
+    return T::from_double(v);
+  } else {
+    return static_cast<T>(v);
+  }
+}
+
+constexpr double to_double(float v) noexcept { return static_cast<double>(v); }
+constexpr double to_double(double v) noexcept { return v; }
+template <int I, int F>
+constexpr double to_double(Fixed<I, F> v) noexcept { return v.to_double(); }
+
+/// float × float → float (Out must be float).
+template <class Out>
+constexpr Out mul(float a, float b) noexcept {
+  static_assert(sizeof(Out) == sizeof(float), "float products stay float");
+  return a * b;
+}
+
+template <class T>
+constexpr T clamp(T v, T lo, T hi) noexcept {
+  return v < lo ? lo : (hi < v ? hi : v);
+}
+
+/// Single-precision float for every role.
+struct Float32Policy {
+  static constexpr const char* kName = "float32";
+  using Signal = float;  ///< physical signals in SI (m, m/s, N, A)
+  using Coef = float;    ///< filter coefficients
+  using State = float;   ///< filter states / accumulators
+};
+
+/// 32-bit fixed point. Roles get formats sized for this damper: signals in
+/// scaled SI units chosen by each block (documented there), coefficients in
+/// Q2.29 ([−4, 4)), states in Q15.16.
+struct Fixed32Policy {
+  static constexpr const char* kName = "fixed32";
+  using Signal = Q15_16;
+  using Coef = Fixed<2, 29>;
+  using State = Q15_16;
+};
+
+}  // namespace mrd::num

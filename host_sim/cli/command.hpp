@@ -1,0 +1,23 @@
+#pragma once
+/// How `mrd` subcommands plug into the program: each registers its options on
+/// a CLI11 subcommand and returns the action to run once parsing succeeded.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace mrd::cli {
+
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<void()> run;
+};
+
+Command add_settle_command(CLI::App& parent);
+
+/// Checks a parsed number: finite and, if `min_inclusive` is given, not below
+/// it. Throws report::UsageError naming the option.
+void require_finite_at_least(const std::string& option, double value, double min_inclusive);
+
+}  // namespace mrd::cli

@@ -1,0 +1,54 @@
+/// `mrd`: the host command-line tool. Each subcommand writes DIR/summary.json
+/// (and time series and plots where they apply) when given `--out DIR`.
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <vector>
+
+#include "cli/command.hpp"
+#include "report/output_dir.hpp"
+
+namespace {
+constexpr int kExitUsage = 2;
+
+void print_error(const char* what) { std::fprintf(stderr, "mrd: error: %s\n", what); }
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "mrd: controller and host tools for a 200 kN MR damper in a base-isolated building.\n"
+      "Units are SI unless a field name says otherwise (_kn, _mm, _years).",
+      "mrd"};
+  app.require_subcommand(1);
+  app.footer("Run 'mrd <subcommand> --help' for its options, output fields and units.");
+
+  std::vector<mrd::cli::Command> commands;
+  commands.push_back(mrd::cli::add_settle_command(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    print_error(e.what());
+    return kExitUsage;
+  }
+
+  try {
+    for (const auto& c : commands) {
+      if (c.app->parsed()) c.run();
+    }
+  } catch (const mrd::report::UsageError& e) {
+    print_error(e.what());
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return 1;
+  }
+  return 0;
+}

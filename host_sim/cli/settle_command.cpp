@@ -1,0 +1,84 @@
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/command.hpp"
+#include "report/output_dir.hpp"
+#include "run/settle_study.hpp"
+
+namespace mrd::cli {
+namespace {
+
+constexpr const char* kSettleHelp = R"(Fields (printed and written to DIR/summary.json):
+  idle_years                       idle time you gave, years (1 year = 365.25 days)
+  settling_velocity_m_s            Stokes settling velocity V_t of one particle, m/s (Eq. 5.1)
+  hindered_settling_velocity_m_s   hindered settling velocity V_ts = V_t (1 - chi)^n, m/s (Eq. 5.2)
+  settled_layer_height_m           height of the fully settled particle layer, m (Eq. 5.3 with the
+                                   shaft removed; Table 5.5: 0.0831 m)
+  max_settling_time_years          time for all particles to settle, years (Eq. 5.4; thesis 0.8531)
+  sq                               settling quotient: settled fraction, 0..1, saturating at 1 (Eq. 5.5)
+  a_pr                             participant ratio before mixing, fraction (Eq. 5.6, Table 5.6)
+  b_pr                             participant ratio after unlimited mixing, fraction (Eq. 5.7)
+  c_pr                             recovery rate per unit of displaced volume, 1/L (Eq. 5.8, 5.9)
+Fluid and damper: Tables 3.1, 5.3 and 5.4 of the thesis.)";
+
+struct SettleOptions {
+  double idle_years = 0.0;
+  std::string out_dir;
+};
+
+void print_table(const run::SettleSummary& s) {
+  std::printf("Idle-time settling after %.4g years idle (thesis §5.3)\n\n", s.idle_years);
+  std::printf("  %-34s %14s  %-6s %s\n", "quantity", "value", "unit", "source");
+  const auto row = [](const char* name, double v, const char* unit, const char* src) {
+    std::printf("  %-34s %14.6g  %-6s %s\n", name, v, unit, src);
+  };
+  row("Stokes settling velocity V_t", s.settling_velocity_m_s, "m/s", "Eq. 5.1");
+  row("hindered settling velocity V_ts", s.hindered_settling_velocity_m_s, "m/s", "Eq. 5.2");
+  row("settled-layer height h_max", s.settled_layer_height_m, "m", "Eq. 5.3, Table 5.5");
+  row("maximum settling time", s.max_settling_time_years, "years", "Eq. 5.4");
+  row("settling quotient SQ", s.sq, "-", "Eq. 5.5");
+  row("initial participant ratio a_PR", s.pr.a_pr, "-", "Eq. 5.6");
+  row("final participant ratio b_PR", s.pr.b_pr, "-", "Eq. 5.7");
+  row("participant-ratio rate c_PR", s.pr.c_pr, "1/L", "Eq. 5.8");
+}
+
+nlohmann::json to_json(const run::SettleSummary& s) {
+  return nlohmann::json{
+      {"idle_years", s.idle_years},
+      {"settling_velocity_m_s", s.settling_velocity_m_s},
+      {"hindered_settling_velocity_m_s", s.hindered_settling_velocity_m_s},
+      {"settled_layer_height_m", s.settled_layer_height_m},
+      {"max_settling_time_years", s.max_settling_time_years},
+      {"sq", s.sq},
+      {"a_pr", s.pr.a_pr},
+      {"b_pr", s.pr.b_pr},
+      {"c_pr", s.pr.c_pr},
+  };
+}
+
+}  // namespace
+
+Command add_settle_command(CLI::App& parent) {
+  auto opts = std::make_shared<SettleOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "settle", "Settling state of the MR fluid after an idle time (Eq. 5.1-5.8)");
+  app->add_option("--idle-years", opts->idle_years, "Idle time in years (>= 0)")->required();
+  app->add_option("--out", opts->out_dir, "Folder for summary.json (created if missing)");
+  app->footer(kSettleHelp);
+  return {app, [opts] {
+            require_finite_at_least("--idle-years", opts->idle_years, 0.0);
+            if (!opts->out_dir.empty()) report::prepare_output_dir(opts->out_dir);
+            const run::SettleSummary s = run::settle_study(opts->idle_years);
+            print_table(s);
+            if (!opts->out_dir.empty()) {
+              const auto path = std::filesystem::path(opts->out_dir) / "summary.json";
+              report::write_file_atomically(path, to_json(s).dump(2) + "\n");
+              std::printf("\nwrote %s\n", path.c_str());
+            }
+          }};
+}
+
+}  // namespace mrd::cli
