@@ -15,6 +15,11 @@ struct Command {
 };
 
 Command add_settle_command(CLI::App& parent);
+Command add_modal_command(CLI::App& parent);
+Command add_sine_command(CLI::App& parent);
+Command add_sim_command(CLI::App& parent);
+Command add_sweep_command(CLI::App& parent);
+Command add_study_command(CLI::App& parent);
 
 /// Checks a parsed number: finite and, if `min_inclusive` is given, not below
 /// it. Throws report::UsageError naming the option.

@@ -26,6 +26,11 @@ int main(int argc, char** argv) {
 
   std::vector<mrd::cli::Command> commands;
   commands.push_back(mrd::cli::add_settle_command(app));
+  commands.push_back(mrd::cli::add_modal_command(app));
+  commands.push_back(mrd::cli::add_sine_command(app));
+  commands.push_back(mrd::cli::add_sim_command(app));
+  commands.push_back(mrd::cli::add_sweep_command(app));
+  commands.push_back(mrd::cli::add_study_command(app));
 
   try {
     app.parse(argc, argv);

@@ -87,7 +87,7 @@ INSTANTIATE_TEST_SUITE_P(Cases, SettleCliBadInput,
                                            BadCase{"NotANumber", "--idle-years abc", "abc"},
                                            BadCase{"UnknownOption", "--idle-years 1 --frobnicate", "frobnicate"},
                                            BadCase{"Missing", "", "--idle-years"}),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& p) { return std::string(p.param.name); });
 
 TEST_F(SettleCli, UnwritableOutIsAnError) {
   const auto file = out_.path() / "a-file";

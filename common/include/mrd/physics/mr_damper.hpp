@@ -1,0 +1,92 @@
+#pragma once
+/// The damper model of the thesis as one discrete-time block: Bingham plastic
+/// with transition function (Eq. 4.1–4.4), participant ratio from idle time
+/// and mixing (Eq. 5.5–5.12), and coil-current dynamics (Eq. 4.5, unity DC
+/// gain). Pure, allocation-free, exception-free.
+///
+/// One step of period T, with the command u[n] and the damper velocity v[n]
+/// held over the step:
+/// <pre>
+///   F[n]      = TF(v[n]) · ( f_c(|i[n]|, PR[n]) sgn v[n] + c_0(|i[n]|, PR[n]) v[n] )   Eq. 4.4, 5.10–5.12
+///   i[n+1]    = CurrentDynamics(i[n], u[n])                                       Eq. 4.5 (ZOH-exact)
+///   ∫Q[n+1]   = ∫Q[n] + |v[n]| · A · T                                             Eq. 5.9
+///   PR[n+1]   = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q[n+1] / unit)                     Eq. 5.9
+/// </pre>
+/// so the force at step n uses the coil current and participant ratio reached
+/// at the start of that step.
+
+#include "mrd/physics/bingham.hpp"
+#include "mrd/physics/current_dynamics.hpp"
+#include "mrd/physics/participant_ratio.hpp"
+
+namespace mrd::physics {
+
+struct MrDamperParams {
+  BinghamParams bingham{};
+  CurrentDynamicsParams coil{};
+  ParticipantRatioParams pr{};
+};
+
+class MrDamper {
+ public:
+  MrDamper() = default;
+  MrDamper(const MrDamperParams& p, double period_s, double sq) noexcept { init(p, period_s, sq); }
+
+  void init(const MrDamperParams& p, double period_s, double sq) noexcept {
+    p_ = p;
+    period_s_ = period_s;
+    coil_.init(p.coil, period_s);
+    pr_.init(p.pr, sq);
+    update_coefficients();
+  }
+
+  /// Starts an episode: settling quotient `sq` (0 fully mixed, 1 fully
+  /// settled) and a coil current already steady at `current_a`.
+  void reset(double sq, double current_a = 0.0) noexcept {
+    pr_.reset(sq);
+    coil_.reset(current_a);
+    update_coefficients();
+  }
+
+  /// Damper force for velocity `velocity_m_s` at the present coil current
+  /// and participant ratio, without advancing the state. N, positive when
+  /// resisting positive velocity.
+  /// Same value as damper_force_n(bingham, i, v, PR) (Eq. 4.4, 5.10–5.12),
+  /// with f_c and c_0 evaluated once per step rather than per call.
+  double force_n(double velocity_m_s) const noexcept {
+    const double sgn = velocity_m_s > 0.0 ? 1.0 : (velocity_m_s < 0.0 ? -1.0 : 0.0);
+    return transition_factor(p_.bingham, velocity_m_s) * (fc_n_ * sgn + c0_ns_m_ * velocity_m_s);
+  }
+
+  /// Returns the force over this step, then advances coil current and PR.
+  double step(double command_a, double velocity_m_s) noexcept {
+    const double f = force_n(velocity_m_s);
+    coil_.step(command_a);
+    pr_.step(velocity_m_s, period_s_);
+    update_coefficients();
+    return f;
+  }
+
+  double current_a() const noexcept { return coil_.current_a(); }
+  double participant_ratio() const noexcept { return pr_.pr(); }
+  double displaced_volume_m3() const noexcept { return pr_.displaced_volume_m3(); }
+  const ParticipantRatio& mixing() const noexcept { return pr_; }
+  ParticipantRatio& mixing() noexcept { return pr_; }
+  const MrDamperParams& params() const noexcept { return p_; }
+  double period_s() const noexcept { return period_s_; }
+
+ private:
+  MrDamperParams p_{};
+  double period_s_ = 1.0e-3;
+  CurrentDynamics coil_{};
+  ParticipantRatio pr_{};
+  double fc_n_ = 0.0;     ///< f_c(|i|, PR), Eq. 5.10
+  double c0_ns_m_ = 0.0;  ///< c_0(|i|, PR), Eq. 5.11
+
+  void update_coefficients() noexcept {
+    fc_n_ = coulomb_force_n(p_.bingham, coil_.current_a(), pr_.pr());
+    c0_ns_m_ = viscous_coeff_ns_m(p_.bingham, coil_.current_a(), pr_.pr());
+  }
+};
+
+}  // namespace mrd::physics

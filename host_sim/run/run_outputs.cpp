@@ -1,0 +1,93 @@
+#include "run/run_outputs.hpp"
+
+#include <algorithm>
+
+#include "report/plot.hpp"
+#include "report/time_series.hpp"
+
+namespace mrd::run {
+namespace {
+
+// Plots thin 1 kHz series to 100 Hz: enough for the eye, small files.
+constexpr std::size_t kPlotStride = 10;
+
+std::vector<double> thin(const std::vector<double>& v, double scale = 1.0) {
+  std::vector<double> out;
+  out.reserve(v.size() / kPlotStride + 1);
+  for (std::size_t k = 0; k < v.size(); k += kPlotStride) out.push_back(v[k] * scale);
+  return out;
+}
+
+report::Series series(std::string label, const ClosedLoopRecord& r, const std::vector<double>& y, double scale) {
+  return report::Series{std::move(label), thin(r.time_s), thin(y, scale), "lines"};
+}
+
+void note(std::vector<std::string>& problems, const report::PlotResult& r, const std::filesystem::path& png) {
+  if (!r.ok) problems.push_back(png.filename().string() + ": " + r.reason);
+}
+
+}  // namespace
+
+std::vector<std::string> write_closed_loop_outputs(const std::filesystem::path& dir, const std::string& stem,
+                                                   const std::string& title, const ClosedLoopRecord& rec) {
+  report::TimeSeries ts({"time_s", "ground_accel_m_s2", "base_disp_m", "base_vel_m_s", "damper_force_n",
+                         "desired_force_n", "command_a", "current_a", "participant_ratio", "roof_accel_m_s2",
+                         "peak_floor_accel_m_s2"});
+  ts.reserve(rec.time_s.size());
+  for (std::size_t k = 0; k < rec.time_s.size(); ++k) {
+    ts.add_row({rec.time_s[k], rec.ground_accel_m_s2[k], rec.base_disp_m[k], rec.base_vel_m_s[k],
+                rec.damper_force_n[k], rec.desired_force_n[k], rec.command_a[k], rec.current_a[k], rec.pr[k],
+                rec.roof_accel_m_s2[k], rec.peak_floor_accel_m_s2[k]});
+  }
+  report::write_csv(ts, dir / (stem + ".csv"));
+
+  std::vector<std::string> problems;
+  report::MultiPlot mp;
+  mp.title = title;
+  mp.panels.push_back({"", "time [s]", "base displacement [mm]", {series("base", rec, rec.base_disp_m, 1e3)}});
+  mp.panels.push_back({"", "time [s]", "damper force [kN]", {series("damper", rec, rec.damper_force_n, 1e-3)}});
+  mp.panels.push_back({"",
+                       "time [s]",
+                       "max |floor accel| 1-5 [m/s²]",
+                       {series("superstructure", rec, rec.peak_floor_accel_m_s2, 1.0)}});
+  mp.panels.push_back({"", "time [s]", "coil current [A]", {series("current", rec, rec.current_a, 1.0)}});
+  for (auto& p : mp.panels) p.key = false;
+  mp.height_px = 1100;
+  const auto response_png = dir / (stem + "_response.png");
+  note(problems, report::plot_png(mp, response_png), response_png);
+
+  report::PlotSpec loop{title + ": force-displacement loop",
+                        "damper stroke [mm]",
+                        "damper force [kN]",
+                        {report::Series{"damper", thin(rec.base_disp_m, 1e3), thin(rec.damper_force_n, 1e-3), "lines"}}};
+  loop.key = false;
+  const auto loop_png = dir / (stem + "_loop.png");
+  note(problems, report::plot_png(loop, loop_png), loop_png);
+  return problems;
+}
+
+std::vector<std::string> write_comparison_plot(const std::filesystem::path& png, const std::string& title,
+                                               const std::string& label_a, const ClosedLoopRecord& a,
+                                               const std::string& label_b, const ClosedLoopRecord& b) {
+  report::MultiPlot mp;
+  mp.title = title;
+  mp.panels.push_back({"",
+                       "time [s]",
+                       "base displacement [mm]",
+                       {series(label_a, a, a.base_disp_m, 1e3), series(label_b, b, b.base_disp_m, 1e3)}});
+  mp.panels.push_back({"",
+                       "time [s]",
+                       "damper force [kN]",
+                       {series(label_a, a, a.damper_force_n, 1e-3), series(label_b, b, b.damper_force_n, 1e-3)}});
+  mp.panels.push_back({"",
+                       "time [s]",
+                       "max |floor accel| [m/s²]",
+                       {series(label_a, a, a.peak_floor_accel_m_s2, 1.0),
+                        series(label_b, b, b.peak_floor_accel_m_s2, 1.0)}});
+  mp.height_px = 900;
+  std::vector<std::string> problems;
+  note(problems, report::plot_png(mp, png), png);
+  return problems;
+}
+
+}  // namespace mrd::run

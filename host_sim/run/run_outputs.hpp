@@ -1,0 +1,26 @@
+#pragma once
+/// Files written for one closed-loop run: the time series (CSV) and plots in
+/// the style of thesis Fig. 6.9–6.11.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "run/closed_loop.hpp"
+
+namespace mrd::run {
+
+/// Writes `dir/<stem>.csv` (every step) and `dir/<stem>_response.png` (base
+/// displacement, damper force and peak floor acceleration over time) and
+/// `dir/<stem>_loop.png` (damper force against stroke). Returns the reasons
+/// for plots that could not be drawn (empty when all were).
+std::vector<std::string> write_closed_loop_outputs(const std::filesystem::path& dir, const std::string& stem,
+                                                   const std::string& title, const ClosedLoopRecord& rec);
+
+/// Response time histories of two runs on one figure (e.g. fully mixed
+/// against 2.5 years idle, as Fig. 6.9–6.11 compare them).
+std::vector<std::string> write_comparison_plot(const std::filesystem::path& png, const std::string& title,
+                                               const std::string& label_a, const ClosedLoopRecord& a,
+                                               const std::string& label_b, const ClosedLoopRecord& b);
+
+}  // namespace mrd::run

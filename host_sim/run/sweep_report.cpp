@@ -1,0 +1,90 @@
+#include "run/sweep_report.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "report/output_dir.hpp"
+#include "report/plot.hpp"
+
+namespace mrd::run {
+namespace {
+
+struct Metric {
+  const char* file;
+  const char* title;
+  const char* axis;
+  double (*value)(const ClosedLoopSummary&);
+};
+
+constexpr Metric kMetrics[] = {
+    {"peak_base_displacement", "Max. displacement of base isolation", "max |base displacement| [mm]",
+     [](const ClosedLoopSummary& s) { return s.peak_base_displacement_m * 1e3; }},
+    {"peak_damper_force", "Max. damping force", "max |damper force| [kN]",
+     [](const ClosedLoopSummary& s) { return s.peak_damper_force_n / 1e3; }},
+    {"peak_superstructure_accel", "Max. acceleration of superstructure", "max |floor acceleration| [m/s²]",
+     [](const ClosedLoopSummary& s) { return s.peak_superstructure_accel_m_s2; }},
+};
+
+/// Thesis figure numbers for (mode, metric): semi-active 6.12–6.14,
+/// passive-off 6.15–6.17, passive-on 6.18–6.20.
+int thesis_figure(control::ControlMode mode, int metric) {
+  switch (mode) {
+    case control::ControlMode::kSemiActive: return 12 + metric;
+    case control::ControlMode::kPassiveOff: return 15 + metric;
+    case control::ControlMode::kPassiveOn: return 18 + metric;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string sweep_csv(const SweepSpec& spec, const std::vector<SweepRow>& rows) {
+  std::ostringstream os;
+  os << "record,control,idle_years,sq,peak_base_displacement_m,peak_damper_force_kn,"
+        "peak_superstructure_accel_m_s2,peak_base_accel_m_s2,peak_current_a,final_participant_ratio\n";
+  char buf[512];
+  for (const auto& r : rows) {
+    const auto& s = r.summary;
+    std::snprintf(buf, sizeof buf, "%s,%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                  spec.motions[r.motion_index].name.c_str(), control::mode_name(r.mode), r.idle_years, s.sq,
+                  s.peak_base_displacement_m, s.peak_damper_force_n / 1e3, s.peak_superstructure_accel_m_s2,
+                  s.peak_base_accel_m_s2, s.peak_current_a, s.final_participant_ratio);
+    os << buf;
+  }
+  return os.str();
+}
+
+std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, const SweepSpec& spec,
+                                             const std::vector<SweepRow>& rows, std::vector<std::string>* pngs) {
+  report::write_file_atomically(dir / "sweep.csv", sweep_csv(spec, rows));
+  std::vector<std::string> problems;
+  for (auto mode : spec.modes) {
+    for (int mi = 0; mi < 3; ++mi) {
+      const Metric& metric = kMetrics[mi];
+      report::PlotSpec p;
+      p.title = std::string(metric.title) + ", " + control::mode_name(mode) + " (cf. thesis Fig. 6." +
+                std::to_string(thesis_figure(mode, mi)) + ")";
+      p.x_label = "idle time [years]";
+      p.y_label = metric.axis;
+      for (std::size_t m = 0; m < spec.motions.size(); ++m) {
+        report::Series s{spec.motions[m].label, {}, {}, "linespoints"};
+        for (const auto& r : rows) {
+          if (r.motion_index != m || r.mode != mode) continue;
+          s.x.push_back(r.idle_years);
+          s.y.push_back(metric.value(r.summary));
+        }
+        p.series.push_back(std::move(s));
+      }
+      const std::string name = std::string(control::mode_name(mode)) + "_" + metric.file + ".png";
+      const auto res = report::plot_png(p, dir / name);
+      if (res.ok) {
+        if (pngs) pngs->push_back(name);
+      } else {
+        problems.push_back(name + ": " + res.reason);
+      }
+    }
+  }
+  return problems;
+}
+
+}  // namespace mrd::run

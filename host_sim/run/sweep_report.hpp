@@ -1,0 +1,22 @@
+#pragma once
+/// Files of an idle-time sweep: one CSV and the plots of Fig. 6.12–6.20.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "run/sweep.hpp"
+
+namespace mrd::run {
+
+/// Writes `dir/sweep.csv` and, per control mode, three PNGs (peak base
+/// displacement, peak damper force, peak superstructure acceleration against
+/// idle time, one curve per motion). Returns the plot problems (empty when
+/// every plot was drawn) and the names of the PNGs written in `pngs`.
+std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, const SweepSpec& spec,
+                                             const std::vector<SweepRow>& rows, std::vector<std::string>* pngs);
+
+/// The sweep as CSV text (header + one row per run).
+std::string sweep_csv(const SweepSpec& spec, const std::vector<SweepRow>& rows);
+
+}  // namespace mrd::run

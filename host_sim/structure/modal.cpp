@@ -1,0 +1,65 @@
+#include "structure/modal.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+#include <utility>
+
+#include "mrd/units.hpp"
+
+namespace mrd::structure {
+namespace {
+
+constexpr double kTwoPi = 2.0 * units::kPi;
+
+struct DampedMode {
+  double omega_rad_s;
+  double zeta;
+};
+
+}  // namespace
+
+ModalResult modal_analysis(const BuildingParams& params) {
+  const ContinuousModel cm = continuous_model(params);
+  ModalResult r;
+
+  // Damped modes: one eigenvalue of each conjugate pair (Im λ > 0).
+  Eigen::EigenSolver<StateMatrix> es(cm.a, /*computeEigenvectors=*/false);
+  if (es.info() != Eigen::Success) throw std::runtime_error("modal analysis: eigenvalues of A did not converge");
+  std::array<DampedMode, kDofs> modes{};
+  int n = 0;
+  for (int k = 0; k < kStates; ++k) {
+    const std::complex<double> lambda = es.eigenvalues()(k);
+    if (lambda.imag() <= 0.0) continue;
+    if (n == kDofs) break;
+    const double w = std::abs(lambda);
+    modes[n++] = DampedMode{w, -lambda.real() / w};
+  }
+  if (n != kDofs) {
+    throw std::runtime_error("modal analysis: a mode is critically or over-damped (real eigenvalues of A)");
+  }
+  std::sort(modes.begin(), modes.end(),
+            [](const DampedMode& a, const DampedMode& b) { return a.omega_rad_s < b.omega_rad_s; });
+  for (int k = 0; k < kDofs; ++k) {
+    r.frequencies_hz[k] = modes[k].omega_rad_s / kTwoPi;
+    r.damping_ratios[k] = modes[k].zeta;
+    r.periods_s[k] = 1.0 / r.frequencies_hz[k];
+  }
+
+  // Undamped modes: K φ = ω² M φ; Eigen returns ω² ascending.
+  Eigen::GeneralizedSelfAdjointEigenSolver<Matrix6> gs(stiffness_matrix(params), mass_matrix(params));
+  if (gs.info() != Eigen::Success) throw std::runtime_error("modal analysis: K φ = ω² M φ did not converge");
+  for (int k = 0; k < kDofs; ++k) {
+    r.undamped_frequencies_hz[k] = std::sqrt(gs.eigenvalues()(k)) / kTwoPi;
+    Vector6 phi = gs.eigenvectors().col(k);
+    Eigen::Index imax = 0;
+    phi.cwiseAbs().maxCoeff(&imax);
+    phi /= phi(imax);
+    r.mode_shapes.col(k) = phi;
+  }
+  return r;
+}
+
+}  // namespace mrd::structure
