@@ -38,8 +38,19 @@ struct DiscreteModel {
 DiscreteModel discretize_zoh(const ContinuousModel& model, double dt_s);
 
 /// The building as a fixed-step discrete-time system. `init()` designs Φ, Γ
-/// (allocates nothing afterwards); `step()` costs one 12×12 and one 12×2
-/// matrix-vector product, no heap, no exceptions.
+/// (allocates nothing afterwards); `step()` allocates nothing and throws
+/// nothing.
+///
+/// Internally the state is kept in real modal coordinates q, z = T q, where
+/// the columns of T are the real and imaginary parts of the eigenvectors of A
+/// (one pair per underdamped mode). In them Φ is block diagonal,
+/// <pre>
+///   T⁻¹ Φ T = diag(B_1 … B_6),  B_j = e^{σ_j T}·[cos ω_j T, sin ω_j T; −sin ω_j T, cos ω_j T]
+/// </pre>
+/// (λ_j = σ_j ± iω_j), so a step costs 6 2×2 products plus the inputs
+/// instead of a dense 12×12 product. This is the same exact ZOH solution in
+/// another basis: `init()` checks that T⁻¹ Φ T is block diagonal to 1e−12
+/// and otherwise (e.g. an overdamped mode) steps with the dense Φ.
 ///
 /// The state z = [x; ẋ] holds displacements (m) and velocities (m/s) of the
 /// base (DOF 0) and floors 1..5 relative to the ground.
@@ -61,13 +72,13 @@ class DiscreteBuilding {
   void step(double ground_accel_m_s2, double damper_force_n) noexcept;
 
   /// Base displacement relative to the ground, m (the damper stroke).
-  double base_disp_m() const noexcept { return z_(kBaseDof); }
+  double base_disp_m() const noexcept { return disp_m(kBaseDof); }
   /// Base velocity relative to the ground, m/s (the damper velocity).
-  double base_vel_m_s() const noexcept { return z_(kDofs + kBaseDof); }
+  double base_vel_m_s() const noexcept { return vel_m_s(kBaseDof); }
   /// Displacement of DOF `i` (0 = base, 1..5 = floors) relative to the ground, m.
-  double disp_m(int i) const noexcept { return z_(i); }
+  double disp_m(int i) const noexcept { return t_.row(i).dot(q_); }
   /// Velocity of DOF `i` relative to the ground, m/s.
-  double vel_m_s(int i) const noexcept { return z_(kDofs + i); }
+  double vel_m_s(int i) const noexcept { return t_.row(kDofs + i).dot(q_); }
 
   /// Absolute acceleration ẍ_i + a_g of DOF `i`, m/s², from the equation of
   /// motion at the end of the step just taken: after step() moved z[k] to
@@ -84,7 +95,9 @@ class DiscreteBuilding {
   Vector6 abs_accel_m_s2() const noexcept;
 
   /// The state [x; ẋ] (m, m/s), relative to the ground.
-  const State& state() const noexcept { return z_; }
+  State state() const noexcept { return t_ * q_; }
+  /// True when steps run in the block-diagonal modal form (see above).
+  bool modal_stepping() const noexcept { return modal_; }
   /// Replaces the state (e.g. an initial condition); held inputs become zero.
   void set_state(const State& z) noexcept;
 
@@ -101,10 +114,18 @@ class DiscreteBuilding {
  private:
   StateMatrix phi_;
   InputMatrix gamma_;
-  /// Rows 6..11 of A: ẍ as a function of z (−M⁻¹K, −M⁻¹C).
+  /// Rows 6..11 of A times T: ẍ as a function of q.
   Eigen::Matrix<double, kDofs, kStates> accel_rows_;
   double inv_base_mass_per_kg_ = 0.0;
-  State z_;
+  /// z = T q (T = I when stepping densely).
+  StateMatrix t_;
+  StateMatrix t_inv_;
+  /// Modal form: rows (2j, 2j+1) of B_j, i.e. [b00 b01; b10 b11] per mode.
+  Eigen::Matrix<double, kStates, 2> blocks_;
+  /// T⁻¹ Γ (or Γ when stepping densely).
+  InputMatrix gamma_q_;
+  bool modal_ = false;
+  State q_;
   double held_force_n_ = 0.0;
   double dt_s_ = 0.0;
   std::int64_t steps_ = 0;
