@@ -1,5 +1,6 @@
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "cli/command.hpp"
 #include "report/output_dir.hpp"
@@ -15,6 +16,11 @@ void require_finite_at_least(const std::string& option, double value, double min
     os << option << ": expected a number >= " << min_inclusive << ", got " << value;
     throw report::UsageError(os.str());
   }
+}
+
+void require_positive(const std::string& option, double value, const std::string& what) {
+  require_finite_at_least(option, value, 0.0);
+  if (!(value > 0.0)) throw report::UsageError(option + ": expected " + what + " > 0, got " + std::to_string(value));
 }
 
 }  // namespace mrd::cli

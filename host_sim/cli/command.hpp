@@ -25,4 +25,8 @@ Command add_study_command(CLI::App& parent);
 /// it. Throws report::UsageError naming the option.
 void require_finite_at_least(const std::string& option, double value, double min_inclusive);
 
+/// Checks a parsed number is finite and > 0; throws report::UsageError
+/// naming the option and `what` ("a PGA", "a duration", ...) otherwise.
+void require_positive(const std::string& option, double value, const std::string& what);
+
 }  // namespace mrd::cli

@@ -58,8 +58,7 @@ Command add_sim_command(CLI::App& parent) {
   app->add_option("--out", o->out_dir, "Folder for summary.json, timeseries.csv and plots");
   app->footer(kSimHelp);
   return {app, [o] {
-            require_finite_at_least("--pga-g", o->pga_g, 0.0);
-            if (!(o->pga_g > 0.0)) throw report::UsageError("--pga-g: expected a PGA > 0 g");
+            require_positive("--pga-g", o->pga_g, "a PGA");
             require_finite_at_least("--idle-years", o->idle_years, 0.0);
             require_finite_at_least("--duration-s", o->duration_s, 0.0);
             require_finite_at_least("--step-s", o->step_s, 1e-6);

@@ -180,15 +180,12 @@ Command add_sine_command(CLI::App& parent) {
   app->add_option("--out", o->out_dir, "Folder for summary.json, sine.csv and plots");
   app->footer(kSineHelp);
   return {app, [o] {
-            require_finite_at_least("--amplitude-mm", o->amplitude_mm, 0.0);
-            if (!(o->amplitude_mm > 0.0)) throw report::UsageError("--amplitude-mm: expected an amplitude > 0 mm");
-            require_finite_at_least("--freq-hz", o->freq_hz, 0.0);
-            if (!(o->freq_hz > 0.0)) throw report::UsageError("--freq-hz: expected a frequency > 0 Hz");
+            require_positive("--amplitude-mm", o->amplitude_mm, "an amplitude");
+            require_positive("--freq-hz", o->freq_hz, "a frequency");
             require_finite_at_least("--current-a", o->current_a, -30.0);
             if (o->current_a > 30.0) throw report::UsageError("--current-a: expected at most the drive's 30 A peak");
             require_finite_at_least("--idle-years", o->idle_years, 0.0);
-            require_finite_at_least("--duration-s", o->duration_s, 0.0);
-            if (!(o->duration_s > 0.0)) throw report::UsageError("--duration-s: expected a duration > 0 s");
+            require_positive("--duration-s", o->duration_s, "a duration");
             if (o->duration_s > 1.0e5) throw report::UsageError("--duration-s: expected at most 100000 s");
             require_finite_at_least("--step-s", o->step_s, 1e-6);
             if (o->step_s > 0.1 / o->freq_hz) throw report::UsageError("--step-s: expected at most a tenth of the period");

@@ -35,8 +35,7 @@ Command add_study_command(CLI::App& parent) {
   app->add_option("--out", o->out_dir, "Output folder")->capture_default_str();
   app->footer(kStudyHelp);
   return {app, [o] {
-            require_finite_at_least("--pga-g", o->study.pga_g, 0.0);
-            if (!(o->study.pga_g > 0.0)) throw report::UsageError("--pga-g: expected a PGA > 0 g");
+            require_positive("--pga-g", o->study.pga_g, "a PGA");
             require_finite_at_least("--idle-years", o->study.idle_years, 0.0);
             o->study.with_sweep = !o->no_sweep;
             const auto r = run::run_study(o->study, o->out_dir);

@@ -56,8 +56,7 @@ Command add_sweep_command(CLI::App& parent) {
   app->add_option("--out", o->out_dir, "Output folder")->capture_default_str();
   app->footer(kSweepHelp);
   return {app, [o] {
-            require_finite_at_least("--pga-g", o->pga_g, 0.0);
-            if (!(o->pga_g > 0.0)) throw report::UsageError("--pga-g: expected a PGA > 0 g");
+            require_positive("--pga-g", o->pga_g, "a PGA");
             require_finite_at_least("--idle-from", o->idle_from, 0.0);
             require_finite_at_least("--idle-to", o->idle_to, o->idle_from);
             require_finite_at_least("--idle-step", o->idle_step, 1e-6);
