@@ -20,6 +20,9 @@ Command add_sine_command(CLI::App& parent);
 Command add_sim_command(CLI::App& parent);
 Command add_sweep_command(CLI::App& parent);
 Command add_study_command(CLI::App& parent);
+Command add_discrepancy_command(CLI::App& parent);
+Command add_synth_command(CLI::App& parent);
+Command add_schedule_command(CLI::App& parent);
 
 /// Checks a parsed number: finite and, if `min_inclusive` is given, not below
 /// it. Throws report::UsageError naming the option.

@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
   commands.push_back(mrd::cli::add_sim_command(app));
   commands.push_back(mrd::cli::add_sweep_command(app));
   commands.push_back(mrd::cli::add_study_command(app));
+  commands.push_back(mrd::cli::add_discrepancy_command(app));
+  commands.push_back(mrd::cli::add_synth_command(app));
+  commands.push_back(mrd::cli::add_schedule_command(app));
 
   try {
     app.parse(argc, argv);

@@ -27,7 +27,7 @@ Fields of DIR/summary.json:
   peak_base_accel_m_s2            max |absolute acceleration| of the base, m/s^2
   peak_current_a                  max |coil current|, A
   sq, final_participant_ratio     settling quotient at the start (Eq. 5.5), PR at the end (Eq. 5.9)
-  record, pga_m_s2, scale_factor, control, idle_years, duration_s, step_s: the run's inputs
+  record, pga_m_s2, scale_factor, control, numeric, idle_years, duration_s, step_s: the run's inputs
 Files: DIR/timeseries.csv (every step; columns name their units), DIR/timeseries_response.png
 (displacement, force, floor acceleration, current over time, like Fig. 6.9-6.11) and
 DIR/timeseries_loop.png (force against stroke).)";
@@ -36,6 +36,7 @@ struct SimOptions {
   std::string record;
   double pga_g = run::kThesisPga_g;
   std::string control = "passive-off";
+  std::string numeric = "float";
   double idle_years = 0.0;
   double duration_s = 0.0;
   double step_s = 1.0e-3;
@@ -51,6 +52,8 @@ Command add_sim_command(CLI::App& parent) {
   app->add_option("--record", o->record, "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2");
   app->add_option("--pga-g", o->pga_g, "Scale the record to this PGA, g (Table 6.3: 0.1127)")->capture_default_str();
   app->add_option("--control", o->control, "passive-off | passive-on | semi-active")->capture_default_str();
+  app->add_option("--numeric", o->numeric, "Numeric build of the firmware control core: float | fixed")
+      ->capture_default_str();
   app->add_option("--idle-years", o->idle_years, "Idle time before the earthquake, years")->capture_default_str();
   app->add_option("--duration-s", o->duration_s, "Simulated time, s (default: the record's length; 40 s synthetic)");
   app->add_option("--step-s", o->step_s, "Simulation and control step, s")->capture_default_str();
@@ -64,7 +67,8 @@ Command add_sim_command(CLI::App& parent) {
             require_finite_at_least("--step-s", o->step_s, 1e-6);
             if (o->step_s > 0.02) throw report::UsageError("--step-s: expected at most 0.02 s");
             const control::ControlMode mode = run::parse_control_mode(o->control);
-            auto controller = run::make_controller(mode, o->step_s);
+            const run::NumericKind numeric = run::parse_numeric_kind(o->numeric);
+            auto controller = run::make_controller(mode, o->step_s, numeric);
             if (!o->out_dir.empty()) report::prepare_output_dir(o->out_dir);
 
             run::StudyMotion motion;
@@ -83,9 +87,9 @@ Command add_sim_command(CLI::App& parent) {
             const bool keep = !o->out_dir.empty();
             const run::ClosedLoopSummary s = run::run_closed_loop(spec, motion.accel_m_s2, *controller, keep ? &rec : nullptr);
 
-            std::printf("%s, PGA %.4g g (x%.4f), %s, idle %.4g years (SQ %.3f), %.2f s\n", motion.name.c_str(),
-                        motion.pga_m_s2 / units::kStandardGravity_m_s2, motion.scale_factor, o->control.c_str(),
-                        o->idle_years, s.sq, s.duration_s);
+            std::printf("%s, PGA %.4g g (x%.4f), %s (%s core), idle %.4g years (SQ %.3f), %.2f s\n",
+                        motion.name.c_str(), motion.pga_m_s2 / units::kStandardGravity_m_s2, motion.scale_factor,
+                        o->control.c_str(), run::numeric_name(numeric), o->idle_years, s.sq, s.duration_s);
             std::printf("  peak base displacement       %10.4f mm\n", s.peak_base_displacement_m * 1e3);
             std::printf("  peak damper force            %10.3f kN\n", s.peak_damper_force_n / 1e3);
             std::printf("  peak superstructure accel    %10.4f m/s^2\n", s.peak_superstructure_accel_m_s2);
@@ -110,6 +114,7 @@ Command add_sim_command(CLI::App& parent) {
                 {"pga_m_s2", motion.pga_m_s2},
                 {"scale_factor", motion.scale_factor},
                 {"control", o->control},
+                {"numeric", run::numeric_name(numeric)},
                 {"idle_years", o->idle_years},
                 {"duration_s", s.duration_s},
                 {"step_s", o->step_s},

@@ -25,13 +25,43 @@ std::vector<control::ControlMode> available_modes() {
   return modes;
 }
 
-std::unique_ptr<Controller> make_controller(control::ControlMode mode, double /*period_s*/) {
-  switch (mode) {
-    case control::ControlMode::kPassiveOff: return std::make_unique<ConstantCurrentController>(0.0);
-    case control::ControlMode::kPassiveOn: return std::make_unique<ConstantCurrentController>(kPassiveOnCurrent_a);
-    case control::ControlMode::kSemiActive: break;
+const char* numeric_name(NumericKind kind) noexcept { return kind == NumericKind::kFixed ? "fixed" : "float"; }
+
+NumericKind parse_numeric_kind(const std::string& text) {
+  if (text == "float") return NumericKind::kFloat;
+  if (text == "fixed") return NumericKind::kFixed;
+  throw report::UsageError("--numeric: expected float or fixed, got '" + text + "'");
+}
+
+fw::ControllerConfig firmware_config(control::ControlMode mode, double period_s) {
+  fw::ControllerConfig c;
+  c.mode = mode;
+  c.period_s = period_s;
+  c.nominal_current_a = kPassiveOnCurrent_a;
+  if (c.velocity_cutoff_hz > 0.25 / period_s) c.velocity_cutoff_hz = 0.25 / period_s;
+  return c;
+}
+
+namespace {
+template <class Policy>
+std::unique_ptr<Controller> make_firmware(const fw::ControllerConfig& c) {
+  auto controller = std::make_unique<FirmwareController<Policy>>(c);
+  if (controller->init_error() != fw::ConfigError::kNone) {
+    const fw::ConfigError e = controller->init_error();
+    const bool period = e == fw::ConfigError::kPeriod || e == fw::ConfigError::kFilterFrequency ||
+                        e == fw::ConfigError::kVelocityFilter;
+    throw report::UsageError(std::string(period ? "--step-s" : "controller") +
+                             ": the firmware control core rejects its configuration at a period of " +
+                             std::to_string(c.period_s) + " s (" + fw::config_error_name(e) + ")");
   }
-  throw report::UsageError("--control semi-active: the semi-active firmware core is not in this build yet");
+  return controller;
+}
+}  // namespace
+
+std::unique_ptr<Controller> make_controller(control::ControlMode mode, double period_s, NumericKind numeric) {
+  const fw::ControllerConfig c = firmware_config(mode, period_s);
+  if (numeric == NumericKind::kFixed) return make_firmware<num::Fixed32Policy>(c);
+  return make_firmware<num::Float32Policy>(c);
 }
 
 }  // namespace mrd::run

@@ -149,7 +149,7 @@ TEST_F(SimCli, SweepWritesCsvAndPlots) {
                          scratch_.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string csv = slurp(out_.path() / "sweep.csv");
-  EXPECT_EQ(count_lines(csv), 1 + 2 * 3);  // passive-off, passive-on × 3 idle times
+  EXPECT_EQ(count_lines(csv), 1 + 3 * 3);  // passive-off, passive-on, semi-active × 3 idle times
   EXPECT_TRUE(fs::exists(out_.path() / "passive-on_peak_base_displacement.png"));
 }
 

@@ -46,6 +46,32 @@ constexpr T clamp(T v, T lo, T hi) noexcept {
   return v < lo ? lo : (hi < v ? hi : v);
 }
 
+/// Run-time conversion of a float sample (a sensor value crossing the
+/// control core's boundary) without double arithmetic, for targets whose FPU
+/// is single precision. Fixed point: v·2^F in float (exact, a power of two),
+/// rounded to nearest (ties away from zero; above 2^23 counts, where float
+/// has no fraction left, the float value itself), saturated; NaN gives 0.
+template <class T>
+constexpr T from_float(float v) noexcept {
+  if constexpr (requires { T::kFracBits; }) {
+    if (v != v) return T{};
+    const float scaled = v * static_cast<float>(std::int64_t{1} << T::kFracBits);
+    if (scaled >= 2147483648.0f) return T::max();
+    if (scaled <= -2147483648.0f) return T::lowest();
+    const float r = scaled >= 0.0f ? scaled + 0.5f : scaled - 0.5f;
+    return T::from_raw(static_cast<typename T::raw_type>(r));
+  } else {
+    return static_cast<T>(v);
+  }
+}
+
+/// Run-time conversion back to float (raw·2^−F, rounded to float's 24 bits).
+constexpr float to_float(float v) noexcept { return v; }
+template <int I, int F>
+constexpr float to_float(Fixed<I, F> v) noexcept {
+  return static_cast<float>(v.raw()) * (1.0f / static_cast<float>(std::int64_t{1} << F));
+}
+
 /// Single-precision float for every role.
 struct Float32Policy {
   static constexpr const char* kName = "float32";

@@ -1,0 +1,197 @@
+#include "app/board_config.hpp"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace mrd::app {
+namespace {
+
+[[noreturn]] void fail(const std::string& origin, const toml::source_region& where, const std::string& field,
+                       const std::string& problem) {
+  throw BoardConfigError(origin + ":" + std::to_string(where.begin.line) + ": " + field + ": " + problem);
+}
+
+/// Reads the keys of one table, refusing keys it does not know (typos).
+class Table {
+ public:
+  Table(const toml::table& root, const char* name, const std::string& origin, bool required)
+      : origin_(origin), name_(name) {
+    const toml::node* n = root.get(name);
+    if (!n) {
+      if (required) throw BoardConfigError(origin + ":1: [" + name_ + "]: missing table");
+      return;
+    }
+    t_ = n->as_table();
+    if (!t_) fail(origin, n->source(), name_, "expected a table [" + name_ + "]");
+  }
+  bool present() const noexcept { return t_ != nullptr; }
+
+  template <class T>
+  bool integer(const char* key, T& out, std::int64_t lo, std::int64_t hi) {
+    const toml::node* n = find(key);
+    if (!n) return false;
+    const auto v = n->value<std::int64_t>();
+    if (!n->is_integer() || !v) fail(origin_, n->source(), field(key), "expected an integer");
+    if (*v < lo || *v > hi)
+      fail(origin_, n->source(), field(key),
+           "expected " + std::to_string(lo) + " … " + std::to_string(hi) + ", got " + std::to_string(*v));
+    out = static_cast<T>(*v);
+    return true;
+  }
+  bool boolean(const char* key, bool& out) {
+    const toml::node* n = find(key);
+    if (!n) return false;
+    if (!n->is_boolean()) fail(origin_, n->source(), field(key), "expected true or false");
+    out = *n->value<bool>();
+    return true;
+  }
+  bool string(const char* key, std::string& out) {
+    const toml::node* n = find(key);
+    if (!n) return false;
+    if (!n->is_string()) fail(origin_, n->source(), field(key), "expected a string");
+    out = *n->value<std::string>();
+    return true;
+  }
+  /// A GPIO line: an offset (integer ≥ 0) or a line name (string).
+  bool line(const char* key, GpioLine& out) {
+    const toml::node* n = find(key);
+    if (!n) return false;
+    if (n->is_integer()) {
+      const std::int64_t v = *n->value<std::int64_t>();
+      if (v < 0 || v > 1023) fail(origin_, n->source(), field(key), "expected a line offset 0 … 1023");
+      out.offset = static_cast<int>(v);
+    } else if (n->is_string()) {
+      out.name = *n->value<std::string>();
+      if (out.name.empty()) fail(origin_, n->source(), field(key), "expected a line name or offset");
+    } else {
+      fail(origin_, n->source(), field(key), "expected a line offset (integer) or a line name (string)");
+    }
+    return true;
+  }
+  toml::source_region where(const char* key) const {
+    const toml::node* n = t_ ? t_->get(key) : nullptr;
+    return n ? n->source() : (t_ ? t_->source() : toml::source_region{});
+  }
+  /// Refuses keys that were never asked for.
+  void no_unknown_keys() const {
+    if (!t_) return;
+    for (const auto& [k, v] : *t_) {
+      if (!asked_.count(std::string(k.str())))
+        fail(origin_, v.source(), field(std::string(k.str()).c_str()), "unknown key");
+    }
+  }
+  std::string field(const char* key) const { return name_ + "." + key; }
+
+ private:
+  const toml::node* find(const char* key) {
+    asked_.insert(key);
+    return t_ ? t_->get(key) : nullptr;
+  }
+  std::string origin_, name_;
+  const toml::table* t_ = nullptr;
+  std::set<std::string> asked_;
+};
+
+}  // namespace
+
+bool parse_mode_name(const std::string& text, control::ControlMode& mode) noexcept {
+  for (auto m : {control::ControlMode::kPassiveOff, control::ControlMode::kPassiveOn,
+                 control::ControlMode::kSemiActive}) {
+    if (text == control::mode_name(m)) {
+      mode = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+ControlTaskConfig BoardConfig::task_config() const noexcept {
+  ControlTaskConfig c;
+  c.nodes = nodes;
+  c.mode = mode;
+  c.sensor_timeout_ticks = sensor_timeout_ticks;
+  c.drive_status_timeout_ticks = drive_status_timeout_ticks;
+  c.heartbeat_period_ticks = heartbeat_period_ticks;
+  return c;
+}
+
+BoardConfig parse_board_config(const std::string& text, const std::string& origin) {
+  toml::table root;
+  try {
+    root = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw BoardConfigError(origin + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+  }
+  for (const auto& [k, v] : root) {
+    const std::string key(k.str());
+    if (key != "board" && key != "control" && key != "can" && key != "gpio" && key != "realtime")
+      fail(origin, v.source(), key, "unknown table (expected board, control, can, gpio, realtime)");
+  }
+
+  BoardConfig c;
+  Table board(root, "board", origin, true);
+  if (!board.string("name", c.name) || c.name.empty())
+    fail(origin, board.where("name"), "board.name", "missing board name");
+  board.string("description", c.description);
+  board.no_unknown_keys();
+
+  Table control(root, "control", origin, true);
+  control.integer("period_us", c.period_us, 100, 100000);
+  std::string mode;
+  if (control.string("mode", mode) && !parse_mode_name(mode, c.mode))
+    fail(origin, control.where("mode"), "control.mode",
+         "expected passive-off, passive-on or semi-active, got '" + mode + "'");
+  std::string numeric = "float";
+  if (control.string("numeric", numeric) && numeric != "float" && numeric != "fixed")
+    fail(origin, control.where("numeric"), "control.numeric", "expected float or fixed, got '" + numeric + "'");
+  c.fixed_point = numeric == "fixed";
+  control.integer("sensor_timeout_ticks", c.sensor_timeout_ticks, 1, 100000);
+  control.integer("drive_status_timeout_ticks", c.drive_status_timeout_ticks, 1, 100000);
+  control.integer("heartbeat_period_ticks", c.heartbeat_period_ticks, 1, 100000);
+  control.no_unknown_keys();
+
+  Table can(root, "can", origin, true);
+  can.string("interface", c.can_interface);
+  can.integer("controller_node", c.nodes.controller, 1, protocol::kMaxNodeId);
+  can.integer("drive_node", c.nodes.drive, 1, protocol::kMaxNodeId);
+  can.integer("daq_node", c.nodes.daq, 1, protocol::kMaxNodeId);
+  can.integer("actuator_node", c.nodes.actuator, 1, protocol::kMaxNodeId);
+  can.no_unknown_keys();
+  const std::set<int> ids{c.nodes.controller, c.nodes.drive, c.nodes.daq, c.nodes.actuator};
+  if (ids.size() != 4) fail(origin, can.where("controller_node"), "can", "node ids must be four different numbers");
+
+  Table gpio(root, "gpio", origin, false);
+  if (gpio.present()) {
+    c.gpio_enabled = true;
+    if (!gpio.string("chip", c.gpio_chip) || c.gpio_chip.empty())
+      fail(origin, gpio.where("chip"), "gpio.chip", "missing GPIO chip (e.g. \"gpiochip0\")");
+    if (!gpio.line("drive_enable", c.drive_enable))
+      fail(origin, gpio.where("drive_enable"), "gpio.drive_enable", "missing line");
+    if (!gpio.line("drive_fault", c.drive_fault))
+      fail(origin, gpio.where("drive_fault"), "gpio.drive_fault", "missing line");
+    gpio.line("maintenance_due", c.maintenance_due);
+    gpio.boolean("drive_enable_active_low", c.drive_enable.active_low);
+    gpio.boolean("drive_fault_active_low", c.drive_fault.active_low);
+    gpio.boolean("maintenance_due_active_low", c.maintenance_due.active_low);
+    gpio.no_unknown_keys();
+  }
+
+  Table rt(root, "realtime", origin, false);
+  rt.integer("sched_fifo_priority", c.sched_fifo_priority, 0, 99);
+  rt.boolean("lock_memory", c.lock_memory);
+  rt.integer("cpu", c.cpu, -1, 1023);
+  rt.no_unknown_keys();
+  return c;
+}
+
+BoardConfig load_board_config(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw BoardConfigError(path.string() + ":0: cannot open the board file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_board_config(ss.str(), path.string());
+}
+
+}  // namespace mrd::app

@@ -1,0 +1,66 @@
+#pragma once
+/// The board file (boards/<name>/board.toml): CAN interface and node ids,
+/// GPIO chip and lines, control period and mode, real-time settings.
+/// Read once at start-up; every error names the file, the line and the field.
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "app/control_task.hpp"
+#include "mrd/control/io.hpp"
+#include "mrd/protocol/messages.hpp"
+
+namespace mrd::app {
+
+/// A bad board file: what() is one line "FILE:LINE: field: problem".
+class BoardConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One GPIO line: an offset on the chip, or a line name the chip knows.
+struct GpioLine {
+  int offset = -1;          ///< ≥ 0 when given as a number
+  std::string name;         ///< non-empty when given as a name
+  bool active_low = false;  ///< electrical level 0 means "active"
+  bool configured() const noexcept { return offset >= 0 || !name.empty(); }
+};
+
+struct BoardConfig {
+  std::string name;
+  std::string description;
+  // [control]
+  std::uint32_t period_us = 1000;
+  control::ControlMode mode = control::ControlMode::kSemiActive;
+  bool fixed_point = false;  ///< numeric = "fixed"
+  std::uint32_t sensor_timeout_ticks = 10;
+  std::uint32_t drive_status_timeout_ticks = 10;
+  std::uint32_t heartbeat_period_ticks = 100;
+  // [can]
+  std::string can_interface;  ///< e.g. "can0", "vcan0"; empty for the in-process board
+  protocol::NodeIds nodes{};
+  // [gpio]
+  bool gpio_enabled = false;
+  std::string gpio_chip;  ///< e.g. "gpiochip0"
+  GpioLine drive_enable, drive_fault, maintenance_due;
+  // [realtime]
+  int sched_fifo_priority = 0;  ///< 1..99 asks for SCHED_FIFO; 0 leaves the scheduler alone
+  bool lock_memory = false;     ///< mlockall(MCL_CURRENT | MCL_FUTURE)
+  int cpu = -1;                 ///< pin the control thread to this CPU; −1 leaves it free
+
+  double period_s() const noexcept { return static_cast<double>(period_us) * 1e-6; }
+  ControlTaskConfig task_config() const noexcept;
+};
+
+/// Parses TOML text; `origin` names the file in error messages.
+BoardConfig parse_board_config(const std::string& text, const std::string& origin);
+
+/// Reads and parses `path`.
+BoardConfig load_board_config(const std::filesystem::path& path);
+
+/// "passive-off" | "passive-on" | "semi-active", or nullopt-like false.
+bool parse_mode_name(const std::string& text, control::ControlMode& mode) noexcept;
+
+}  // namespace mrd::app

@@ -1,0 +1,150 @@
+#pragma once
+/// Configuration of the damper controller, with the thesis's defaults, and
+/// its validation (no exceptions: an error code).
+
+#include <cstdint>
+
+#include "core/numeric_formats.hpp"
+#include "mrd/control/io.hpp"
+#include "mrd/units.hpp"
+
+namespace mrd::fw {
+
+struct ControllerConfig {
+  double period_s = 1.0e-3;  ///< control period T (1 kHz)
+  control::ControlMode mode = control::ControlMode::kSemiActive;
+
+  // Causal RILD, Eq. 6.1.
+  double stiffness_n_m = 3287.0e3;                                ///< k, isolation stiffness (3287 kN/m)
+  double loss_factor = 0.8;                                       ///< η (§6.3)
+  double filter_freq_rad_s = 2.0 * units::kPi * 0.2508;           ///< ω_f, fundamental mode (`mrd modal`)
+  double desired_force_limit_n = 400.0e3;                         ///< |F_d| clamp: 2× the 200 kN rating
+
+  // Velocity sign for ODBDCO.
+  double velocity_cutoff_hz = 30.0;     ///< f_v of the differentiating low-pass
+  double velocity_deadband_m_s = 1e-3;  ///< v_db: below it the direction is unknown
+
+  // ODBDCO, §6.3 and Phillips & Spencer 2012 (law in odbdco.hpp).
+  double nominal_current_a = 2.5;        ///< passive-on current (§6.4)
+  double overdrive_current_a = 10.0;     ///< I_od
+  double coil_current_ceiling_a = 10.0;  ///< I_ceil: over-drive holds here once the coil reaches it
+  double backdrive_current_a = -10.0;    ///< I_bd
+  double release_current_a = 0.05;       ///< I_rel: back-drive ends at this coil current
+  double force_deadband_n = 2.0e3;       ///< F_db
+
+  // PWM drive (§3.2; SPEC): command ±10 A at 1 V/A; 15 A continuous, 30 A peak.
+  double command_limit_a = 10.0;
+  double drive_continuous_limit_a = 15.0;
+  double drive_peak_limit_a = 30.0;
+  /// After the drive's fault line clears, the drive stays disabled this long.
+  std::uint32_t drive_reenable_delay_ticks = 1000;
+
+  // Input guard (input_guard.hpp).
+  double disp_limit_m = 0.30;
+  double force_limit_n = 500.0e3;
+  double accel_limit_m_s2 = 50.0;
+  double coil_current_limit_a = 30.0;
+  std::uint32_t stuck_ticks = 500;
+  double shaking_threshold_m_s2 = 0.1;
+  /// Inputs sampled more than this many ticks before the present tick are stale.
+  std::uint32_t max_input_age_ticks = 2;
+  /// Semi-active with bad input: repeat the last command this many ticks, then fall back.
+  std::uint32_t fault_hold_ticks = 5;
+  /// Semi-active with bad input beyond the hold: this current (passive-on's 2.5 A).
+  double fallback_current_a = 2.5;
+};
+
+enum class ConfigError : std::uint8_t {
+  kNone = 0,
+  kPeriod,           ///< T not in [1e−5, 0.1] s
+  kMode,             ///< unknown control mode
+  kStiffness,        ///< k not > 0
+  kLossFactor,       ///< η not in (0, 10]
+  kFilterFrequency,  ///< ω_f not in (0, π/T)
+  kForceLimit,       ///< F_d limit not > 0
+  kVelocityFilter,   ///< f_v not in (0, 1/(2T)), or v_db < 0
+  kCurrentLevels,    ///< currents out of order (see validate_config)
+  kDeadband,         ///< F_db < 0
+  kSensorLimits,     ///< guard limits not > 0, stuck_ticks < 2
+  kFixedPointRange,  ///< a constant does not fit its fixed-point format
+};
+
+constexpr const char* config_error_name(ConfigError e) noexcept {
+  switch (e) {
+    case ConfigError::kNone: return "none";
+    case ConfigError::kPeriod: return "period_s";
+    case ConfigError::kMode: return "mode";
+    case ConfigError::kStiffness: return "stiffness_n_m";
+    case ConfigError::kLossFactor: return "loss_factor";
+    case ConfigError::kFilterFrequency: return "filter_freq_rad_s";
+    case ConfigError::kForceLimit: return "desired_force_limit_n";
+    case ConfigError::kVelocityFilter: return "velocity_cutoff_hz/velocity_deadband_m_s";
+    case ConfigError::kCurrentLevels: return "current levels";
+    case ConfigError::kDeadband: return "force_deadband_n";
+    case ConfigError::kSensorLimits: return "sensor limits";
+    case ConfigError::kFixedPointRange: return "fixed-point range";
+  }
+  return "unknown";
+}
+
+namespace detail {
+constexpr bool finite_positive(double v) noexcept { return v > 0.0 && v < 1.0e300; }
+constexpr bool finite(double v) noexcept { return v > -1.0e300 && v < 1.0e300; }
+}  // namespace detail
+
+/// Checks a configuration for the numeric policy; kNone when usable.
+/// Current levels must satisfy
+///   0 < I_nom ≤ I_od ≤ I_cmd ≤ I_cont ≤ I_peak,  0 < I_ceil ≤ I_cmd,
+///   −I_cmd ≤ I_bd < 0,  0 ≤ I_rel < I_nom,  0 ≤ I_fallback ≤ I_cmd,
+/// so over-drive never exceeds the drive's command range nor its continuous
+/// rating.
+template <class Policy>
+constexpr ConfigError validate_config(const ControllerConfig& c) noexcept {
+  using F = Formats<Policy>;
+  if (!(c.period_s >= 1.0e-5 && c.period_s <= 0.1)) return ConfigError::kPeriod;
+  if (c.mode != control::ControlMode::kPassiveOff && c.mode != control::ControlMode::kPassiveOn &&
+      c.mode != control::ControlMode::kSemiActive) {
+    return ConfigError::kMode;
+  }
+  if (!detail::finite_positive(c.stiffness_n_m)) return ConfigError::kStiffness;
+  if (!(c.loss_factor > 0.0 && c.loss_factor <= 10.0)) return ConfigError::kLossFactor;
+  if (!(c.filter_freq_rad_s > 0.0 && c.filter_freq_rad_s * c.period_s < units::kPi)) {
+    return ConfigError::kFilterFrequency;
+  }
+  if (!detail::finite_positive(c.desired_force_limit_n)) return ConfigError::kForceLimit;
+  if (!(c.velocity_cutoff_hz > 0.0 && c.velocity_cutoff_hz * 2.0 * c.period_s < 1.0) ||
+      !(c.velocity_deadband_m_s >= 0.0 && detail::finite(c.velocity_deadband_m_s))) {
+    return ConfigError::kVelocityFilter;
+  }
+  const bool currents_ok =
+      c.nominal_current_a > 0.0 && c.nominal_current_a <= c.overdrive_current_a &&
+      c.overdrive_current_a <= c.command_limit_a && c.command_limit_a <= c.drive_continuous_limit_a &&
+      c.drive_continuous_limit_a <= c.drive_peak_limit_a && detail::finite(c.drive_peak_limit_a) &&
+      c.coil_current_ceiling_a > 0.0 && c.coil_current_ceiling_a <= c.command_limit_a &&
+      c.backdrive_current_a >= -c.command_limit_a && c.backdrive_current_a < 0.0 && c.release_current_a >= 0.0 &&
+      c.release_current_a < c.nominal_current_a && c.fallback_current_a >= 0.0 &&
+      c.fallback_current_a <= c.command_limit_a;
+  if (!currents_ok) return ConfigError::kCurrentLevels;
+  if (!(c.force_deadband_n >= 0.0 && detail::finite(c.force_deadband_n))) return ConfigError::kDeadband;
+  if (!detail::finite_positive(c.disp_limit_m) || !detail::finite_positive(c.force_limit_n) ||
+      !detail::finite_positive(c.accel_limit_m_s2) || !detail::finite_positive(c.coil_current_limit_a) ||
+      !detail::finite_positive(c.shaking_threshold_m_s2) || c.stuck_ticks < 2) {
+    return ConfigError::kSensorLimits;
+  }
+  // Fixed point: every constant and every intermediate the blocks document.
+  const bool fits =
+      representable<typename F::Gain>(c.stiffness_n_m * c.loss_factor) &&
+      representable<typename F::Disp>(4.0 * c.disp_limit_m) &&  // RILD: |w + x| < 4 max|x|
+      representable<typename F::Force>(c.desired_force_limit_n) &&
+      representable<typename F::Force>(c.force_limit_n) && representable<typename F::Force>(c.force_deadband_n) &&
+      representable<typename F::Current>(c.coil_current_limit_a) &&
+      representable<typename F::Current>(c.drive_peak_limit_a) &&
+      representable<typename F::Disp>(c.velocity_deadband_m_s * c.period_s) &&
+      // a velocity deadband that rounds to zero counts would be no deadband
+      (c.velocity_deadband_m_s == 0.0 ||
+       num::to_double(num::from_double<typename F::Disp>(c.velocity_deadband_m_s * c.period_s)) > 0.0);
+  if (!fits) return ConfigError::kFixedPointRange;
+  return ConfigError::kNone;
+}
+
+}  // namespace mrd::fw

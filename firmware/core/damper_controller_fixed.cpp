@@ -1,0 +1,7 @@
+// The fixed-point build of the control core (num::Fixed32Policy). This file
+// is also what the Cortex-M4 cross-compile check builds.
+#include "core/damper_controller.hpp"
+
+namespace mrd::fw {
+template class DamperController<num::Fixed32Policy>;
+}  // namespace mrd::fw

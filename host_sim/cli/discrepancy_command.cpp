@@ -1,0 +1,125 @@
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cli/command.hpp"
+#include "discrepancy/discrepancy_report.hpp"
+#include "discrepancy/measured_data.hpp"
+#include "discrepancy/workflow.hpp"
+#include "report/output_dir.hpp"
+
+namespace mrd::cli {
+namespace {
+
+constexpr const char* kDiscrepancyHelp = R"(Model-discrepancy workflow. Simulates the chapter-4 damper model (Bingham + transition,
+Eq. 4.1-4.4, Table 4.1; coil current by Eq. 4.5 from the commanded current) over the measured
+input, localizes where the force gap concentrates, then tests named effects added to the model:
+  idle_settling  participant ratio from a fitted SQ (Eq. 5.6-5.12)   sq [0-1]
+  backlash       free play in the mounting (§5.2 Case 3)              free_play_m [0-0.01]
+  gas_spring     accumulator stiffness (§3.1)                         stiffness_n_m [0-5e6]
+  thermal_fade   yield/viscosity falling with dissipated energy       yield_coeff_per_k, viscous_coeff_per_k
+  time_delay     transport delay of the measured force                delay_s [0-0.1]
+  coil_lag       coil time constants of Eq. 4.5 scaled                tau_scale [1-10]
+  force_offset   load-cell zero offset                                offset_n [-3e4-3e4]
+Each is fitted (Ceres, bounded least squares), scored by delta BIC with the effective sample
+count of the residual, checked for physical plausibility, and the best one is added; repeated
+until no candidate earns its parameters, then each effect is checked again without it.
+
+Input (--measured): CSV with a header of named columns with units, at least
+time_s, displacement_m, current_cmd_A, force_N (units converted: _ms, _mm, _cm, _in, _mA, _kN,
+_kip, _lbf; velocity_m_s optional, derived from the displacement when absent; current_A is
+taken as the command when there is no current_cmd column; other columns ending in a unit are
+kept), uniform or non-uniform time. Or a MATLAB .mat file with vectors named like the columns.
+Force sign of Eq. 4.1 (positive when the damper resists positive velocity).
+
+Fields of DIR/summary.json:
+  effects            names added, in order ([] when none earned its parameters)
+  gap_before         normalized RMS force error of the baseline, sqrt(sum(F_meas-F)^2/sum F_meas^2)
+  gap_after          the same for the updated model (fractions, not %)
+  gap_reduction      1 - gap_after/gap_before
+  parameters         fitted parameters of the named effects (SI units in the key names)
+  candidates         round 1: every effect with score (delta BIC), rss_reduction, gap, parameters,
+                     plausible, verdict
+  rounds             every round: model so far, candidates (round 2 also alternative pairs of
+                     round-1 effects), chosen ("none" ends the search), model_after
+  dropped            effects removed again by the backward check
+  regions            regimes (velocity_reversal, near_zero_velocity, current_low/mid/high,
+                     current_transient, early, late, displacement_extremes, ...) with
+                     fraction_of_time, share_of_gap_before/after, concentration_before,
+                     rms_before_n, rms_after_n, magnitude_bias_before_n, concentrated
+  time_windows       the record in ten windows: rms_before_n, rms_after_n
+  settings           thresholds and fit sampling used
+Files: fit.csv (time series of input, coil current, measured/baseline/updated force, residuals),
+force_time.png, residual.png, loops.png (force-displacement and force-velocity), report.md.)";
+
+struct DiscrepancyCliOptions {
+  std::string measured;
+  std::string out_dir;
+  std::string effects;
+  std::size_t max_effects = 3;
+  double min_delta_bic = 10.0;
+  double min_improvement = 0.05;
+  unsigned threads = 0;
+  bool no_plots = false;
+};
+
+}  // namespace
+
+Command add_discrepancy_command(CLI::App& parent) {
+  auto o = std::make_shared<DiscrepancyCliOptions>();
+  CLI::App* app = parent.add_subcommand("discrepancy", "Name the physical effect behind a model-measurement gap");
+  app->add_option("--measured", o->measured, "Measured record: CSV or .mat (see below)")->required();
+  app->add_option("--out", o->out_dir, "Folder for summary.json, fit.csv, plots and report.md");
+  app->add_option("--effects", o->effects, "Catalogue to test, comma-separated (default: all)");
+  app->add_option("--max-effects", o->max_effects, "Most effects to add")->capture_default_str();
+  app->add_option("--min-delta-bic", o->min_delta_bic, "Smallest delta BIC that earns an effect")->capture_default_str();
+  app->add_option("--min-improvement", o->min_improvement,
+                  "Smallest fraction of the residual power an effect must remove")
+      ->capture_default_str();
+  app->add_option("--threads", o->threads, "Threads for the candidate fits (0: all cores)")->capture_default_str();
+  app->add_flag("--no-plots", o->no_plots, "Skip the PNG plots");
+  app->footer(kDiscrepancyHelp);
+  return {app, [o] {
+            require_finite_at_least("--min-delta-bic", o->min_delta_bic, 0.0);
+            require_finite_at_least("--min-improvement", o->min_improvement, 0.0);
+            if (o->min_improvement >= 1.0) throw report::UsageError("--min-improvement: expected a fraction below 1");
+            discrepancy::DiscrepancyOptions opt;
+            if (!o->effects.empty()) {
+              opt.catalogue = discrepancy::parse_effect_list(o->effects, "--effects");
+              if (opt.catalogue.empty()) throw report::UsageError("--effects: expected at least one effect");
+            }
+            opt.max_effects = o->max_effects;
+            opt.min_delta_bic = o->min_delta_bic;
+            opt.min_rss_reduction = o->min_improvement;
+            opt.threads = o->threads;
+            const discrepancy::MeasuredData data = discrepancy::read_measured(o->measured);
+            if (!o->out_dir.empty()) report::prepare_output_dir(o->out_dir);
+
+            const discrepancy::DiscrepancyResult r = discrepancy::run_discrepancy(data, opt);
+            std::printf("%s: %zu samples, %.3f s, velocity %s\n", data.source.c_str(), data.size(), data.duration_s(),
+                        r.velocity_derived ? "derived" : "measured");
+            for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+              const auto& rd = r.rounds[i];
+              std::printf("round %zu (model: %s, gap %.2f %%):\n", i + 1,
+                          discrepancy::EffectSet{rd.model}.label().c_str(), 100.0 * rd.gap);
+              for (const auto& c : rd.candidates) {
+                const std::string name = c.alternative ? discrepancy::EffectSet{c.model}.label()
+                                                       : std::string(discrepancy::effect_name(c.effect));
+                std::printf("  %-14s dBIC %10.1f  removes %6.2f %%  %s\n", name.c_str(), c.delta_bic,
+                            100.0 * c.rss_reduction, c.verdict.c_str());
+              }
+            }
+            std::printf("effects: %s\n", discrepancy::EffectSet{r.effects}.label().c_str());
+            std::printf("gap: %.2f %% before, %.2f %% after\n", 100.0 * r.gap_before, 100.0 * r.gap_after);
+            if (o->out_dir.empty()) return;
+            const std::filesystem::path dir(o->out_dir);
+            const auto problems = discrepancy::write_discrepancy_outputs(dir, data, r, opt, !o->no_plots);
+            for (const auto& p : problems) {
+              std::fprintf(stderr, "mrd discrepancy: warning: plot not written: %s\n", p.c_str());
+            }
+            std::printf("wrote %s\n", (dir / "summary.json").c_str());
+          }};
+}
+
+}  // namespace mrd::cli

@@ -1,0 +1,156 @@
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cli/command.hpp"
+#include "report/output_dir.hpp"
+#include "schedule/schedule_report.hpp"
+
+namespace mrd::cli {
+namespace {
+
+constexpr const char* kScheduleHelp = R"(Years of service of the MR damper under three mixing policies, in one simulated world:
+idle time settles the fluid (Eq. 5.1-5.5), motion mixes it (Eq. 5.6-5.9, with the onboard
+estimator's state model for repeated episodes), earthquakes arrive at random (Poisson) and meet
+the fluid as it is. Policies:
+  none            never mix
+  fixed-interval  a mixing cycle every --interval-days (default: the longest interval that keeps
+                  the capacity at or above --threshold at every moment, found by bisection)
+  estimator       the firmware's idle-time estimator and mixing scheduler decide, from the
+                  measured damper displacement, when to mix (forecast --lead-hours ahead)
+Without an actuator (--actuator no) every cycle is a maintenance visit: the fixed policy visits
+every interval, the estimator raises a maintenance request --maintenance-days + --lead-hours ahead
+and a technician comes --maintenance-days later (and stays away if the request has cleared).
+Capacity: damper force at 2.5 A and 0.1 m/s with the present participant ratio over the same
+force fully mixed (Eq. 5.10-5.12).
+
+Fields of DIR/summary.json:
+  years, seed, threshold, actuator, earthquakes_per_year, ambient_median_litres_per_day,
+  lead_hours, maintenance_days     the run's inputs
+  earthquakes                      number of earthquakes drawn
+  max_settling_time_days           T_max, Eq. 5.4, days
+  threshold_idle_days              idle time after which a fully mixed fluid is at the threshold, days
+  mixing_plan                      the cycle at the threshold: amplitude_m, frequency_hz, cycles,
+                                   displaced_volume_l (L), duration_s (s), peak_velocity_m_s (m/s)
+  fixed_interval_days, fixed_interval_source ("search" or "option")
+  policies[]                       per policy:
+    name                           none | fixed-interval | estimator
+    mixing_cycles_per_year         mixing cycles completed per year (actuator or technician)
+    min_capacity_fraction          worst capacity an earthquake met (null when none occurred)
+    min_capacity_fraction_any_time worst capacity at any moment
+    mean_capacity_fraction         time average of the daily minimum capacity
+    meets_threshold                min_capacity_fraction_any_time >= threshold
+    mixing_cycles, aborted_cycles  completed cycles; cycles stopped by an earthquake
+    maintenance_requests_per_year  technician visits asked for per year (no actuator)
+    earthquakes_met                number of earthquakes
+    interval_days                  fixed-interval only
+  estimator_meets_threshold        the estimator policy kept the threshold at every moment
+  estimator_fewer_cycles_than_fixed  it did so with fewer cycles per year than the fixed interval
+Files: DIR/capacity.csv (daily minimum capacity per policy), DIR/earthquakes.csv (capacity each
+earthquake met per policy), DIR/capacity.png (capacity over time).)";
+
+struct ScheduleCliOptions {
+  double years = 50.0;
+  double threshold = 0.8;
+  double interval_days = 0.0;
+  std::uint64_t seed = 1;
+  double earthquakes_per_year = 0.5;
+  std::string actuator = "yes";
+  double ambient_litres_per_day = 0.005;
+  double maintenance_days = 7.0;
+  double lead_hours = 2.0;
+  std::string out_dir;
+};
+
+void print_summary(const schedule::ScheduleResult& r, double seconds) {
+  std::printf("mrd schedule: %.4g years, %zu earthquakes (%.3g per year), threshold %.3g, actuator %s\n",
+              r.options.world.years, r.world.quake_times_s.size(), r.options.world.earthquakes_per_year,
+              r.options.threshold, r.options.actuator ? "yes" : "no");
+  std::printf("  a fully mixed fluid reaches the threshold after %.2f days idle (T_max %.1f days)\n",
+              r.threshold_idle_s / 86400.0, r.max_settling_time_s / 86400.0);
+  std::printf("  mixing cycle: +-%.1f mm at %.3g Hz, %u cycle(s), %.2f L, %.1f s\n", r.plan.amplitude_m * 1e3,
+              r.plan.frequency_hz, r.plan.cycles, r.plan.volume_m3 * 1e3, r.plan.duration_s);
+  std::printf("  fixed interval %.2f days (%s)\n\n", r.search.interval_s / 86400.0,
+              r.interval_from_option ? "--interval-days" : "longest that keeps the threshold");
+  std::printf("  %-15s %12s %14s %14s %12s %10s\n", "policy", "cycles/year", "min at quake", "min any time",
+              "mean", "aborted");
+  for (const auto& p : r.policies) {
+    std::printf("  %-15s %12.2f %14.4f %14.4f %12.4f %10u\n", p.name.c_str(), p.mixing_cycles_per_year,
+                p.min_capacity_at_quakes, p.min_capacity_any_time, p.mean_capacity, p.aborted_cycles);
+  }
+  std::printf("\n  (%.2f s of computing)\n", seconds);
+}
+
+}  // namespace
+
+Command add_schedule_command(CLI::App& parent) {
+  auto o = std::make_shared<ScheduleCliOptions>();
+  CLI::App* app = parent.add_subcommand(
+      "schedule", "Preventive mixing over years of service: capacity met by earthquakes under three policies");
+  app->add_option("--years", o->years, "Simulated service life, years (> 0, <= 1000)")->capture_default_str();
+  app->add_option("--threshold", o->threshold, "Capacity fraction to keep, > 0 and <= 0.99")->capture_default_str();
+  app->add_option("--interval-days", o->interval_days,
+                  "Fixed policy's interval, days (default: the longest that keeps the threshold)");
+  app->add_option("--seed", o->seed, "Seed of the random world (earthquakes, ambient motion), >= 0")
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+            return digits ? std::string() : "expected a whole number >= 0, got '" + s + "'";
+          },
+          "UINT"))
+      ->capture_default_str();
+  app->add_option("--earthquakes-per-year", o->earthquakes_per_year, "Mean earthquake rate (Poisson), 1/year")
+      ->capture_default_str();
+  app->add_option("--actuator", o->actuator, "Mixing actuator fitted: yes | no")->capture_default_str();
+  app->add_option("--ambient-litres-per-day", o->ambient_litres_per_day,
+                  "Median displaced volume of ambient motion credited per day, L (log-normal, sigma 1)")
+      ->capture_default_str();
+  app->add_option("--maintenance-days", o->maintenance_days, "Maintenance request to visit, days (no actuator)")
+      ->capture_default_str();
+  app->add_option("--lead-hours", o->lead_hours, "Scheduler's forecast horizon with an actuator, h")
+      ->capture_default_str();
+  app->add_option("--out", o->out_dir, "Folder for summary.json, capacity.csv, earthquakes.csv, capacity.png");
+  app->footer(kScheduleHelp);
+  return {app, [o] {
+            require_finite_at_least("--years", o->years, 0.0);
+            if (!(o->years > 0.0) || o->years > 1000.0) {
+              throw report::UsageError("--years: expected a number of years > 0 and <= 1000");
+            }
+            require_finite_at_least("--threshold", o->threshold, 0.0);
+            require_finite_at_least("--interval-days", o->interval_days, 0.0);
+            require_finite_at_least("--earthquakes-per-year", o->earthquakes_per_year, 0.0);
+            require_finite_at_least("--ambient-litres-per-day", o->ambient_litres_per_day, 0.0);
+            require_finite_at_least("--maintenance-days", o->maintenance_days, 0.0);
+            require_finite_at_least("--lead-hours", o->lead_hours, 0.0);
+            if (o->actuator != "yes" && o->actuator != "no") {
+              throw report::UsageError("--actuator: expected yes or no, got '" + o->actuator + "'");
+            }
+            schedule::ScheduleOptions so;
+            so.world.years = o->years;
+            so.world.seed = o->seed;
+            so.world.earthquakes_per_year = o->earthquakes_per_year;
+            so.world.ambient_median_m3_per_day = o->ambient_litres_per_day * 1e-3;
+            so.threshold = o->threshold;
+            so.interval_days = o->interval_days;
+            so.actuator = o->actuator == "yes";
+            so.maintenance_days = o->maintenance_days;
+            so.lead_hours = o->lead_hours;
+            if (!o->out_dir.empty()) report::prepare_output_dir(o->out_dir);
+
+            const auto t0 = std::chrono::steady_clock::now();
+            const schedule::ScheduleResult r = schedule::run_schedule(so);
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            print_summary(r, seconds);
+            if (o->out_dir.empty()) return;
+            const std::filesystem::path dir(o->out_dir);
+            for (const auto& p : schedule::write_schedule_outputs(dir, r)) {
+              std::fprintf(stderr, "mrd schedule: warning: plot not written: %s\n", p.c_str());
+            }
+            std::printf("wrote %s\n", (dir / "summary.json").c_str());
+          }};
+}
+
+}  // namespace mrd::cli

@@ -1,0 +1,242 @@
+#include "discrepancy/damper_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrd::discrepancy {
+
+ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s) {
+  ModelInput in;
+  in.time_s = data.time_s;
+  in.current_cmd_a = data.current_cmd_a;
+  SmoothedMotion s = smooth_motion(data.time_s, data.displacement_m, smoothing_half_window_s);
+  in.disp_m = std::move(s.displacement_m);
+  if (data.velocity_m_s.empty()) {
+    in.vel_m_s = std::move(s.velocity_m_s);
+    in.velocity_derived = true;
+  } else {
+    in.vel_m_s = data.velocity_m_s;
+  }
+  return in;
+}
+
+DamperModel::DamperModel(ModelInput input, const physics::MrDamperParams& params)
+    : in_(std::move(input)), p_(params) {
+  const std::size_t n = in_.time_s.size();
+  step_s_.resize(n);
+  for (std::size_t k = 0; k + 1 < n; ++k) step_s_[k] = in_.time_s[k + 1] - in_.time_s[k];
+  if (n >= 2) step_s_[n - 1] = step_s_[n - 2];
+  uniform_ = true;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::fabs(step_s_[k] - step_s_[0]) > 1e-6 * step_s_[0]) {
+      uniform_ = false;
+      break;
+    }
+  }
+  coil_current(1.0, base_current_a_);
+  coefficients(base_current_a_, base_a_fc_, base_b_fc_, base_a_c0_, base_b_c0_);
+}
+
+void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a) const {
+  // Eq. 4.5 with unity DC gain, exact for a command held over each step (see
+  // physics/current_dynamics.hpp); the coil starts steady at the first command.
+  const std::size_t n = size();
+  current_a.resize(n);
+  if (n == 0) return;
+  const double scale = std::max(tau_scale, 0.05);
+  const double tau_s = p_.coil.tau_slow_s * scale;
+  const double tau_f = p_.coil.tau_fast_s * scale;
+  const double ws = p_.coil.weight_slow;
+  const double wf = p_.coil.weight_fast;
+  double ys = in_.current_cmd_a[0];
+  double yf = in_.current_cmd_a[0];
+  double as = std::exp(-step_s_[0] / tau_s);
+  double af = std::exp(-step_s_[0] / tau_f);
+  for (std::size_t k = 0; k < n; ++k) {
+    current_a[k] = ws * ys + wf * yf;
+    if (!uniform_) {
+      as = std::exp(-step_s_[k] / tau_s);
+      af = std::exp(-step_s_[k] / tau_f);
+    }
+    const double u = in_.current_cmd_a[k];
+    ys = as * ys + (1.0 - as) * u;
+    yf = af * yf + (1.0 - af) * u;
+  }
+}
+
+void DamperModel::coefficients(const std::vector<double>& current_a, std::vector<double>& a_fc,
+                               std::vector<double>& b_fc, std::vector<double>& a_c0, std::vector<double>& b_c0) const {
+  // Eq. 5.10–5.11 rearranged: f_c = f_c,a e + PR f_c,b (1 − e), e = exp(−f_c,c |i|); same for c_0.
+  const auto& b = p_.bingham;
+  const std::size_t n = current_a.size();
+  a_fc.resize(n);
+  b_fc.resize(n);
+  a_c0.resize(n);
+  b_c0.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double i = std::fabs(current_a[k]);
+    const double e_fc = std::exp(-b.fc_c_per_a * i);
+    const double e_c0 = std::exp(-b.c0_c_per_a * i);
+    a_fc[k] = b.fc_a_n * e_fc;
+    b_fc[k] = b.fc_b_n * (1.0 - e_fc);
+    a_c0[k] = b.c0_a_ns_m * e_c0;
+    b_c0[k] = b.c0_b_ns_m * (1.0 - e_c0);
+  }
+}
+
+void DamperModel::raw_force(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws) const {
+  const std::size_t n = size();
+  const auto param = [&](Effect e, std::size_t i, double fallback) {
+    const auto off = set.offset(e);
+    return off ? params[*off + i] : fallback;
+  };
+  const double tau_scale = param(Effect::coil_lag, 0, 1.0);
+  const double* a_fc = base_a_fc_.data();
+  const double* b_fc = base_b_fc_.data();
+  const double* a_c0 = base_a_c0_.data();
+  const double* b_c0 = base_b_c0_.data();
+  if (set.contains(Effect::coil_lag)) {
+    coil_current(tau_scale, ws.current_a);
+    coefficients(ws.current_a, ws.a_fc, ws.b_fc, ws.a_c0, ws.b_c0);
+    a_fc = ws.a_fc.data();
+    b_fc = ws.b_fc.data();
+    a_c0 = ws.a_c0.data();
+    b_c0 = ws.b_c0.data();
+  }
+
+  // Damper motion: the actuator's, or through the free play of the mounting.
+  const double* xd = in_.disp_m.data();
+  const double* vd = in_.vel_m_s.data();
+  if (set.contains(Effect::backlash)) {
+    const double half_gap_m = 0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0);
+    ws.disp_m.resize(n);
+    ws.vel_m_s.resize(n);
+    // Play operator: the rod stays put until the actuator reaches a side of the gap.
+    double rod = in_.disp_m[0];
+    for (std::size_t k = 0; k < n; ++k) {
+      const double x = in_.disp_m[k];
+      if (x - rod > half_gap_m) {
+        rod = x - half_gap_m;
+      } else if (rod - x > half_gap_m) {
+        rod = x + half_gap_m;
+      }
+      ws.disp_m[k] = rod;
+    }
+    // Engaged fraction: the rod's share of the actuator's central difference,
+    // continuous in the gap.
+    ws.engaged.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t a = k > 0 ? k - 1 : 0;
+      const std::size_t b = k + 1 < n ? k + 1 : n - 1;
+      const double dx = in_.disp_m[b] - in_.disp_m[a];
+      const double dr = ws.disp_m[b] - ws.disp_m[a];
+      double engaged = 1.0;
+      if (std::fabs(dx) > 1e-15) engaged = std::clamp(dr / dx, 0.0, 1.0);
+      else if (dr == 0.0 && half_gap_m > 0.0) engaged = 0.0;
+      ws.engaged[k] = engaged;
+    }
+    // Contact is not instantaneous: the engagement is averaged over
+    // ±kContactHalfWindow_s (at least one sample each side), so the rod takes
+    // up the actuator's velocity over a few milliseconds. This also keeps the
+    // force smooth in the gap and the delay between samples, which the fit
+    // needs (a one-sample jump leaves sample-spaced local minima).
+    ws.vel_m_s.assign(n, 0.0);
+    std::size_t lo = 0;
+    std::size_t hi = 0;
+    double sum = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = in_.time_s[k];
+      while (hi < n && (in_.time_s[hi] - t <= kContactHalfWindow_s || hi <= k + 1)) sum += ws.engaged[hi++];
+      while (lo < k && (t - in_.time_s[lo] > kContactHalfWindow_s && lo + 1 < k)) sum -= ws.engaged[lo++];
+      ws.vel_m_s[k] = in_.vel_m_s[k] * sum / static_cast<double>(hi - lo);
+    }
+    xd = ws.disp_m.data();
+    vd = ws.vel_m_s.data();
+  }
+
+  const bool idle = set.contains(Effect::idle_settling);
+  physics::PrCoefficients pr_c;
+  if (idle) pr_c = physics::pr_coefficients(p_.pr, param(Effect::idle_settling, 0, 0.0));  // Eq. 5.6–5.8
+  const double q_per_m = p_.pr.flow_area_m2 / p_.pr.volume_unit_m3;
+
+  const bool thermal = set.contains(Effect::thermal_fade);
+  const double alpha_y = std::max(param(Effect::thermal_fade, 0, 0.0), 0.0) / kThermalCapacity_j_per_k;
+  const double alpha_v = std::max(param(Effect::thermal_fade, 1, 0.0), 0.0) / kThermalCapacity_j_per_k;
+  const double k_gas = param(Effect::gas_spring, 0, 0.0);
+  const double offset = param(Effect::force_offset, 0, 0.0);
+  const double v_tf = p_.bingham.v_tf_m_s;
+
+  ws.force_n.resize(n);
+  double energy_j = 0.0;
+  double pr = 1.0;
+  double decay = 1.0;  // exp(−c_PR ∫Q dt), ∫Q dt in volume units, updated by a factor per step
+  for (std::size_t k = 0; k < n; ++k) {
+    const double v = vd[k];
+    const double av = std::fabs(v);
+    if (idle) pr = pr_c.b_pr + (pr_c.a_pr - pr_c.b_pr) * decay;  // Eq. 5.9
+    double fc = a_fc[k] + pr * b_fc[k];                           // Eq. 5.10
+    double c0 = a_c0[k] + pr * b_c0[k];                           // Eq. 5.11
+    if (thermal) {
+      fc *= std::max(1.0 - alpha_y * energy_j, 0.0);
+      c0 *= std::max(1.0 - alpha_v * energy_j, 0.0);
+    }
+    const double sgn = v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
+    const double tf = av < v_tf ? av / v_tf : 1.0;  // Eq. 4.4
+    const double fb = tf * (fc * sgn + c0 * v);    // Eq. 4.1, 5.12
+    ws.force_n[k] = fb + k_gas * xd[k] + offset;
+    const double dt = step_s_[k];
+    if (idle) {
+      decay *= std::exp(-pr_c.c_pr * av * q_per_m * dt);
+    }
+    if (thermal) energy_j += fb * v * dt;
+  }
+}
+
+void DamperModel::simulate(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws,
+                           std::vector<double>& force_n) const {
+  std::vector<std::size_t> all(size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+  force_n.resize(size());
+  simulate_at(set, params, ws, all, force_n);
+}
+
+void DamperModel::simulate_at(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws,
+                              std::span<const std::size_t> index, std::span<double> force_n) const {
+  raw_force(set, params, ws);
+  const auto off = set.offset(Effect::time_delay);
+  const double delay_s = off ? std::max(params[*off], 0.0) : 0.0;
+  if (delay_s == 0.0) {
+    for (std::size_t j = 0; j < index.size(); ++j) force_n[j] = ws.force_n[index[j]];
+    return;
+  }
+  const auto& t = in_.time_s;
+  const std::size_t n = t.size();
+  std::size_t p = 0;  // t[p] <= target, moving forward with ascending targets
+  for (std::size_t j = 0; j < index.size(); ++j) {
+    const double target = t[index[j]] - delay_s;
+    if (target <= t[0]) {
+      force_n[j] = ws.force_n[0];
+      continue;
+    }
+    while (p + 1 < n && t[p + 1] <= target) ++p;
+    if (p + 1 >= n) {
+      force_n[j] = ws.force_n[n - 1];
+      continue;
+    }
+    const double w = (target - t[p]) / (t[p + 1] - t[p]);
+    force_n[j] = ws.force_n[p] + w * (ws.force_n[p + 1] - ws.force_n[p]);
+  }
+}
+
+double normalized_rms_gap(std::span<const double> measured, std::span<const double> model) {
+  double se = 0.0;
+  double ss = 0.0;
+  for (std::size_t k = 0; k < measured.size(); ++k) {
+    const double d = measured[k] - model[k];
+    se += d * d;
+    ss += measured[k] * measured[k];
+  }
+  return ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+}
+
+}  // namespace mrd::discrepancy

@@ -1,0 +1,94 @@
+#pragma once
+/// The chapter-4 damper model driven by a measured record, with any set of
+/// catalogue effects added. Built for many evaluations of one record: the
+/// coil current of Eq. 4.5 and the current-dependent Bingham coefficients are
+/// computed once; an evaluation is one pass over the samples.
+///
+/// Per sample k (step dt_k = t_{k+1} − t_k, inputs held over the step):
+/// <pre>
+///   i[k+1]   = Eq. 4.5 (ZOH-exact, unity DC gain), τ's scaled by tau_scale   (coil_lag)
+///   x_d, v_d = actuator motion through a play operator of width free_play, the
+///              engagement averaged over ±3 ms (contact compliance)          (backlash)
+///   PR[k]    = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q dt),  Eq. 5.6–5.9           (idle_settling)
+///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
+///   F_b[k]   = TF(v_d) (φ_y f_c(i, PR) sgn v_d + φ_v c_0(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12
+///   F[k]     = F_b[k] + k_gas x_d[k] + F_0                                   (gas_spring, force_offset)
+///   E[k+1]   = E[k] + F_b[k] v_d[k] dt_k;   ∫Q += |v_d| A dt_k
+///   F_meas(t) = F(t − τ)   (linear interpolation; before the record, F[0])   (time_delay)
+/// </pre>
+/// Without effects this is damper_force_n(Table 4.1, i[k], v[k]) with PR = 1.
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "discrepancy/effects.hpp"
+#include "discrepancy/measured_data.hpp"
+#include "mrd/physics/mr_damper.hpp"
+
+namespace mrd::discrepancy {
+
+/// What drives the model: time, actuator motion and commanded current.
+struct ModelInput {
+  std::vector<double> time_s;
+  std::vector<double> disp_m;   ///< actuator displacement (smoothed when measured)
+  std::vector<double> vel_m_s;  ///< actuator velocity (derived when not measured)
+  std::vector<double> current_cmd_a;
+  bool velocity_derived = false;
+};
+
+/// Half width of the averaging of the backlash engagement (contact
+/// compliance): 3 ms.
+inline constexpr double kContactHalfWindow_s = 0.003;
+
+/// Model input from a measured record: displacement smoothed and velocity
+/// derived by smooth_motion() unless the record has a velocity column.
+[[nodiscard]] ModelInput model_input(const MeasuredData& data,
+                                     double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
+
+/// Scratch space for one thread's evaluations.
+struct ModelWorkspace {
+  std::vector<double> current_a, a_fc, b_fc, a_c0, b_c0, disp_m, vel_m_s, engaged, force_n;
+};
+
+class DamperModel {
+ public:
+  explicit DamperModel(ModelInput input, const physics::MrDamperParams& params = {});
+
+  [[nodiscard]] const ModelInput& input() const noexcept { return in_; }
+  [[nodiscard]] std::size_t size() const noexcept { return in_.time_s.size(); }
+  [[nodiscard]] const physics::MrDamperParams& params() const noexcept { return p_; }
+  /// Coil current of Eq. 4.5 from the commanded current, A.
+  [[nodiscard]] const std::vector<double>& baseline_current_a() const noexcept { return base_current_a_; }
+
+  /// Force at every sample, N. `params` holds the physical parameters of
+  /// `set` packed in its order (EffectSet::offset). Values slightly outside
+  /// the bounds are evaluated (finite differences step there): negative gaps,
+  /// delays and fade coefficients act as zero, tau_scale below 1 as faster.
+  void simulate(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws,
+                std::vector<double>& force_n) const;
+
+  /// Force at the samples `index` only (ascending), N.
+  void simulate_at(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws,
+                   std::span<const std::size_t> index, std::span<double> force_n) const;
+
+  /// Coil current with both time constants of Eq. 4.5 scaled by `tau_scale`.
+  void coil_current(double tau_scale, std::vector<double>& current_a) const;
+
+ private:
+  /// Fills ws.force_n with F[k] before any delay.
+  void raw_force(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws) const;
+  void coefficients(const std::vector<double>& current_a, std::vector<double>& a_fc, std::vector<double>& b_fc,
+                    std::vector<double>& a_c0, std::vector<double>& b_c0) const;
+
+  ModelInput in_;
+  physics::MrDamperParams p_;
+  std::vector<double> step_s_;  ///< dt_k; the last entry repeats the one before
+  bool uniform_ = false;
+  std::vector<double> base_current_a_, base_a_fc_, base_b_fc_, base_a_c0_, base_b_c0_;
+};
+
+/// Normalized RMS of a − b over the samples: sqrt(Σ(a−b)² / Σ a²).
+[[nodiscard]] double normalized_rms_gap(std::span<const double> measured, std::span<const double> model);
+
+}  // namespace mrd::discrepancy

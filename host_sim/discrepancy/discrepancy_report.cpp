@@ -1,0 +1,288 @@
+#include "discrepancy/discrepancy_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "mrd/physics/participant_ratio.hpp"
+#include "mrd/physics/settling.hpp"
+#include "mrd/units.hpp"
+#include "report/output_dir.hpp"
+#include "report/plot.hpp"
+#include "report/time_series.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+
+using nlohmann::json;
+
+/// Every stride-th value, scaled, so that at most ~max_points remain.
+std::vector<double> thin(std::span<const double> v, std::size_t stride, double scale = 1.0) {
+  std::vector<double> out;
+  out.reserve(v.size() / stride + 1);
+  for (std::size_t k = 0; k < v.size(); k += stride) out.push_back(v[k] * scale);
+  return out;
+}
+
+json effects_json(const std::vector<Effect>& effects);
+
+json candidate_json(const CandidateResult& c) {
+  return json{{"name", effect_name(c.effect)},
+              {"model", effects_json(c.model)},
+              {"alternative", c.alternative},
+              {"score", c.delta_bic},
+              {"delta_bic", c.delta_bic},
+              {"rss_reduction", c.rss_reduction},
+              {"gap", c.gap},
+              {"effective_samples", c.n_eff},
+              {"parameters", params_json(c.effect, c.params)},
+              {"plausible", c.plausible},
+              {"chosen", c.chosen},
+              {"verdict", c.verdict}};
+}
+
+json effects_json(const std::vector<Effect>& effects) {
+  json a = json::array();
+  for (const Effect e : effects) a.push_back(effect_name(e));
+  return a;
+}
+
+std::string pct(double f) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f %%", 100.0 * f);
+  return buf;
+}
+
+std::string g4(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+void note(std::vector<std::string>& problems, const report::PlotResult& r, const std::filesystem::path& png) {
+  if (!r.ok) problems.push_back(png.filename().string() + ": " + r.reason);
+}
+
+std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
+  std::string md = "# Model discrepancy: " + data.source + "\n\n";
+  md += std::to_string(data.size()) + " samples over " + g4(data.duration_s()) + " s; velocity " +
+        (r.velocity_derived ? "derived from the displacement" : "measured") + ".\n\n";
+  md += "Baseline: chapter-4 damper model (Bingham + transition, Eq. 4.1-4.4, Table 4.1; coil current Eq. 4.5).\n\n";
+  md += "**Effects named:** " + (r.effects.empty() ? std::string("none") : EffectSet{r.effects}.label()) + "\n\n";
+  md += "**Gap** (normalized RMS force error): " + pct(r.gap_before) + " before, " + pct(r.gap_after) + " after.\n\n";
+  if (!r.effects.empty()) {
+    md += "| effect | parameter | value |\n|---|---|---:|\n";
+    const EffectSet set{r.effects};
+    for (const Effect e : r.effects) {
+      const auto off = *set.offset(e);
+      const auto& info = effect_info(e);
+      for (std::size_t i = 0; i < info.params.size(); ++i) {
+        md += "| " + std::string(info.name) + " | " + std::string(info.params[i].name) + " | " +
+              g4(r.params[off + i]) + " |\n";
+      }
+    }
+    md += "\n";
+  }
+  md += "## Selection\n\nScore: delta BIC with the effective sample count of the residual (positive favours the "
+        "effect).\n\n";
+  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+    const auto& rd = r.rounds[i];
+    md += "### Round " + std::to_string(i + 1) + " (model: " + EffectSet{rd.model}.label() + ", gap " + pct(rd.gap) +
+          ")\n\n| candidate | delta BIC | residual power removed | gap | verdict |\n|---|---:|---:|---:|---|\n";
+    for (const auto& c : rd.candidates) {
+      md += "| " + (c.alternative ? EffectSet{c.model}.label() + " (instead)" : std::string(effect_name(c.effect))) +
+            " | " + g4(c.delta_bic) + " | " + pct(c.rss_reduction) +
+            " | " + pct(c.gap) + " | " + c.verdict + " |\n";
+    }
+    md += "\n";
+  }
+  if (!r.dropped.empty()) md += "Dropped again by the backward check: " + EffectSet{r.dropped}.label() + "\n\n";
+  md += "## Where the baseline gap concentrates\n\n| region | share of time | share of gap | concentration | RMS "
+        "before [kN] | RMS after [kN] | magnitude bias [kN] |\n|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const auto& s : r.regions) {
+    md += "| " + s.name + (s.concentrated ? " **(concentrated)**" : "") + " | " + pct(s.fraction_of_time) + " | " +
+          pct(s.share_of_gap_before) + " | " + g4(s.concentration_before) + " | " + g4(s.rms_before_n / 1e3) + " | " +
+          g4(s.rms_after_n / 1e3) + " | " + g4(s.magnitude_bias_before_n / 1e3) + " |\n";
+  }
+  md += "\n| window [s] | RMS before [kN] | RMS after [kN] |\n|---|---:|---:|\n";
+  for (const auto& w : r.windows) {
+    md += "| " + g4(w.start_s) + " - " + g4(w.end_s) + " | " + g4(w.rms_before_n / 1e3) + " | " +
+          g4(w.rms_after_n / 1e3) + " |\n";
+  }
+  md += "\n![force](force_time.png)\n\n![residual](residual.png)\n\n![loops](loops.png)\n";
+  return md;
+}
+
+}  // namespace
+
+json params_json(Effect e, std::span<const double> params) {
+  json j = json::object();
+  const auto& info = effect_info(e);
+  for (std::size_t i = 0; i < info.params.size() && i < params.size(); ++i) j[std::string(info.params[i].name)] = params[i];
+  if (e == Effect::idle_settling && !params.empty()) {
+    const physics::ParticipantRatioParams prp{};
+    const auto c = physics::pr_coefficients(prp, params[0]);  // Eq. 5.6–5.8
+    j["a_pr"] = c.a_pr;
+    j["b_pr"] = c.b_pr;
+    j["c_pr"] = c.c_pr;
+    const double t_max_s = physics::max_settling_time_s(physics::SettlingParams{});  // Eq. 5.4
+    // Eq. 5.5 inverted; at SQ = 1 the idle time is only bounded below.
+    j["idle_years_equivalent"] = units::s_to_years(params[0] * t_max_s);
+    j["idle_years_at_least"] = params[0] >= 1.0 - 1e-9;
+  }
+  return j;
+}
+
+json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const DiscrepancyOptions& o) {
+  json j;
+  j["measured"] = data.source;
+  j["samples"] = data.size();
+  j["duration_s"] = data.duration_s();
+  j["velocity"] = r.velocity_derived ? "derived" : "measured";
+  j["effects"] = effects_json(r.effects);
+  j["gap_before"] = r.gap_before;
+  j["gap_after"] = r.gap_after;
+  j["gap_reduction"] = r.gap_before > 0.0 ? 1.0 - r.gap_after / r.gap_before : 0.0;
+  json params = json::object();
+  const EffectSet set{r.effects};
+  for (const Effect e : r.effects) {
+    const auto off = *set.offset(e);
+    params[std::string(effect_name(e))] =
+        params_json(e, std::span<const double>(r.params).subspan(off, effect_info(e).params.size()));
+  }
+  j["parameters"] = params;
+  j["candidates"] = json::array();
+  if (!r.rounds.empty()) {
+    for (const auto& c : r.rounds.front().candidates) j["candidates"].push_back(candidate_json(c));
+  }
+  j["rounds"] = json::array();
+  for (const auto& rd : r.rounds) {
+    json jr{{"model", effects_json(rd.model)},
+            {"gap", rd.gap},
+            {"chosen", rd.chosen ? json(effect_name(*rd.chosen)) : json("none")},
+            {"model_after", rd.chosen ? effects_json(rd.model_after) : effects_json(rd.model)},
+            {"candidates", json::array()}};
+    for (const auto& c : rd.candidates) jr["candidates"].push_back(candidate_json(c));
+    j["rounds"].push_back(jr);
+  }
+  j["dropped"] = effects_json(r.dropped);
+  j["regions"] = json::array();
+  for (const auto& s : r.regions) {
+    j["regions"].push_back(json{{"name", s.name},
+                                {"description", s.description},
+                                {"fraction_of_time", s.fraction_of_time},
+                                {"share_of_gap_before", s.share_of_gap_before},
+                                {"share_of_gap_after", s.share_of_gap_after},
+                                {"concentration_before", s.concentration_before},
+                                {"concentrated", s.concentrated},
+                                {"rms_before_n", s.rms_before_n},
+                                {"rms_after_n", s.rms_after_n},
+                                {"magnitude_bias_before_n", s.magnitude_bias_before_n}});
+  }
+  j["time_windows"] = json::array();
+  for (const auto& w : r.windows) {
+    j["time_windows"].push_back(json{{"start_s", w.start_s},
+                                     {"end_s", w.end_s},
+                                     {"rms_before_n", w.rms_before_n},
+                                     {"rms_after_n", w.rms_after_n},
+                                     {"share_of_gap_before", w.share_of_gap_before}});
+  }
+  json cat = json::array();
+  for (const Effect e : o.catalogue) cat.push_back(effect_name(e));
+  j["settings"] = json{{"catalogue", cat},
+                       {"min_delta_bic", o.min_delta_bic},
+                       {"min_rss_reduction", o.min_rss_reduction},
+                       {"max_effects", o.max_effects},
+                       {"fit_samples", r.fit_samples},
+                       {"fit_stride", r.fit_stride},
+                       {"smoothing_half_window_s", o.smoothing_half_window_s},
+                       {"baseline_effective_samples", r.n_eff_baseline}};
+  return j;
+}
+
+std::vector<std::string> write_discrepancy_outputs(const std::filesystem::path& dir, const MeasuredData& data,
+                                                   const DiscrepancyResult& r, const DiscrepancyOptions& options,
+                                                   bool plots) {
+  const std::size_t n = data.size();
+  report::TimeSeries ts({"time_s", "displacement_m", "velocity_m_s", "current_cmd_A", "coil_current_A",
+                         "force_measured_N", "force_baseline_N", "force_updated_N", "residual_before_N",
+                         "residual_after_N"});
+  ts.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    ts.add_row({data.time_s[k], r.disp_m[k], r.vel_m_s[k], data.current_cmd_a[k], r.coil_current_a[k],
+                data.force_n[k], r.baseline_force_n[k], r.updated_force_n[k], data.force_n[k] - r.baseline_force_n[k],
+                data.force_n[k] - r.updated_force_n[k]});
+  }
+  report::write_csv(ts, dir / "fit.csv");
+
+  std::vector<std::string> problems;
+  if (plots) {
+    const std::size_t stride = std::max<std::size_t>(1, n / 20000);
+    const auto t = thin(data.time_s, stride);
+    const std::string model_label = r.effects.empty() ? "updated (= baseline)" : "updated: " + EffectSet{r.effects}.label();
+    std::vector<double> res_b(n), res_a(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      res_b[k] = data.force_n[k] - r.baseline_force_n[k];
+      res_a[k] = data.force_n[k] - r.updated_force_n[k];
+    }
+    report::PlotSpec ft{data.source + ": force", "time [s]", "force [kN]",
+                        {{"measured", t, thin(data.force_n, stride, 1e-3)},
+                         {"baseline (chapter 4)", t, thin(r.baseline_force_n, stride, 1e-3)},
+                         {model_label, t, thin(r.updated_force_n, stride, 1e-3)}}};
+    note(problems, report::plot_png(ft, dir / "force_time.png"), dir / "force_time.png");
+    report::PlotSpec rs{data.source + ": residual (measured - model)", "time [s]", "force residual [kN]",
+                        {{"before (baseline)", t, thin(res_b, stride, 1e-3)},
+                         {"after (" + model_label + ")", t, thin(res_a, stride, 1e-3)}}};
+    note(problems, report::plot_png(rs, dir / "residual.png"), dir / "residual.png");
+    const std::size_t ls = std::max<std::size_t>(1, n / 8000);
+    const auto x_mm = thin(r.disp_m, ls, 1e3);
+    const auto v_mm_s = thin(r.vel_m_s, ls, 1e3);
+    const auto fm = thin(data.force_n, ls, 1e-3);
+    const auto fb = thin(r.baseline_force_n, ls, 1e-3);
+    const auto fu = thin(r.updated_force_n, ls, 1e-3);
+    report::MultiPlot mp;
+    mp.title = data.source + ": force-displacement and force-velocity loops";
+    mp.columns = 2;
+    mp.width_px = 1400;
+    mp.height_px = 650;
+    mp.panels.push_back({"force - displacement",
+                         "displacement [mm]",
+                         "force [kN]",
+                         {{"measured", x_mm, fm}, {"baseline", x_mm, fb}, {model_label, x_mm, fu}}});
+    mp.panels.push_back({"force - velocity",
+                         "velocity [mm/s]",
+                         "force [kN]",
+                         {{"measured", v_mm_s, fm}, {"baseline", v_mm_s, fb}, {model_label, v_mm_s, fu}}});
+    note(problems, report::plot_png(mp, dir / "loops.png"), dir / "loops.png");
+  }
+  report::write_file_atomically(dir / "report.md", markdown(data, r));
+  report::write_file_atomically(dir / "summary.json", summary_json(data, r, options).dump(2) + "\n");
+  return problems;
+}
+
+json synth_json(const SynthCase& c, const SynthSpec& spec) {
+  json params = json::object();
+  const EffectSet set{c.effects};
+  for (std::size_t i = 0; i < c.effects.size(); ++i) {
+    const Effect e = c.effects[i];
+    const auto off = *set.offset(e);
+    json pj = params_json(e, std::span<const double>(c.params).subspan(off, effect_info(e).params.size()));
+    pj["effect_rms_n"] = c.effect_rms_n[i];
+    params[std::string(effect_name(e))] = pj;
+  }
+  return json{{"effects", effects_json(c.effects)},
+              {"parameters", params},
+              {"input", c.input_description},
+              {"current", c.current_description},
+              {"force_noise_rms_n", c.force_noise_rms_n},
+              {"displacement_noise_m", c.disp_noise_m},
+              {"true_gap", c.true_gap},
+              {"draws", c.draws},
+              {"seed", spec.seed},
+              {"duration_s", c.data.duration_s()},
+              {"rate_hz", spec.rate_hz},
+              {"jitter", spec.jitter},
+              {"samples", c.data.size()}};
+}
+
+}  // namespace mrd::discrepancy

@@ -1,0 +1,139 @@
+#include "discrepancy/effects.hpp"
+
+#include <algorithm>
+
+#include "report/output_dir.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+
+// Bounds are physical limits, not the ranges the generator draws from.
+constexpr std::array kIdleParams{
+    // SQ of Eq. 5.5 as a fraction; Eq. 5.6–5.8 give a_PR, b_PR, c_PR from it.
+    ParamInfo{"sq", 0.0, 1.0, 0.0, true, {0.05, 0.2, 0.4, 0.7, 1.0}},
+};
+constexpr std::array kBacklashParams{
+    // Total free play between actuator and damper rod: up to 10 mm of loose bolts.
+    ParamInfo{"free_play_m", 0.0, 0.010, 0.0, false, {0.0002, 0.0006, 0.0015, 0.003, 0.006}},
+};
+constexpr std::array kGasParams{
+    // k = γ p A_rod² / V_gas: 1.4 · 5.17 MPa (§3.1) · (π 0.04²)² / V ≈ 0.18 MN/m per litre of gas;
+    // 5 MN/m allows a gas volume down to ~0.04 L.
+    ParamInfo{"stiffness_n_m", 0.0, 5.0e6, 0.0, false, {5.0e4, 2.0e5, 5.0e5, 1.0e6, 3.0e6}},
+};
+constexpr std::array kThermalParams{
+    // Fractional loss per kelvin, the temperature rise being E / kThermalCapacity_j_per_k.
+    ParamInfo{"yield_coeff_per_k", 0.0, 0.03, 0.0, false, {0.0, 0.002, 0.006, 0.012, 0.02}},
+    ParamInfo{"viscous_coeff_per_k", 0.0, 0.06, 0.0, false, {0.0, 0.005, 0.015, 0.03, 0.045}},
+};
+constexpr std::array kDelayParams{
+    ParamInfo{"delay_s", 0.0, 0.1, 0.0, false, {0.002, 0.005, 0.012, 0.03, 0.06}},
+};
+constexpr std::array kCoilParams{
+    // Both time constants of Eq. 4.5 scaled by this factor (1 = Eq. 4.5).
+    ParamInfo{"tau_scale", 1.0, 10.0, 1.0, false, {1.3, 2.0, 3.0, 5.0, 8.0}},
+};
+constexpr std::array kOffsetParams{
+    // Zero offset of the 250 kN load cell (§3.2), up to 12 % of its range.
+    ParamInfo{"offset_n", -30.0e3, 30.0e3, 0.0, false, {-5.0e3, -1.0e3, 0.0, 1.0e3, 5.0e3}},
+};
+
+const std::array<EffectInfo, kEffectCount>& catalogue() {
+  static const std::array<EffectInfo, kEffectCount> c{
+      EffectInfo{Effect::idle_settling, "idle_settling",
+                 "settled particles: participant ratio PR(SQ, ∫Q dt) below 1, recovering with displaced volume "
+                 "(Eq. 5.6-5.12)",
+                 kIdleParams},
+      EffectInfo{Effect::backlash, "backlash",
+                 "free play in the mounting: the damper stands still until the actuator has crossed the gap after "
+                 "each reversal (§5.2, Case 3)",
+                 kBacklashParams},
+      EffectInfo{Effect::gas_spring, "gas_spring",
+                 "accumulator gas spring: a force proportional to the rod's displacement (§3.1)", kGasParams},
+      EffectInfo{Effect::thermal_fade, "thermal_fade",
+                 "yield force and viscosity falling linearly with the temperature rise from dissipated energy",
+                 kThermalParams},
+      EffectInfo{Effect::time_delay, "time_delay", "pure transport delay between displacement and force channels",
+                 kDelayParams},
+      EffectInfo{Effect::coil_lag, "coil_lag", "coil current slower than Eq. 4.5: both time constants scaled",
+                 kCoilParams},
+      EffectInfo{Effect::force_offset, "force_offset", "load-cell zero offset: a constant force", kOffsetParams},
+  };
+  return c;
+}
+
+}  // namespace
+
+const EffectInfo& effect_info(Effect e) noexcept { return catalogue()[static_cast<std::size_t>(e)]; }
+
+std::string_view effect_name(Effect e) noexcept { return effect_info(e).name; }
+
+std::optional<Effect> effect_from_name(std::string_view name) noexcept {
+  for (const auto& i : catalogue()) {
+    if (i.name == name) return i.effect;
+  }
+  return std::nullopt;
+}
+
+bool EffectSet::contains(Effect e) const noexcept {
+  return std::find(effects.begin(), effects.end(), e) != effects.end();
+}
+
+std::optional<std::size_t> EffectSet::offset(Effect e) const noexcept {
+  std::size_t off = 0;
+  for (const Effect x : effects) {
+    if (x == e) return off;
+    off += effect_info(x).params.size();
+  }
+  return std::nullopt;
+}
+
+std::size_t EffectSet::param_count() const noexcept {
+  std::size_t n = 0;
+  for (const Effect x : effects) n += effect_info(x).params.size();
+  return n;
+}
+
+std::vector<double> EffectSet::null_params() const {
+  std::vector<double> p;
+  for (const Effect x : effects) {
+    for (const auto& pi : effect_info(x).params) p.push_back(pi.null_value);
+  }
+  return p;
+}
+
+std::string EffectSet::label() const {
+  if (effects.empty()) return "none";
+  std::string s;
+  for (const Effect x : effects) {
+    if (!s.empty()) s += '+';
+    s += effect_name(x);
+  }
+  return s;
+}
+
+std::vector<Effect> parse_effect_list(std::string_view text, std::string_view option) {
+  std::vector<Effect> out;
+  if (text.empty() || text == "none") return out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t p = text.find(',', start);
+    const std::string_view item = text.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start);
+    const auto e = effect_from_name(item);
+    if (!e) {
+      std::string known;
+      for (const Effect x : kAllEffects) known += (known.empty() ? "" : ", ") + std::string(effect_name(x));
+      throw report::UsageError(std::string(option) + ": unknown effect '" + std::string(item) + "' (known: " + known +
+                               ", or none)");
+    }
+    if (std::find(out.begin(), out.end(), *e) != out.end()) {
+      throw report::UsageError(std::string(option) + ": effect '" + std::string(item) + "' given twice");
+    }
+    out.push_back(*e);
+    if (p == std::string_view::npos) break;
+    start = p + 1;
+  }
+  return out;
+}
+
+}  // namespace mrd::discrepancy

@@ -1,0 +1,79 @@
+#pragma once
+/// The catalogue of named physical effects the discrepancy workflow can add
+/// to the chapter-4 damper model, each with its parameters, physical bounds
+/// and the value at which it vanishes.
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mrd::discrepancy {
+
+enum class Effect {
+  idle_settling,  ///< chapter 5: PR(∫Q dt) from a settling quotient SQ (Eq. 5.6–5.9)
+  backlash,       ///< free play in the mounting (§5.2, Case 3)
+  gas_spring,     ///< accumulator stiffness (§3.1)
+  thermal_fade,   ///< yield and viscosity falling as dissipated energy heats the fluid
+  time_delay,     ///< pure transport delay of the measured force
+  coil_lag,       ///< coil current slower than Eq. 4.5
+  force_offset,   ///< load-cell zero offset
+};
+
+inline constexpr std::size_t kEffectCount = 7;
+inline constexpr std::array<Effect, kEffectCount> kAllEffects{
+    Effect::idle_settling, Effect::backlash, Effect::gas_spring, Effect::thermal_fade,
+    Effect::time_delay,    Effect::coil_lag, Effect::force_offset};
+
+/// One fitted parameter, in SI (or dimensionless) units.
+struct ParamInfo {
+  std::string_view name;        ///< JSON key, with its unit (`gap_m`, `delay_s`)
+  double lower;                 ///< physical lower bound
+  double upper;                 ///< physical upper bound
+  double null_value;            ///< the effect vanishes here
+  /// A fit that ends at the upper bound is still plausible (SQ = 1 is a fully
+  /// settled fluid). Otherwise a fit pinned at a bound other than the null
+  /// value means the effect is being stretched to mimic something else.
+  bool upper_bound_physical;
+  std::array<double, 5> init_grid;  ///< starting values tried before the local fit
+};
+
+struct EffectInfo {
+  Effect effect;
+  std::string_view name;
+  std::string_view description;
+  std::span<const ParamInfo> params;
+};
+
+[[nodiscard]] const EffectInfo& effect_info(Effect e) noexcept;
+[[nodiscard]] std::string_view effect_name(Effect e) noexcept;
+[[nodiscard]] std::optional<Effect> effect_from_name(std::string_view name) noexcept;
+
+/// Heat capacity that turns dissipated energy into a temperature rise in the
+/// `thermal_fade` effect, J/K: about 60 kg of MR fluid (0.0166 m³, Table 5.4,
+/// at ~3.6 t/m³) at ~1 kJ/(kg·K). Only α/C is identified from force data, so
+/// the fitted coefficients are "per kelvin of this assumed capacity".
+inline constexpr double kThermalCapacity_j_per_k = 60.0e3;
+
+/// An ordered set of effects with their parameters packed one after the other.
+struct EffectSet {
+  std::vector<Effect> effects;
+
+  [[nodiscard]] bool contains(Effect e) const noexcept;
+  /// Index of the first parameter of `e` in the packed vector; nullopt if absent.
+  [[nodiscard]] std::optional<std::size_t> offset(Effect e) const noexcept;
+  [[nodiscard]] std::size_t param_count() const noexcept;
+  /// Null values of every parameter (the baseline model).
+  [[nodiscard]] std::vector<double> null_params() const;
+  /// "a+b" or "none".
+  [[nodiscard]] std::string label() const;
+};
+
+/// Parses "none", "" or a comma-separated list of effect names. Throws
+/// report::UsageError naming the unknown entry.
+[[nodiscard]] std::vector<Effect> parse_effect_list(std::string_view text, std::string_view option);
+
+}  // namespace mrd::discrepancy

@@ -1,0 +1,582 @@
+#include "discrepancy/measured_data.hpp"
+
+#include <matio.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "report/output_dir.hpp"
+
+namespace mrd::discrepancy {
+namespace fs = std::filesystem;
+using report::UsageError;
+
+namespace {
+
+enum class Quantity { time, displacement, velocity, current_cmd, current, force, extra };
+
+struct UnitDef {
+  std::string_view unit;  ///< lower case
+  std::string_view shown; ///< as written in help and errors
+  double to_si;
+};
+
+constexpr double kNewtonPerKip = 4448.2216152605;
+constexpr double kNewtonPerLbf = 4.4482216152605;
+
+constexpr std::array kTimeUnits{UnitDef{"s", "s", 1.0}, UnitDef{"ms", "ms", 1e-3}};
+constexpr std::array kDispUnits{UnitDef{"m", "m", 1.0}, UnitDef{"mm", "mm", 1e-3}, UnitDef{"cm", "cm", 1e-2},
+                                UnitDef{"in", "in", 0.0254}};
+constexpr std::array kVelUnits{UnitDef{"m_s", "m_s", 1.0}, UnitDef{"mm_s", "mm_s", 1e-3},
+                               UnitDef{"cm_s", "cm_s", 1e-2}, UnitDef{"in_s", "in_s", 0.0254}};
+constexpr std::array kCurrentUnits{UnitDef{"a", "A", 1.0}, UnitDef{"ma", "mA", 1e-3}};
+constexpr std::array kForceUnits{UnitDef{"n", "N", 1.0}, UnitDef{"kn", "kN", 1e3}, UnitDef{"kip", "kip", kNewtonPerKip},
+                                 UnitDef{"lbf", "lbf", kNewtonPerLbf}};
+
+/// Units an extra column may end in (kept unconverted).
+constexpr std::array<std::string_view, 44> kExtraUnits{
+    "s",   "ms",   "m",    "mm",  "cm",  "in",  "m_s", "mm_s", "cm_s", "in_s", "m_s2", "mm_s2", "g",  "a",   "ma",
+    "v",   "mv",   "n",    "kn",  "kip", "lbf", "c",   "degc", "f",    "degf", "k",    "pa",    "kpa", "mpa", "psi",
+    "bar", "hz",   "pct",  "frac", "1",  "w",   "kw",  "j",    "kj",   "rad",  "deg",  "ohm",   "t",   "mt"};
+
+struct QuantityDef {
+  Quantity q;
+  std::string_view base;
+  std::string_view label;
+  const UnitDef* units;
+  std::size_t n_units;
+};
+
+/// Longest base first so that `current_cmd_A` is not read as `current` + `cmd_A`.
+const std::array<QuantityDef, 6>& quantity_defs() {
+  static const std::array<QuantityDef, 6> defs{
+      QuantityDef{Quantity::current_cmd, "current_cmd", "commanded current", kCurrentUnits.data(), kCurrentUnits.size()},
+      QuantityDef{Quantity::displacement, "displacement", "displacement", kDispUnits.data(), kDispUnits.size()},
+      QuantityDef{Quantity::velocity, "velocity", "velocity", kVelUnits.data(), kVelUnits.size()},
+      QuantityDef{Quantity::current, "current", "current", kCurrentUnits.data(), kCurrentUnits.size()},
+      QuantityDef{Quantity::force, "force", "force", kForceUnits.data(), kForceUnits.size()},
+      QuantityDef{Quantity::time, "time", "time", kTimeUnits.data(), kTimeUnits.size()},
+  };
+  return defs;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// Up to 40 characters of user text on one printable line.
+std::string excerpt(std::string_view text) {
+  constexpr std::size_t kMax = 40;
+  std::string out;
+  for (const char c : text.substr(0, kMax)) {
+    const auto u = static_cast<unsigned char>(c);
+    out += (u < 0x20 || u >= 0x7f) ? '?' : c;
+  }
+  if (text.size() > kMax) out += "...";
+  return out;
+}
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string unit_list(const QuantityDef& d) {
+  std::string s;
+  for (std::size_t i = 0; i < d.n_units; ++i) {
+    if (i) s += i + 1 == d.n_units ? " or " : ", ";
+    s += std::string(d.base) + "_" + std::string(d.units[i].shown);
+  }
+  return s;
+}
+
+bool ends_with_extra_unit(std::string_view lname) {
+  return std::any_of(kExtraUnits.begin(), kExtraUnits.end(), [&](std::string_view u) {
+    return lname.size() > u.size() + 1 && lname.substr(lname.size() - u.size()) == u &&
+           lname[lname.size() - u.size() - 1] == '_';
+  });
+}
+
+/// What a column is and how its values convert to SI.
+struct ColumnRole {
+  Quantity q = Quantity::extra;
+  double to_si = 1.0;
+};
+
+/// Classifies a column name; throws naming `where` and the column otherwise.
+ColumnRole classify(std::string_view name, const std::string& where, std::size_t col_no) {
+  const std::string lname = lower(name);
+  const std::string col = "column " + std::to_string(col_no) + " '" + excerpt(name) + "'";
+  if (lname.empty()) throw UsageError(where + col + ": empty column name");
+  for (const auto& d : quantity_defs()) {
+    if (lname == d.base) {
+      throw UsageError(where + col + ": no unit; name it with one, e.g. " + unit_list(d));
+    }
+    if (lname.size() > d.base.size() + 1 && lname.compare(0, d.base.size(), d.base) == 0 &&
+        lname[d.base.size()] == '_') {
+      const std::string unit = lname.substr(d.base.size() + 1);
+      for (std::size_t i = 0; i < d.n_units; ++i) {
+        if (unit == d.units[i].unit) return {d.q, d.units[i].to_si};
+      }
+      // `current_meas_A`, `force_top_kN`: another signal of the same kind, kept.
+      if (ends_with_extra_unit(lname) && unit.find('_') != std::string::npos) return {Quantity::extra, 1.0};
+      throw UsageError(where + col + ": unknown unit '" + excerpt(name.substr(d.base.size() + 1)) + "' for " +
+                       std::string(d.label) + " (use " + unit_list(d) + ")");
+    }
+  }
+  if (ends_with_extra_unit(lname)) return {Quantity::extra, 1.0};
+  throw UsageError(where + col + ": the name does not end in a known unit (e.g. _s, _m, _mm, _A, _N, _kN, _degC)");
+}
+
+/// Columns gathered from a CSV or .mat source, with a way to name a sample.
+struct RawTable {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> values;  ///< per column
+  /// Location of sample `row` of column `col` for messages: "file:LINE: column 'x'".
+  std::function<std::string(std::size_t row, std::size_t col)> where;
+  /// Location of the column itself: "file:1: column 3 'x'" / "file: variable 'x'".
+  std::function<std::string(std::size_t col)> where_column;
+  std::string file_where;  ///< "file:1: " or "file: "
+};
+
+/// Roles of the columns and where each required quantity is; throws for an
+/// unknown unit, a repeated quantity or a missing column.
+struct HeaderRoles {
+  std::vector<ColumnRole> roles;
+  std::size_t time = 0, disp = 0, cmd = 0, force = 0;
+  std::optional<std::size_t> vel;
+};
+
+HeaderRoles header_roles(const std::vector<std::string>& names, const std::string& file_where,
+                         const std::function<std::string(std::size_t)>& where_column) {
+  const std::size_t ncol = names.size();
+  HeaderRoles h;
+  h.roles.resize(ncol);
+  std::array<std::optional<std::size_t>, 6> idx{};  // by Quantity (not extra)
+  for (std::size_t c = 0; c < ncol; ++c) {
+    h.roles[c] = classify(names[c], file_where, c + 1);
+    if (h.roles[c].q == Quantity::extra) continue;
+    auto& slot = idx[static_cast<std::size_t>(h.roles[c].q)];
+    if (slot) throw UsageError(where_column(c) + ": repeats the quantity of '" + excerpt(names[*slot]) + "'");
+    slot = c;
+  }
+  auto& cmd = idx[static_cast<std::size_t>(Quantity::current_cmd)];
+  auto& cur = idx[static_cast<std::size_t>(Quantity::current)];
+  if (!cmd && cur) {
+    cmd = cur;  // `current_A` is taken as the commanded current when there is no current_cmd column
+    h.roles[*cmd].q = Quantity::current_cmd;
+    cur.reset();
+  } else if (cmd && cur) {
+    h.roles[*cur].q = Quantity::extra;  // a measured current next to the command: kept
+    cur.reset();
+  }
+  const auto require = [&](Quantity q) {
+    const auto& s = idx[static_cast<std::size_t>(q)];
+    if (!s) {
+      for (const auto& d : quantity_defs()) {
+        if (d.q == q) throw UsageError(file_where + "missing column for " + std::string(d.label) + ": " + unit_list(d));
+      }
+    }
+    return *s;
+  };
+  h.time = require(Quantity::time);
+  h.disp = require(Quantity::displacement);
+  h.cmd = require(Quantity::current_cmd);
+  h.force = require(Quantity::force);
+  h.vel = idx[static_cast<std::size_t>(Quantity::velocity)];
+  return h;
+}
+
+/// Validates and converts a raw table (shared by CSV and .mat).
+MeasuredData build(RawTable&& raw, const std::string& label) {
+  const std::size_t ncol = raw.names.size();
+  const HeaderRoles h = header_roles(raw.names, raw.file_where, raw.where_column);
+  const auto& roles = h.roles;
+  const std::size_t c_time = h.time;
+  const std::size_t c_disp = h.disp;
+  const std::size_t c_cmd = h.cmd;
+  const std::size_t c_force = h.force;
+  const auto& c_vel = h.vel;
+
+  const std::size_t n = raw.values.empty() ? 0 : raw.values[0].size();
+  for (std::size_t c = 0; c < ncol; ++c) {
+    for (std::size_t r = 0; r < n; ++r) {
+      if (!std::isfinite(raw.values[c][r])) throw UsageError(raw.where(r, c) + ": not a finite number");
+    }
+  }
+  const auto& t = raw.values[c_time];
+  const double t_scale = roles[c_time].to_si;
+  if (n < kMinSamples || (n > 0 && (t[n - 1] - t[0]) * t_scale < kMinDuration_s)) {
+    const double dur = n > 0 ? (t[n - 1] - t[0]) * t_scale : 0.0;
+    const std::string w = n > 0 ? raw.where(n - 1, c_time) : raw.where_column(c_time);
+    throw UsageError(w + ": record too short: " + std::to_string(n) + " samples over " + num(dur) +
+                     " s (need at least " + std::to_string(kMinSamples) + " samples and " + num(kMinDuration_s) + " s)");
+  }
+  std::vector<double> steps;
+  steps.reserve(n - 1);
+  for (std::size_t r = 1; r < n; ++r) {
+    const double dt = (t[r] - t[r - 1]) * t_scale;
+    if (!(dt > 0.0)) {
+      throw UsageError(raw.where(r, c_time) + ": time " + num(t[r]) + " does not increase (previous sample " +
+                       num(t[r - 1]) + ")");
+    }
+    if (dt > kMaxStep_s) {
+      throw UsageError(raw.where(r, c_time) + ": gap of " + num(dt) + " s after the previous sample (at most " +
+                       num(kMaxStep_s) + " s)");
+    }
+    steps.push_back(dt);
+  }
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  const double median_dt = steps[steps.size() / 2];
+  if (median_dt > kMaxMedianStep_s) {
+    throw UsageError(raw.where_column(c_time) + ": median sample step " + num(median_dt) +
+                     " s is too coarse (at most " + num(kMaxMedianStep_s) + " s, i.e. 50 Hz)");
+  }
+
+  MeasuredData m;
+  m.source = label;
+  const auto convert = [&](std::size_t c) {
+    std::vector<double> v = std::move(raw.values[c]);
+    const double s = roles[c].to_si;
+    if (s != 1.0) {
+      for (double& x : v) x *= s;
+    }
+    return v;
+  };
+  m.time_s = convert(c_time);
+  m.displacement_m = convert(c_disp);
+  m.current_cmd_a = convert(c_cmd);
+  m.force_n = convert(c_force);
+  if (c_vel) m.velocity_m_s = convert(*c_vel);
+  for (std::size_t c = 0; c < ncol; ++c) {
+    if (roles[c].q == Quantity::extra) m.extra.push_back({raw.names[c], std::move(raw.values[c])});
+  }
+  return m;
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> split_commas(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t p = line.find(',', start);
+    out.push_back(trim(line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start)));
+    if (p == std::string_view::npos) break;
+    start = p + 1;
+  }
+  return out;
+}
+
+/// Parses a whole field as a double (a leading '+' allowed); nullopt if it is not one.
+std::optional<double> parse_double(std::string_view s) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.empty()) return std::nullopt;
+  double v = 0.0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+std::string read_text(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw UsageError(path.string() + ": no such file");
+  if (fs::is_directory(path, ec)) throw UsageError(path.string() + ": is a folder, expected a file");
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw UsageError(path.string() + ": cannot open for reading");
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+struct MatFileCloser {
+  void operator()(mat_t* m) const noexcept { Mat_Close(m); }
+};
+struct MatVarFreer {
+  void operator()(matvar_t* v) const noexcept { Mat_VarFree(v); }
+};
+using MatFile = std::unique_ptr<mat_t, MatFileCloser>;
+using MatVar = std::unique_ptr<matvar_t, MatVarFreer>;
+
+MeasuredData read_mat(const fs::path& path) {
+  const std::string label = path.string();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw UsageError(label + ": no such file");
+  MatFile mat(Mat_Open(label.c_str(), MAT_ACC_RDONLY));
+  if (!mat) throw UsageError(label + ": not a readable MATLAB .mat file");
+  std::vector<std::string> names;
+  for (;;) {
+    MatVar info(Mat_VarReadNextInfo(mat.get()));
+    if (!info) break;
+    if (info->name) names.emplace_back(info->name);
+  }
+  if (names.empty()) throw UsageError(label + ": the .mat file holds no variables");
+  RawTable raw;
+  raw.file_where = label + ": ";
+  std::size_t n = 0;
+  for (const auto& name : names) {
+    MatVar v(Mat_VarRead(mat.get(), name.c_str()));
+    const std::string w = label + ": variable '" + excerpt(name) + "'";
+    if (!v || !v->data) throw UsageError(w + ": cannot be read");
+    if (v->isComplex) throw UsageError(w + ": is complex, expected real numbers");
+    if (v->rank != 2 || (v->dims[0] != 1 && v->dims[1] != 1)) throw UsageError(w + ": expected a vector");
+    const std::size_t len = v->dims[0] * v->dims[1];
+    std::vector<double> values(len);
+    if (v->class_type == MAT_C_DOUBLE) {
+      const auto* d = static_cast<const double*>(v->data);
+      std::copy(d, d + len, values.begin());
+    } else if (v->class_type == MAT_C_SINGLE) {
+      const auto* d = static_cast<const float*>(v->data);
+      std::transform(d, d + len, values.begin(), [](float x) { return static_cast<double>(x); });
+    } else {
+      throw UsageError(w + ": expected double or single values");
+    }
+    if (raw.names.empty()) {
+      n = len;
+    } else if (len != n) {
+      throw UsageError(w + ": has " + std::to_string(len) + " values, '" + excerpt(raw.names[0]) + "' has " +
+                       std::to_string(n));
+    }
+    raw.names.push_back(name);
+    raw.values.push_back(std::move(values));
+  }
+  const auto names_copy = raw.names;
+  raw.where = [label, names_copy](std::size_t row, std::size_t col) {
+    return label + ": variable '" + excerpt(names_copy[col]) + "' element " + std::to_string(row + 1);
+  };
+  raw.where_column = [label, names_copy](std::size_t col) {
+    return label + ": variable '" + excerpt(names_copy[col]) + "'";
+  };
+  return build(std::move(raw), label);
+}
+
+}  // namespace
+
+MeasuredData parse_measured_csv(std::string_view text, const std::string& label) {
+  constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  if (text.substr(0, kBom.size()) == kBom) text.remove_prefix(kBom.size());
+  RawTable raw;
+  std::vector<std::size_t> line_of_row;
+  std::size_t line_no = 0;
+  std::size_t header_line = 0;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = trim(text.substr(pos, end - pos));
+    pos = end + 1;
+    ++line_no;
+    if (line.empty() || line.front() == '#') continue;
+    const std::string where = label + ":" + std::to_string(line_no) + ": ";
+    const auto fields = split_commas(line);
+    if (raw.names.empty()) {
+      header_line = line_no;
+      raw.file_where = where;
+      for (const auto f : fields) raw.names.emplace_back(f);
+      raw.values.resize(raw.names.size());
+      // Check the header now so that it is reported before any data line.
+      for (std::size_t c = 0; c < raw.names.size(); ++c) {
+        if (parse_double(raw.names[c])) {
+          throw UsageError(where + "column " + std::to_string(c + 1) +
+                           ": expected a header of named columns with units (e.g. "
+                           "time_s,displacement_m,current_cmd_A,force_N), got a number");
+        }
+      }
+      const auto header_names = raw.names;
+      (void)header_roles(raw.names, where, [&](std::size_t c) {
+        return where + "column " + std::to_string(c + 1) + " '" + excerpt(header_names[c]) + "'";
+      });
+      continue;
+    }
+    if (fields.size() != raw.names.size()) {
+      throw UsageError(where + "expected " + std::to_string(raw.names.size()) + " fields as in the header, got " +
+                       std::to_string(fields.size()));
+    }
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const auto v = parse_double(fields[c]);
+      if (!v) {
+        throw UsageError(where + "column '" + excerpt(raw.names[c]) + "': not a number: '" + excerpt(fields[c]) + "'");
+      }
+      if (!std::isfinite(*v)) {
+        throw UsageError(where + "column '" + excerpt(raw.names[c]) + "': not a finite number: '" + excerpt(fields[c]) +
+                         "'");
+      }
+      raw.values[c].push_back(*v);
+    }
+    line_of_row.push_back(line_no);
+  }
+  if (raw.names.empty()) {
+    throw UsageError(label + ": empty file (expected a header such as time_s,displacement_m,current_cmd_A,force_N)");
+  }
+  const auto names = raw.names;
+  raw.where = [label, names, line_of_row](std::size_t row, std::size_t col) {
+    return label + ":" + std::to_string(line_of_row[row]) + ": column '" + excerpt(names[col]) + "'";
+  };
+  raw.where_column = [label, names, header_line](std::size_t col) {
+    return label + ":" + std::to_string(header_line) + ": column " + std::to_string(col + 1) + " '" +
+           excerpt(names[col]) + "'";
+  };
+  return build(std::move(raw), label);
+}
+
+MeasuredData read_measured(const fs::path& path) {
+  std::string ext = lower(path.extension().string());
+  if (ext == ".mat") return read_mat(path);
+  return parse_measured_csv(read_text(path), path.string());
+}
+
+void write_measured_mat(const MeasuredData& data, const fs::path& path) {
+  const std::string tmp = path.string() + ".tmp";
+  {
+    MatFile mat(Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5));
+    if (!mat) throw UsageError(path.string() + ": cannot create the .mat file");
+    const auto put = [&](const std::string& name, const std::vector<double>& v) {
+      std::size_t dims[2] = {v.size(), 1};
+      MatVar var(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
+                               const_cast<double*>(v.data()), MAT_F_DONT_COPY_DATA));
+      if (!var || Mat_VarWrite(mat.get(), var.get(), MAT_COMPRESSION_NONE) != 0) {
+        throw UsageError(path.string() + ": cannot write variable '" + name + "'");
+      }
+    };
+    put("time_s", data.time_s);
+    put("displacement_m", data.displacement_m);
+    if (!data.velocity_m_s.empty()) put("velocity_m_s", data.velocity_m_s);
+    put("current_cmd_A", data.current_cmd_a);
+    put("force_N", data.force_n);
+    for (const auto& e : data.extra) put(e.name, e.values);
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw UsageError(path.string() + ": cannot write the .mat file");
+  }
+}
+
+std::string measured_to_csv(const MeasuredData& data) {
+  std::string out = "time_s,displacement_m";
+  const bool vel = !data.velocity_m_s.empty();
+  if (vel) out += ",velocity_m_s";
+  out += ",current_cmd_A,force_N";
+  for (const auto& e : data.extra) out += "," + e.name;
+  out += '\n';
+  char buf[64];
+  const auto add = [&](double v) {
+    std::snprintf(buf, sizeof buf, ",%.9g", v);
+    out += buf;
+  };
+  out.reserve(out.size() + data.size() * 64);
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    std::snprintf(buf, sizeof buf, "%.9g", data.time_s[k]);
+    out += buf;
+    add(data.displacement_m[k]);
+    if (vel) add(data.velocity_m_s[k]);
+    add(data.current_cmd_a[k]);
+    add(data.force_n[k]);
+    for (const auto& e : data.extra) add(e.values[k]);
+    out += '\n';
+  }
+  return out;
+}
+
+SmoothedMotion smooth_motion(const std::vector<double>& time_s, const std::vector<double>& displacement_m,
+                             double half_window_s) {
+  const std::size_t n = time_s.size();
+  SmoothedMotion out;
+  out.displacement_m.resize(n);
+  out.velocity_m_s.resize(n);
+  constexpr std::size_t kTerms = kSmoothingDegree + 1;
+  if (n < kTerms + 1) {
+    out.displacement_m = displacement_m;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t p = k > 0 ? k - 1 : 0;
+      const std::size_t q = k + 1 < n ? k + 1 : n - 1;
+      out.velocity_m_s[k] = q > p ? (displacement_m[q] - displacement_m[p]) / (time_s[q] - time_s[p]) : 0.0;
+    }
+    return out;
+  }
+  constexpr std::size_t kMinSide = 3;
+  const double h = std::max(half_window_s, 1e-12);
+  std::size_t lo = 0;
+  std::size_t hi = 0;  // window is [lo, hi)
+  for (std::size_t k = 0; k < n; ++k) {
+    const double tk = time_s[k];
+    while (lo < k && tk - time_s[lo] > half_window_s) ++lo;
+    if (hi < k + 1) hi = k + 1;
+    while (hi < n && time_s[hi] - tk <= half_window_s) ++hi;
+    std::size_t a = lo;
+    std::size_t b = hi;
+    if (k - a < kMinSide) a = k >= kMinSide ? k - kMinSide : 0;
+    if (b - k - 1 < kMinSide) b = std::min(n, k + 1 + kMinSide);
+    while (b - a < kTerms + 1) {  // near the ends: widen on the side that has samples
+      if (a > 0) --a;
+      if (b - a < kTerms + 1 && b < n) ++b;
+    }
+    // Least squares in s = (t − t_k)/h: x ≈ Σ c_p s^p, normal equations
+    // Σ_q S_{p+q} c_q = Y_p with S_m = Σ s^m, Y_p = Σ x s^p.
+    std::array<double, 2 * kSmoothingDegree + 1> sm{};
+    std::array<double, kTerms> y{};
+    for (std::size_t j = a; j < b; ++j) {
+      const double s = (time_s[j] - tk) / h;
+      double pw = 1.0;
+      for (std::size_t m = 0; m < sm.size(); ++m) {
+        sm[m] += pw;
+        if (m < kTerms) y[m] += displacement_m[j] * pw;
+        pw *= s;
+      }
+    }
+    std::array<std::array<double, kTerms + 1>, kTerms> g{};
+    for (std::size_t p = 0; p < kTerms; ++p) {
+      for (std::size_t q = 0; q < kTerms; ++q) g[p][q] = sm[p + q];
+      g[p][kTerms] = y[p];
+    }
+    // Gaussian elimination with partial pivoting.
+    bool singular = false;
+    for (std::size_t c = 0; c < kTerms && !singular; ++c) {
+      std::size_t piv = c;
+      for (std::size_t r = c + 1; r < kTerms; ++r) {
+        if (std::fabs(g[r][c]) > std::fabs(g[piv][c])) piv = r;
+      }
+      if (std::fabs(g[piv][c]) < 1e-12 * std::max(1.0, sm[0])) {
+        singular = true;
+        break;
+      }
+      std::swap(g[c], g[piv]);
+      for (std::size_t r = 0; r < kTerms; ++r) {
+        if (r == c) continue;
+        const double f = g[r][c] / g[c][c];
+        for (std::size_t q = c; q <= kTerms; ++q) g[r][q] -= f * g[c][q];
+      }
+    }
+    if (singular) {
+      out.displacement_m[k] = displacement_m[k];
+      const std::size_t p = k > 0 ? k - 1 : 0;
+      const std::size_t q = k + 1 < n ? k + 1 : n - 1;
+      out.velocity_m_s[k] = (displacement_m[q] - displacement_m[p]) / (time_s[q] - time_s[p]);
+      continue;
+    }
+    out.displacement_m[k] = g[0][kTerms] / g[0][0];
+    out.velocity_m_s[k] = g[1][kTerms] / g[1][1] / h;
+  }
+  return out;
+}
+
+}  // namespace mrd::discrepancy

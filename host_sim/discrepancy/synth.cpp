@@ -1,0 +1,279 @@
+#include "discrepancy/synth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "discrepancy/damper_model.hpp"
+#include "mrd/units.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+
+/// SplitMix64 (Steele, Lea, Flood 2014): small, fast, identical everywhere.
+class Rng {
+ public:
+  explicit Rng(std::uint64_t seed) : s_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [0, 1).
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  double uniform(double a, double b) { return a + (b - a) * uniform(); }
+  /// Standard normal (Box–Muller).
+  double normal() {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    double u1 = uniform();
+    while (u1 <= 0.0) u1 = uniform();
+    const double u2 = uniform();
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    spare_ = r * std::sin(2.0 * units::kPi * u2);
+    has_spare_ = true;
+    return r * std::cos(2.0 * units::kPi * u2);
+  }
+
+ private:
+  std::uint64_t s_;
+  double spare_ = 0.0;
+  bool has_spare_ = false;
+};
+
+/// Damper velocity limit, Table 3.1 (0.2491 m/s), with a margin.
+constexpr double kMaxVelocity_m_s = 0.22;
+/// 16-bit channels: load cell ±250 kN (§3.2), LVDT over the 0.5842 m stroke (Table 3.1).
+constexpr double kForceLsb_n = 500.0e3 / 65536.0;
+constexpr double kDispLsb_m = 0.5842 / 65536.0;
+constexpr double kRamp_s = 1.0;
+constexpr double kNoiseCorrelation_s = 0.020;
+constexpr int kMaxDraws = 50;
+
+struct Motion {
+  std::vector<double> x, v;
+  std::string description;
+};
+
+/// Half-cosine ramp at both ends so the actuator starts and ends at rest.
+void taper(const std::vector<double>& t, std::vector<double>& x, std::vector<double>& v) {
+  const double t0 = t.front();
+  const double t1 = t.back();
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double a = t[k] - t0;
+    const double b = t1 - t[k];
+    double w = 1.0, dw = 0.0;
+    if (a < kRamp_s) {
+      w = 0.5 * (1.0 - std::cos(units::kPi * a / kRamp_s));
+      dw = 0.5 * units::kPi / kRamp_s * std::sin(units::kPi * a / kRamp_s);
+    } else if (b < kRamp_s) {
+      w = 0.5 * (1.0 - std::cos(units::kPi * b / kRamp_s));
+      dw = -0.5 * units::kPi / kRamp_s * std::sin(units::kPi * b / kRamp_s);
+    }
+    v[k] = dw * x[k] + w * v[k];
+    x[k] *= w;
+  }
+}
+
+Motion make_motion(SynthInput kind, const std::vector<double>& t, Rng& rng) {
+  Motion m;
+  const std::size_t n = t.size();
+  m.x.assign(n, 0.0);
+  m.v.assign(n, 0.0);
+  char buf[160];
+  if (kind == SynthInput::sine) {
+    const double amp = rng.uniform(0.005, 0.040);
+    double f = rng.uniform(0.25, 2.0);
+    f = std::min(f, kMaxVelocity_m_s / (2.0 * units::kPi * amp));
+    const double ph = rng.uniform(0.0, 2.0 * units::kPi);
+    const double w = 2.0 * units::kPi * f;
+    for (std::size_t k = 0; k < n; ++k) {
+      m.x[k] = amp * std::sin(w * t[k] + ph);
+      m.v[k] = amp * w * std::cos(w * t[k] + ph);
+    }
+    std::snprintf(buf, sizeof buf, "sine %.1f mm, %.3f Hz", amp * 1e3, f);
+  } else {
+    constexpr int kComponents = 12;
+    for (int c = 0; c < kComponents; ++c) {
+      const double f = rng.uniform(0.1, 2.5);
+      const double a = rng.uniform(0.5, 1.0) / f;
+      const double ph = rng.uniform(0.0, 2.0 * units::kPi);
+      const double w = 2.0 * units::kPi * f;
+      for (std::size_t k = 0; k < n; ++k) {
+        m.x[k] += a * std::sin(w * t[k] + ph);
+        m.v[k] += a * w * std::cos(w * t[k] + ph);
+      }
+    }
+    double xmax = 0.0;
+    for (const double x : m.x) xmax = std::max(xmax, std::fabs(x));
+    const double target = rng.uniform(0.010, 0.040);
+    double scale = target / xmax;
+    double vmax = 0.0;
+    for (const double v : m.v) vmax = std::max(vmax, std::fabs(v * scale));
+    if (vmax > kMaxVelocity_m_s) scale *= kMaxVelocity_m_s / vmax;
+    for (std::size_t k = 0; k < n; ++k) {
+      m.x[k] *= scale;
+      m.v[k] *= scale;
+    }
+    std::snprintf(buf, sizeof buf, "broadband 0.1-2.5 Hz, peak %.1f mm", target * 1e3 * std::min(1.0, scale * xmax / target));
+  }
+  taper(t, m.x, m.v);
+  m.description = buf;
+  return m;
+}
+
+std::vector<double> make_current(SynthCurrent kind, const std::vector<double>& t, Rng& rng, std::string& description) {
+  std::vector<double> i(t.size());
+  char buf[120];
+  if (kind == SynthCurrent::constant) {
+    const double level = rng.uniform(0.5, 2.5);
+    std::fill(i.begin(), i.end(), level);
+    std::snprintf(buf, sizeof buf, "constant %.2f A", level);
+  } else {
+    double next_change = t.front();
+    double level = 0.0;
+    int steps = 0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      if (t[k] >= next_change) {
+        level = rng.uniform(0.25, 2.5);
+        next_change = t[k] + rng.uniform(2.0, 6.0);
+        ++steps;
+      }
+      i[k] = level;
+    }
+    std::snprintf(buf, sizeof buf, "%d steps of 2-6 s, 0.25-2.5 A", steps);
+  }
+  description = buf;
+  return i;
+}
+
+double quantize(double v, double lsb) { return lsb * std::round(v / lsb); }
+
+}  // namespace
+
+std::pair<double, double> synth_range(Effect e, std::size_t i) {
+  switch (e) {
+    case Effect::idle_settling: return {0.1, 1.0};        // SQ: ~0.04 years idle to fully settled
+    case Effect::backlash: return {0.0006, 0.004};        // total free play, m
+    case Effect::gas_spring: return {0.15e6, 1.5e6};      // N/m
+    case Effect::thermal_fade: return i == 0 ? std::pair{0.008, 0.02} : std::pair{0.02, 0.05};  // 1/K
+    case Effect::time_delay: return {0.004, 0.030};       // s
+    case Effect::coil_lag: return {1.8, 5.0};             // × Eq. 4.5 time constants
+    case Effect::force_offset: return {2.0e3, 8.0e3};     // |offset|, N (sign drawn)
+  }
+  return {0.0, 0.0};
+}
+
+SynthCase synthesize(const SynthSpec& spec) {
+  if (!(spec.duration_s >= 2.0)) throw std::invalid_argument("synthesize: duration below 2 s");
+  if (!(spec.rate_hz >= 50.0)) throw std::invalid_argument("synthesize: rate below 50 Hz");
+  if (!(spec.jitter >= 0.0 && spec.jitter < 1.0)) throw std::invalid_argument("synthesize: jitter outside [0, 1)");
+  const EffectSet set{spec.effects};
+  if (!spec.params.empty() && spec.params.size() != set.param_count()) {
+    throw std::invalid_argument("synthesize: params do not match the effects");
+  }
+  Rng rng(spec.seed * 0x2545F4914F6CDD1Dull + 12345u);
+  const double dt = 1.0 / spec.rate_hz;
+  const auto n = static_cast<std::size_t>(std::floor(spec.duration_s * spec.rate_hz)) + 1;
+  std::vector<double> t(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double j = spec.jitter > 0.0 ? (rng.uniform() - 0.5) * spec.jitter : 0.0;
+    t[k] = (static_cast<double>(k) + (k == 0 ? 0.0 : j)) * dt;
+  }
+
+  SynthCase out;
+  for (int draw = 1; draw <= kMaxDraws; ++draw) {
+    const SynthInput input =
+        spec.input != SynthInput::random ? spec.input : (rng.uniform() < 0.5 ? SynthInput::sine : SynthInput::broadband);
+    SynthCurrent cur = spec.current;
+    if (cur == SynthCurrent::random) {
+      // A current that never changes hides coil_lag: the generator then steps it.
+      cur = set.contains(Effect::coil_lag) || rng.uniform() < 0.65 ? SynthCurrent::steps : SynthCurrent::constant;
+    }
+    Motion m = make_motion(input, t, rng);
+    std::string cur_desc;
+    std::vector<double> i_cmd = make_current(cur, t, rng, cur_desc);
+
+    std::vector<double> params = spec.params;
+    if (params.empty()) {
+      for (const Effect e : set.effects) {
+        for (std::size_t p = 0; p < effect_info(e).params.size(); ++p) {
+          const auto [lo, hi] = synth_range(e, p);
+          double v = rng.uniform(lo, hi);
+          if (e == Effect::force_offset && rng.uniform() < 0.5) v = -v;
+          params.push_back(v);
+        }
+      }
+    }
+    const double white_n = spec.force_noise_n >= 0.0 ? spec.force_noise_n : rng.uniform(200.0, 1000.0);
+    const double colored_n = spec.force_noise_n >= 0.0 ? 0.0 : rng.uniform(100.0, 500.0);
+    const double disp_noise = spec.disp_noise_m >= 0.0 ? spec.disp_noise_m : rng.uniform(5e-6, 20e-6);
+    const double noise_rms = std::hypot(white_n, colored_n);
+
+    const DamperModel truth(ModelInput{t, m.x, m.v, i_cmd, false});
+    ModelWorkspace ws;
+    std::vector<double> f_true, f_base, f_without;
+    truth.simulate(set, params, ws, f_true);
+    truth.simulate(EffectSet{}, {}, ws, f_base);
+    std::vector<double> effect_rms;
+    bool visible = true;
+    for (const Effect e : set.effects) {
+      // The same model without e, the other effects' parameters kept.
+      EffectSet without;
+      std::vector<double> p_without;
+      for (const Effect x : set.effects) {
+        if (x == e) continue;
+        without.effects.push_back(x);
+        const auto off = *set.offset(x);
+        for (std::size_t p = 0; p < effect_info(x).params.size(); ++p) p_without.push_back(params[off + p]);
+      }
+      truth.simulate(without, p_without, ws, f_without);
+      double ss = 0.0;
+      for (std::size_t k = 0; k < n; ++k) ss += (f_true[k] - f_without[k]) * (f_true[k] - f_without[k]);
+      const double rms = std::sqrt(ss / static_cast<double>(n));
+      effect_rms.push_back(rms);
+      if (rms < spec.min_effect_to_noise * noise_rms) visible = false;
+    }
+    const bool last = draw == kMaxDraws;
+    if (!visible && spec.params.empty() && !last) continue;
+
+    out.effects = spec.effects;
+    out.params = params;
+    out.input_description = m.description;
+    out.current_description = cur_desc;
+    out.force_noise_rms_n = noise_rms;
+    out.disp_noise_m = disp_noise;
+    out.effect_rms_n = effect_rms;
+    out.true_gap = normalized_rms_gap(f_true, f_base);
+    out.draws = draw;
+
+    MeasuredData& d = out.data;
+    char label[64];
+    std::snprintf(label, sizeof label, "synth-seed-%llu", static_cast<unsigned long long>(spec.seed));
+    d.source = label;
+    d.time_s = t;
+    d.current_cmd_a = i_cmd;
+    d.displacement_m.resize(n);
+    d.force_n.resize(n);
+    const double a_c = std::exp(-dt / kNoiseCorrelation_s);
+    const double innov = colored_n * std::sqrt(1.0 - a_c * a_c);
+    double colored = colored_n * rng.normal();
+    for (std::size_t k = 0; k < n; ++k) {
+      colored = a_c * colored + innov * rng.normal();
+      d.force_n[k] = quantize(f_true[k] + white_n * rng.normal() + colored, kForceLsb_n);
+      d.displacement_m[k] = quantize(m.x[k] + disp_noise * rng.normal(), kDispLsb_m);
+    }
+    if (spec.velocity_column) {
+      d.velocity_m_s.resize(n);
+      for (std::size_t k = 0; k < n; ++k) d.velocity_m_s[k] = m.v[k] + 0.5e-3 * rng.normal();
+    }
+    break;
+  }
+  return out;
+}
+
+}  // namespace mrd::discrepancy

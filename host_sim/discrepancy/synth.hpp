@@ -1,0 +1,65 @@
+#pragma once
+/// Measured-like damper records made from the baseline model plus hidden
+/// effects: random sine or broadband displacement, constant or stepped
+/// current, sensor noise and quantization. The discrepancy workflow is
+/// proven on these (it is not told what was added).
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "discrepancy/effects.hpp"
+#include "discrepancy/measured_data.hpp"
+
+namespace mrd::discrepancy {
+
+enum class SynthInput { random, sine, broadband };
+enum class SynthCurrent { random, constant, steps };
+
+struct SynthSpec {
+  std::vector<Effect> effects;
+  /// Parameters packed in `effects` order; empty = drawn from synth_range().
+  std::vector<double> params;
+  SynthInput input = SynthInput::random;
+  SynthCurrent current = SynthCurrent::random;
+  double duration_s = 20.0;
+  double rate_hz = 1000.0;
+  std::uint64_t seed = 1;
+  /// Sample times t_k = (k + u_k·jitter) / rate, u_k uniform in [−½, ½]; < 1.
+  double jitter = 0.0;
+  bool velocity_column = false;
+  /// Force-noise level; negative = drawn (white 0.2–1 kN plus a 20 ms
+  /// correlated part of 0.1–0.5 kN). Displacement noise likewise (5–20 µm).
+  double force_noise_n = -1.0;
+  double disp_noise_m = -1.0;
+  /// Each effect's contribution must reach this multiple of the force-noise
+  /// RMS; parameters and input are drawn again (up to 50 times) until it does.
+  double min_effect_to_noise = 4.0;
+};
+
+struct SynthCase {
+  MeasuredData data;
+  std::vector<Effect> effects;
+  std::vector<double> params;  ///< packed in `effects` order
+  std::string input_description;
+  std::string current_description;
+  double force_noise_rms_n = 0.0;  ///< white + correlated
+  double disp_noise_m = 0.0;
+  /// RMS change of the force caused by each effect (with the others present), N.
+  std::vector<double> effect_rms_n;
+  /// Normalized RMS gap between the noise-free truth and the baseline.
+  double true_gap = 0.0;
+  int draws = 1;                   ///< how many draws the visibility rule took
+};
+
+/// Range the generator draws parameter `i` of `e` from (inside the physical
+/// bounds, large enough to be seen in a 20 s record).
+[[nodiscard]] std::pair<double, double> synth_range(Effect e, std::size_t i);
+
+/// Deterministic for a given spec (own PRNG: SplitMix64 + Box–Muller).
+/// Throws std::invalid_argument for a spec out of range (duration < 2 s,
+/// rate < 50 Hz, jitter ≥ 1, a params vector of the wrong size).
+[[nodiscard]] SynthCase synthesize(const SynthSpec& spec);
+
+}  // namespace mrd::discrepancy

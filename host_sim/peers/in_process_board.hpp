@@ -1,0 +1,58 @@
+#pragma once
+/// The `sim` board: the firmware's control task and control core, the drive
+/// node and the DAQ + plant node on an in-memory CAN bus in one process, in
+/// lockstep. The firmware side is the code the Linux board runs; only the
+/// adapters differ (in-memory bus and lines instead of SocketCAN and
+/// libgpiod). Every tick goes through real frames and the shared codec.
+
+#include <memory>
+
+#include "app/board_config.hpp"
+#include "app/control_task.hpp"
+#include "core/damper_controller.hpp"
+#include "peers/peer_nodes.hpp"
+#include "platform/sim/memory_bus.hpp"
+#include "platform/sim/memory_io.hpp"
+
+namespace mrd::peers {
+
+class InProcessBoard {
+ public:
+  using Core = fw::DamperController<num::Float32Policy>;
+
+  /// Throws std::invalid_argument when the core rejects the board's
+  /// configuration (naming the field).
+  InProcessBoard(const app::BoardConfig& board, const PlantSpec& plant, const DriveConfig& drive);
+
+  /// One lockstep tick at ground acceleration `ag`: plant → drive status →
+  /// controller → command → drive → plant. A command lost on the wire makes
+  /// the drive decide without it (its timeout rule); a lost coil-drive frame
+  /// leaves the coil on the drive's previous output.
+  void step(double ground_accel_m_s2);
+
+  PlantSummary summary() const noexcept { return plant_->model().summary(); }
+  const app::ControlTaskStatus& task_status() const noexcept { return task_->status(); }
+  const DriveLogic& drive() const noexcept { return drive_->logic(); }
+  const PlantModel& plant() const noexcept { return plant_->model(); }
+
+  // Fault injection.
+  sim::MemoryBus& bus() noexcept { return bus_; }
+  sim::MemoryCanEndpoint& controller_endpoint() noexcept { return *controller_ep_; }
+  sim::MemoryIo& io() noexcept { return io_; }
+  DriveNode& drive_node() noexcept { return *drive_; }
+  /// The current the drive applied over the last tick (0 when its output is off), A.
+  double applied_current_a() const noexcept;
+
+ private:
+  sim::MemoryBus bus_;
+  sim::MemoryCanEndpoint* controller_ep_ = nullptr;
+  sim::MemoryCanEndpoint* drive_ep_ = nullptr;
+  sim::MemoryCanEndpoint* plant_ep_ = nullptr;
+  sim::MemoryIo io_;
+  Core core_;
+  std::unique_ptr<app::ControlTask<Core>> task_;
+  std::unique_ptr<DriveNode> drive_;
+  std::unique_ptr<PlantNode> plant_;
+};
+
+}  // namespace mrd::peers

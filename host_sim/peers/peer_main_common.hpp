@@ -1,0 +1,46 @@
+#pragma once
+/// What the peer programs share: signal handling, the board file's node ids
+/// and period, and the one-line summary format the emulated-board test reads.
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <string>
+
+#include "app/board_config.hpp"
+#include "peers/plant.hpp"
+
+namespace mrd::peers {
+
+inline std::atomic<bool> g_peer_stop{false};
+extern "C" inline void peer_on_signal(int) { g_peer_stop.store(true); }
+
+inline void install_stop_signals() {
+  std::signal(SIGINT, peer_on_signal);
+  std::signal(SIGTERM, peer_on_signal);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+}
+
+/// The board file's settings when one is given, else the defaults; throws
+/// app::BoardConfigError naming the file and line.
+inline app::BoardConfig board_or_defaults(const std::string& path) {
+  if (path.empty()) {
+    app::BoardConfig b;
+    b.name = "defaults";
+    b.can_interface = "vcan0";
+    return b;
+  }
+  return app::load_board_config(path);
+}
+
+/// "key=value ..." with every double to 17 significant digits (round-trip).
+inline void print_plant_summary(const char* who, const PlantSummary& s) {
+  std::printf(
+      "%s: summary ticks=%llu duration_s=%.17g peak_base_displacement_m=%.17g peak_damper_force_n=%.17g "
+      "peak_superstructure_accel_m_s2=%.17g peak_base_accel_m_s2=%.17g peak_current_a=%.17g "
+      "final_participant_ratio=%.17g sq=%.17g\n",
+      who, static_cast<unsigned long long>(s.ticks), s.duration_s, s.peak_base_displacement_m, s.peak_damper_force_n,
+      s.peak_superstructure_accel_m_s2, s.peak_base_accel_m_s2, s.peak_current_a, s.final_participant_ratio, s.sq);
+}
+
+}  // namespace mrd::peers

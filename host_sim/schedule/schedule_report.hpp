@@ -1,0 +1,45 @@
+#pragma once
+/// `mrd schedule` as a library call: runs the three policies over one world
+/// and writes summary.json, capacity.csv, earthquakes.csv and capacity.png.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "schedule/service_life.hpp"
+
+namespace mrd::schedule {
+
+struct ScheduleOptions {
+  WorldConfig world{};
+  double threshold = 0.8;             ///< capacity fraction to keep
+  double interval_days = 0.0;         ///< fixed policy; 0: search the longest that keeps the threshold
+  bool actuator = true;
+  double maintenance_days = 7.0;      ///< request to visit without an actuator, days
+  double lead_hours = 2.0;            ///< forecast horizon with an actuator, h
+};
+
+struct ScheduleResult {
+  ScheduleOptions options{};
+  World world{};
+  ServiceConfig config{};
+  IntervalSearch search{};            ///< the fixed interval used (searched or given)
+  bool interval_from_option = false;
+  fw::MixingPlan plan{};              ///< the cycle at the threshold
+  double threshold_idle_s = 0.0;      ///< idle time that takes a fully mixed fluid to the threshold
+  double max_settling_time_s = 0.0;   ///< Eq. 5.4
+  std::vector<PolicyResult> policies; ///< none, fixed-interval, estimator
+};
+
+/// Checks the options (report::UsageError naming the option) and runs.
+ScheduleResult run_schedule(const ScheduleOptions& options);
+
+nlohmann::json summary_json(const ScheduleResult& r);
+
+/// Writes capacity.csv, earthquakes.csv, capacity.png and summary.json
+/// (last) into `dir`, each atomically. Returns the reasons plots were not
+/// drawn (empty when all were).
+std::vector<std::string> write_schedule_outputs(const std::filesystem::path& dir, const ScheduleResult& r);
+
+}  // namespace mrd::schedule

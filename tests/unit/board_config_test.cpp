@@ -1,0 +1,103 @@
+// Board files: every board in boards/ parses; bad files get one line naming
+// file, line and field.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "app/board_config.hpp"
+
+namespace mrd::app {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_board_config(text, "b.toml");
+  } catch (const BoardConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+constexpr const char* kMinimal = R"([board]
+name = "x"
+[control]
+[can]
+interface = "can0"
+)";
+
+TEST(BoardConfig, MinimalFileTakesTheDefaults) {
+  const BoardConfig c = parse_board_config(kMinimal, "b.toml");
+  EXPECT_EQ(c.name, "x");
+  EXPECT_EQ(c.period_us, 1000u);
+  EXPECT_EQ(c.mode, control::ControlMode::kSemiActive);
+  EXPECT_EQ(c.nodes.controller, 1);
+  EXPECT_EQ(c.nodes.drive, 2);
+  EXPECT_FALSE(c.gpio_enabled);
+  EXPECT_EQ(c.sched_fifo_priority, 0);
+}
+
+TEST(BoardConfig, EveryBoardInTheRepositoryParses) {
+  int n = 0;
+  for (const auto& d : std::filesystem::directory_iterator(MRD_BOARDS_DIR)) {
+    const auto file = d.path() / "board.toml";
+    if (!std::filesystem::exists(file)) continue;
+    ++n;
+    const BoardConfig c = load_board_config(file);
+    EXPECT_EQ(c.name, d.path().filename().string()) << file;
+  }
+  EXPECT_GE(n, 3) << "sim, emulated-arm64 and at least one real board";
+}
+
+TEST(BoardConfig, EmulatedBoardUsesVcanAndThePl061) {
+  const BoardConfig c = load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "emulated-arm64" / "board.toml");
+  EXPECT_EQ(c.can_interface, "vcan0");
+  EXPECT_TRUE(c.gpio_enabled);
+  EXPECT_EQ(c.gpio_chip, "gpiochip0");
+  EXPECT_EQ(c.drive_enable.offset, 0);
+}
+
+TEST(BoardConfig, SyntaxErrorNamesTheLine) {
+  EXPECT_EQ(error_of("[board]\nname = \"x\"\n[control\n").rfind("b.toml:3: ", 0), 0u) << error_of("[board]\nname = \"x\"\n[control\n");
+}
+
+TEST(BoardConfig, WrongTypeNamesLineAndField) {
+  const std::string e = error_of(std::string(kMinimal) + "[gpio]\nchip = \"gpiochip0\"\ndrive_enable = 1.5\n");
+  EXPECT_EQ(e, "b.toml:8: gpio.drive_enable: expected a line offset (integer) or a line name (string)");
+}
+
+TEST(BoardConfig, OutOfRangeNamesLineAndField) {
+  const std::string e = error_of("[board]\nname = \"x\"\n[control]\nperiod_us = 50\n[can]\n");
+  EXPECT_EQ(e, "b.toml:4: control.period_us: expected 100 … 100000, got 50");
+}
+
+TEST(BoardConfig, UnknownKeyIsRefused) {
+  const std::string e = error_of("[board]\nname = \"x\"\n[control]\nperoid_us = 1000\n[can]\n");
+  EXPECT_EQ(e, "b.toml:4: control.peroid_us: unknown key");
+}
+
+TEST(BoardConfig, UnknownModeIsRefused) {
+  const std::string e = error_of("[board]\nname = \"x\"\n[control]\nmode = \"active\"\n[can]\n");
+  EXPECT_EQ(e, "b.toml:4: control.mode: expected passive-off, passive-on or semi-active, got 'active'");
+}
+
+TEST(BoardConfig, DuplicateNodeIdsAreRefused) {
+  const std::string e = error_of("[board]\nname = \"x\"\n[control]\n[can]\ncontroller_node = 2\n");
+  EXPECT_NE(e.find("b.toml:5: can: node ids must be four different numbers"), std::string::npos) << e;
+}
+
+TEST(BoardConfig, MissingTableIsNamed) {
+  EXPECT_EQ(error_of("[board]\nname = \"x\"\n[can]\n"), "b.toml:1: [control]: missing table");
+}
+
+TEST(BoardConfig, MissingFileIsNamed) {
+  try {
+    load_board_config("/nonexistent/board.toml");
+    FAIL();
+  } catch (const BoardConfigError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/board.toml:0: cannot open the board file");
+  }
+}
+
+}  // namespace
+}  // namespace mrd::app
