@@ -1,0 +1,64 @@
+// The control task allocates nothing per tick: global operator new is
+// replaced to count, and 10 000 ticks with full traffic (sensor frames in,
+// command and heartbeat out, line writes) must not call it.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+
+#include "app/control_task.hpp"
+#include "core/damper_controller.hpp"
+#include "platform/sim/memory_bus.hpp"
+#include "platform/sim/memory_io.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace mrd::app {
+namespace {
+
+TEST(ControlTaskAllocations, NoneOverTenThousandTicks) {
+  sim::MemoryBus bus;
+  auto& ctrl = bus.attach(64);
+  auto& peer = bus.attach(64);
+  ctrl.set_filters(control_task_filters({}));
+  sim::MemoryIo io;
+  fw::DamperController<num::Float32Policy> core;
+  fw::ControllerConfig cfg;
+  cfg.mode = control::ControlMode::kSemiActive;
+  ASSERT_EQ(core.init(cfg), fw::ConfigError::kNone);
+  ControlTask<fw::DamperController<num::Float32Policy>> task(core, ctrl, io, ControlTaskConfig{});
+  task.reset();
+  task.request_mixing({protocol::MixingAction::kStart, 0.05f, 0.2f, 60.0f, 0});
+  hal::CanFrame f;
+  const long before = g_allocations.load();
+  for (std::uint64_t k = 0; k < 10000; ++k) {
+    const auto c = static_cast<std::uint8_t>(k);
+    const float x = 0.02f * static_cast<float>(std::sin(1e-3 * static_cast<double>(k)));
+    protocol::encode(protocol::DaqMotion{x, true, 1e6f * x, true, c}, 3, f);
+    peer.send(f);
+    protocol::encode(protocol::DaqAccel{0.5f, true, 0.1f, true, c}, 3, f);
+    peer.send(f);
+    protocol::encode(protocol::DriveStatus{2.0f, 2.0f, 0, protocol::DriveState::kFollowing, c}, 2, f);
+    peer.send(f);
+    task.run_tick();
+    while (peer.receive(f) == hal::CanResult::kOk) {
+    }
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(task.status().frames_accepted, 30000u);
+}
+
+}  // namespace
+}  // namespace mrd::app
