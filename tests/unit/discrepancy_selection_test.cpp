@@ -8,6 +8,8 @@
 // (host_sim/run/sine_test) must be recognised as idle_settling.
 #include <gtest/gtest.h>
 
+#include "test_normals.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -128,25 +130,7 @@ TEST(DiscrepancyStudy, CoversEveryEffectAndNone) {
   for (const Effect e : kAllEffects) EXPECT_GE(seen[std::string(effect_name(e))], 1) << effect_name(e);
 }
 
-/// Deterministic standard normals for the sensor noise of the thesis records.
-class Normals {
- public:
-  explicit Normals(std::uint64_t s) : s_(s) {}
-  double next() {
-    const double u1 = (static_cast<double>(raw() >> 11) + 0.5) * 0x1.0p-53;
-    const double u2 = static_cast<double>(raw() >> 11) * 0x1.0p-53;
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * units::kPi * u2);
-  }
-
- private:
-  std::uint64_t raw() {
-    std::uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  std::uint64_t s_;
-};
+using test::Normals;
 
 // The thesis's own gap: the three sine tests of Table 5.1, simulated with
 // their idle times (chapter 5, host_sim/run/sine_test), sampled at 500 Hz
