@@ -6,9 +6,9 @@
 //    (float build) in the loop, as `mrd sim` and `mrd sweep` run it.
 #include <benchmark/benchmark.h>
 
-#include "run/closed_loop.hpp"
-#include "run/controller.hpp"
-#include "run/motions.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/controller.hpp"
+#include "host_sim/run/motions.hpp"
 
 namespace {
 

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "discrepancy/measured_data.hpp"
-#include "discrepancy/synth.hpp"
-#include "discrepancy/workflow.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/synth.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
 
 namespace {
 namespace d = mrd::discrepancy;

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/damper_controller.hpp"
+#include "firmware/core/damper_controller.hpp"
 #include "mrd/physics/mr_damper.hpp"
 
 namespace mrd::bench {

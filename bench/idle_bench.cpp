@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/idle_estimator.hpp"
-#include "core/mixing_scheduler.hpp"
+#include "firmware/core/idle_estimator.hpp"
+#include "firmware/core/mixing_scheduler.hpp"
 
 namespace {
 

@@ -6,9 +6,9 @@
 #     machinery and no stdio;
 #   - DamperController<...>::step() calls no double-precision soft-float
 #     routine (__aeabi_d*): the M4's FPU is single precision.
-# Usage: cross_check.sh ARM_GXX SOURCE OBJECT FIRMWARE_DIR COMMON_INCLUDE_DIR
+# Usage: cross_check.sh ARM_GXX SOURCE OBJECT SOURCE_ROOT COMMON_INCLUDE_DIR
 set -euo pipefail
-cxx=$1 src=$2 obj=$3 fw=$4 common=$5
+cxx=$1 src=$2 obj=$3 root=$4 common=$5
 
 if [[ ! -x $cxx ]]; then
   echo "cross_check: arm-none-eabi-g++ not found ($cxx); install gcc-arm-none-eabi (scripts/deps/firmware.list)" >&2
@@ -20,7 +20,7 @@ nm=${cxx%g++}nm
 "$cxx" -std=c++20 -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
   -fno-exceptions -fno-rtti -ffreestanding -O2 \
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion -Wdouble-promotion -Werror \
-  -I"$fw" -I"$common" -c "$src" -o "$obj"
+  -I"$root" -I"$common" -c "$src" -o "$obj"
 echo "compiled $(basename "$src") for cortex-m4 ($(stat -c %s "$obj") bytes)"
 
 undefined=$("$nm" -u "$obj" | awk '{print $2}')

@@ -6,7 +6,7 @@ add_library(mrd_fw_idle STATIC
   ${CMAKE_CURRENT_LIST_DIR}/core/mixing_scheduler.cpp
   ${CMAKE_CURRENT_LIST_DIR}/platform/linux/file_state_store.cpp
 )
-target_include_directories(mrd_fw_idle PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+target_include_directories(mrd_fw_idle PUBLIC ${PROJECT_SOURCE_DIR})
 target_link_libraries(mrd_fw_idle PUBLIC mrd_common)
 
 if(MRD_BUILD_TESTS)
@@ -27,7 +27,7 @@ if(MRD_BUILD_TESTS)
       COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/idle_cross_check.sh "${MRD_ARM_GXX}"
         ${CMAKE_CURRENT_LIST_DIR}/core/${unit}.cpp
         ${CMAKE_CURRENT_BINARY_DIR}/cortex_m4_${unit}.o
-        ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/common/include)
+        ${PROJECT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/common/include)
     set_tests_properties(idle_cross_cortex_m4_${unit} PROPERTIES LABELS cross)
   endforeach()
 endif()

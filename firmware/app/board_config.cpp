@@ -1,4 +1,4 @@
-#include "app/board_config.hpp"
+#include "firmware/app/board_config.hpp"
 
 #include <fstream>
 #include <set>

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/control_task.hpp"
+#include "firmware/app/control_task.hpp"
 #include "mrd/control/io.hpp"
 #include "mrd/protocol/messages.hpp"
 

@@ -4,8 +4,8 @@
 /// as the host simulator's run::firmware_config(), so a board and `mrd sim`
 /// run the same controller.
 
-#include "app/board_config.hpp"
-#include "core/controller_config.hpp"
+#include "firmware/app/board_config.hpp"
+#include "firmware/core/controller_config.hpp"
 
 namespace mrd::app {
 

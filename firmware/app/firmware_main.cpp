@@ -14,16 +14,16 @@
 #include <memory>
 #include <string>
 
-#include "app/board_config.hpp"
-#include "app/control_task.hpp"
-#include "app/core_config.hpp"
-#include "app/periodic_schedule.hpp"
-#include "core/damper_controller.hpp"
-#include "platform/linux/posix_clock.hpp"
-#include "platform/linux/socketcan_bus.hpp"
-#include "platform/sim/memory_io.hpp"
+#include "firmware/app/board_config.hpp"
+#include "firmware/app/control_task.hpp"
+#include "firmware/app/core_config.hpp"
+#include "firmware/app/periodic_schedule.hpp"
+#include "firmware/core/damper_controller.hpp"
+#include "firmware/platform/linux/posix_clock.hpp"
+#include "firmware/platform/linux/socketcan_bus.hpp"
+#include "firmware/platform/sim/memory_io.hpp"
 #ifdef MRD_HAVE_GPIOD
-#include "platform/linux/gpiod_io.hpp"
+#include "firmware/platform/linux/gpiod_io.hpp"
 #endif
 
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "core/numeric_formats.hpp"
+#include "firmware/core/numeric_formats.hpp"
 #include "mrd/control/io.hpp"
 #include "mrd/units.hpp"
 

@@ -41,12 +41,12 @@
 #include <array>
 #include <cstdint>
 
-#include "core/controller_config.hpp"
-#include "core/input_guard.hpp"
-#include "core/numeric_formats.hpp"
-#include "core/odbdco.hpp"
-#include "core/rild_filter.hpp"
-#include "core/velocity_estimator.hpp"
+#include "firmware/core/controller_config.hpp"
+#include "firmware/core/input_guard.hpp"
+#include "firmware/core/numeric_formats.hpp"
+#include "firmware/core/odbdco.hpp"
+#include "firmware/core/rild_filter.hpp"
+#include "firmware/core/velocity_estimator.hpp"
 #include "mrd/control/io.hpp"
 
 namespace mrd::fw {

@@ -1,6 +1,6 @@
 // The float build of the control core (num::Float32Policy). This file is
 // also what the Cortex-M4 cross-compile check builds.
-#include "core/damper_controller.hpp"
+#include "firmware/core/damper_controller.hpp"
 
 namespace mrd::fw {
 template class DamperController<num::Float32Policy>;

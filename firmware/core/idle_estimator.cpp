@@ -1,4 +1,4 @@
-#include "core/idle_estimator.hpp"
+#include "firmware/core/idle_estimator.hpp"
 
 #include <cmath>
 

@@ -48,7 +48,7 @@
 
 #include <cstdint>
 
-#include "core/state_store.hpp"
+#include "firmware/core/state_store.hpp"
 #include "mrd/physics/bingham.hpp"
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/settling.hpp"

@@ -1,4 +1,4 @@
-#include "core/mixing_scheduler.hpp"
+#include "firmware/core/mixing_scheduler.hpp"
 
 #include <cmath>
 

@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "core/mixing_scheduler.hpp"
+#include "firmware/core/mixing_scheduler.hpp"
 #include "mrd/protocol/messages.hpp"
 
 namespace mrd::fw {

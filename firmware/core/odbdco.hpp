@@ -37,7 +37,7 @@
 
 #include <cstdint>
 
-#include "core/numeric_formats.hpp"
+#include "firmware/core/numeric_formats.hpp"
 
 namespace mrd::fw {
 

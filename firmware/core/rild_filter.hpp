@@ -34,7 +34,7 @@
 
 #include <cmath>
 
-#include "core/numeric_formats.hpp"
+#include "firmware/core/numeric_formats.hpp"
 
 namespace mrd::fw {
 

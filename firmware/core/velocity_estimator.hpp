@@ -18,7 +18,7 @@
 
 #include <cmath>
 
-#include "core/numeric_formats.hpp"
+#include "firmware/core/numeric_formats.hpp"
 #include "mrd/units.hpp"
 
 namespace mrd::fw {

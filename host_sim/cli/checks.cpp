@@ -2,8 +2,8 @@
 #include <sstream>
 #include <string>
 
-#include "cli/command.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::cli {
 

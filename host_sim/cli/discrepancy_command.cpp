@@ -3,11 +3,11 @@
 #include <memory>
 #include <string>
 
-#include "cli/command.hpp"
-#include "discrepancy/discrepancy_report.hpp"
-#include "discrepancy/measured_data.hpp"
-#include "discrepancy/workflow.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/discrepancy/discrepancy_report.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::cli {
 namespace {

@@ -7,8 +7,8 @@
 #include <exception>
 #include <vector>
 
-#include "cli/command.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace {
 constexpr int kExitUsage = 2;

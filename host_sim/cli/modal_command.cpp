@@ -4,10 +4,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/command.hpp"
-#include "report/output_dir.hpp"
-#include "structure/building.hpp"
-#include "structure/modal.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/structure/building.hpp"
+#include "host_sim/structure/modal.hpp"
 
 namespace mrd::cli {
 namespace {

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "cli/command.hpp"
-#include "report/output_dir.hpp"
-#include "schedule/schedule_report.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/schedule/schedule_report.hpp"
 
 namespace mrd::cli {
 namespace {

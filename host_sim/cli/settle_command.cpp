@@ -4,9 +4,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/command.hpp"
-#include "report/output_dir.hpp"
-#include "run/settle_study.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/run/settle_study.hpp"
 
 namespace mrd::cli {
 namespace {

@@ -4,13 +4,13 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/command.hpp"
+#include "host_sim/cli/command.hpp"
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
-#include "run/closed_loop.hpp"
-#include "run/controller.hpp"
-#include "run/motions.hpp"
-#include "run/run_outputs.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/controller.hpp"
+#include "host_sim/run/motions.hpp"
+#include "host_sim/run/run_outputs.hpp"
 
 namespace mrd::cli {
 namespace {

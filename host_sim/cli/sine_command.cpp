@@ -6,13 +6,13 @@
 #include <sstream>
 #include <string>
 
-#include "cli/command.hpp"
+#include "host_sim/cli/command.hpp"
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
-#include "report/plot.hpp"
-#include "report/time_series.hpp"
-#include "run/mixing_calibration.hpp"
-#include "run/sine_test.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/plot.hpp"
+#include "host_sim/report/time_series.hpp"
+#include "host_sim/run/mixing_calibration.hpp"
+#include "host_sim/run/sine_test.hpp"
 
 namespace mrd::cli {
 namespace {

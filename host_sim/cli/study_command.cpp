@@ -2,10 +2,10 @@
 #include <memory>
 #include <string>
 
-#include "cli/command.hpp"
+#include "host_sim/cli/command.hpp"
 #include "mrd/control/io.hpp"
-#include "report/output_dir.hpp"
-#include "run/study.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/run/study.hpp"
 
 namespace mrd::cli {
 namespace {

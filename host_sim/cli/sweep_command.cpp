@@ -9,11 +9,11 @@
 #include <thread>
 #include <vector>
 
-#include "cli/command.hpp"
-#include "report/output_dir.hpp"
-#include "run/controller.hpp"
-#include "run/sweep.hpp"
-#include "run/sweep_report.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/run/controller.hpp"
+#include "host_sim/run/sweep.hpp"
+#include "host_sim/run/sweep_report.hpp"
 
 namespace mrd::cli {
 namespace {

@@ -5,11 +5,11 @@
 #include <memory>
 #include <string>
 
-#include "cli/command.hpp"
-#include "discrepancy/discrepancy_report.hpp"
-#include "discrepancy/measured_data.hpp"
-#include "discrepancy/synth.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/discrepancy/discrepancy_report.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/synth.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::cli {
 namespace {

@@ -1,4 +1,4 @@
-#include "discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
 
 #include <algorithm>
 #include <cmath>

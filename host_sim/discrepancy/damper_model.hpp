@@ -22,8 +22,8 @@
 #include <span>
 #include <vector>
 
-#include "discrepancy/effects.hpp"
-#include "discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
 #include "mrd/physics/mr_damper.hpp"
 
 namespace mrd::discrepancy {

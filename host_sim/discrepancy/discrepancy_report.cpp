@@ -1,4 +1,4 @@
-#include "discrepancy/discrepancy_report.hpp"
+#include "host_sim/discrepancy/discrepancy_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
-#include "report/plot.hpp"
-#include "report/time_series.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/plot.hpp"
+#include "host_sim/report/time_series.hpp"
 
 namespace mrd::discrepancy {
 namespace {

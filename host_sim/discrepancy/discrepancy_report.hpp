@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "discrepancy/synth.hpp"
-#include "discrepancy/workflow.hpp"
+#include "host_sim/discrepancy/synth.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
 
 namespace mrd::discrepancy {
 

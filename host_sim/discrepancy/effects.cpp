@@ -1,8 +1,8 @@
-#include "discrepancy/effects.hpp"
+#include "host_sim/discrepancy/effects.hpp"
 
 #include <algorithm>
 
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::discrepancy {
 namespace {

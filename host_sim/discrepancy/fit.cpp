@@ -1,4 +1,4 @@
-#include "discrepancy/fit.hpp"
+#include "host_sim/discrepancy/fit.hpp"
 
 #include <ceres/ceres.h>
 

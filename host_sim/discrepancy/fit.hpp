@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
-#include "discrepancy/damper_model.hpp"
-#include "discrepancy/effects.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/effects.hpp"
 
 namespace mrd::discrepancy {
 

@@ -1,4 +1,4 @@
-#include "discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
 
 #include <matio.h>
 
@@ -14,7 +14,7 @@
 #include <optional>
 #include <sstream>
 
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::discrepancy {
 namespace fs = std::filesystem;

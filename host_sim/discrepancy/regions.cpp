@@ -1,4 +1,4 @@
-#include "discrepancy/regions.hpp"
+#include "host_sim/discrepancy/regions.hpp"
 
 #include <algorithm>
 #include <cmath>

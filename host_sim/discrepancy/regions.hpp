@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
 
 namespace mrd::discrepancy {
 

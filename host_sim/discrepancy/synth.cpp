@@ -1,11 +1,11 @@
-#include "discrepancy/synth.hpp"
+#include "host_sim/discrepancy/synth.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-#include "discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
 #include "mrd/units.hpp"
 
 namespace mrd::discrepancy {

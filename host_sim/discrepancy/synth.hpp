@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "discrepancy/effects.hpp"
-#include "discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
 
 namespace mrd::discrepancy {
 

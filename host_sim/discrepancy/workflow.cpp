@@ -1,4 +1,4 @@
-#include "discrepancy/workflow.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <thread>
 
-#include "discrepancy/damper_model.hpp"
-#include "discrepancy/fit.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/fit.hpp"
 
 namespace mrd::discrepancy {
 namespace {

@@ -26,9 +26,9 @@
 #include <string>
 #include <vector>
 
-#include "discrepancy/effects.hpp"
-#include "discrepancy/measured_data.hpp"
-#include "discrepancy/regions.hpp"
+#include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/regions.hpp"
 
 namespace mrd::discrepancy {
 

@@ -1,4 +1,4 @@
-#include "excitation/ground_motion.hpp"
+#include "host_sim/excitation/ground_motion.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,7 +13,7 @@
 #include <system_error>
 
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::excitation {
 namespace fs = std::filesystem;

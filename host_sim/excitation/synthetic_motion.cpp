@@ -1,4 +1,4 @@
-#include "excitation/synthetic_motion.hpp"
+#include "host_sim/excitation/synthetic_motion.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::excitation {
 using report::UsageError;

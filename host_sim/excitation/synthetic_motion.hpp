@@ -41,7 +41,7 @@
 #include <random>
 #include <string>
 
-#include "excitation/ground_motion.hpp"
+#include "host_sim/excitation/ground_motion.hpp"
 #include "mrd/units.hpp"
 
 namespace mrd::excitation {

@@ -1,4 +1,4 @@
-#include "peers/actuator_logic.hpp"
+#include "host_sim/peers/actuator_logic.hpp"
 
 #include <cmath>
 

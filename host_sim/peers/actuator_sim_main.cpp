@@ -4,10 +4,10 @@
 
 #include <cstdio>
 
-#include "peers/peer_main_common.hpp"
-#include "peers/peer_nodes.hpp"
-#include "platform/linux/posix_clock.hpp"
-#include "platform/linux/socketcan_bus.hpp"
+#include "host_sim/peers/peer_main_common.hpp"
+#include "host_sim/peers/peer_nodes.hpp"
+#include "firmware/platform/linux/posix_clock.hpp"
+#include "firmware/platform/linux/socketcan_bus.hpp"
 
 int main(int argc, char** argv) {
   using namespace mrd;

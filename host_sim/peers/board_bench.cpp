@@ -5,12 +5,12 @@
 
 #include <cmath>
 
-#include "app/board_config.hpp"
-#include "app/control_task.hpp"
-#include "core/damper_controller.hpp"
-#include "peers/in_process_board.hpp"
-#include "platform/sim/memory_bus.hpp"
-#include "platform/sim/memory_io.hpp"
+#include "firmware/app/board_config.hpp"
+#include "firmware/app/control_task.hpp"
+#include "firmware/core/damper_controller.hpp"
+#include "host_sim/peers/in_process_board.hpp"
+#include "firmware/platform/sim/memory_bus.hpp"
+#include "firmware/platform/sim/memory_io.hpp"
 
 namespace {
 

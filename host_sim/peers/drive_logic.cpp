@@ -1,4 +1,4 @@
-#include "peers/drive_logic.hpp"
+#include "host_sim/peers/drive_logic.hpp"
 
 #include <cmath>
 

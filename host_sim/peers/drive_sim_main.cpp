@@ -8,10 +8,10 @@
 #include <chrono>
 #include <cstdio>
 
-#include "peers/peer_main_common.hpp"
-#include "peers/peer_nodes.hpp"
-#include "platform/linux/posix_clock.hpp"
-#include "platform/linux/socketcan_bus.hpp"
+#include "host_sim/peers/peer_main_common.hpp"
+#include "host_sim/peers/peer_nodes.hpp"
+#include "firmware/platform/linux/posix_clock.hpp"
+#include "firmware/platform/linux/socketcan_bus.hpp"
 
 namespace {
 const char* state_name(mrd::protocol::DriveState s) {

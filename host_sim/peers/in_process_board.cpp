@@ -1,9 +1,9 @@
-#include "peers/in_process_board.hpp"
+#include "host_sim/peers/in_process_board.hpp"
 
 #include <stdexcept>
 #include <string>
 
-#include "app/core_config.hpp"
+#include "firmware/app/core_config.hpp"
 
 namespace mrd::peers {
 

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <string>
 
-#include "app/board_config.hpp"
-#include "peers/plant.hpp"
+#include "firmware/app/board_config.hpp"
+#include "host_sim/peers/plant.hpp"
 
 namespace mrd::peers {
 

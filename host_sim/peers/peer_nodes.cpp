@@ -1,4 +1,4 @@
-#include "peers/peer_nodes.hpp"
+#include "host_sim/peers/peer_nodes.hpp"
 
 namespace mrd::peers {
 

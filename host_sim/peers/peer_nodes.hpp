@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "mrd/hal/can_bus.hpp"
-#include "peers/actuator_logic.hpp"
-#include "peers/drive_logic.hpp"
-#include "peers/plant.hpp"
+#include "host_sim/peers/actuator_logic.hpp"
+#include "host_sim/peers/drive_logic.hpp"
+#include "host_sim/peers/plant.hpp"
 
 namespace mrd::peers {
 

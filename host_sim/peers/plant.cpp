@@ -1,9 +1,9 @@
-#include "peers/plant.hpp"
+#include "host_sim/peers/plant.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "excitation/ground_motion.hpp"
+#include "host_sim/excitation/ground_motion.hpp"
 #include "mrd/units.hpp"
 
 namespace mrd::peers {

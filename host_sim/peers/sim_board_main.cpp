@@ -6,9 +6,9 @@
 
 #include <cstdio>
 
-#include "peers/in_process_board.hpp"
-#include "peers/peer_main_common.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/peers/in_process_board.hpp"
+#include "host_sim/peers/peer_main_common.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 int main(int argc, char** argv) {
   using namespace mrd;

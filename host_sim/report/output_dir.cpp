@@ -1,4 +1,4 @@
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

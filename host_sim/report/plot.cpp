@@ -1,4 +1,4 @@
-#include "report/plot.hpp"
+#include "host_sim/report/plot.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -19,7 +19,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "report/time_series.hpp"
+#include "host_sim/report/time_series.hpp"
 
 extern char** environ;
 

@@ -1,4 +1,4 @@
-#include "report/time_series.hpp"
+#include "host_sim/report/time_series.hpp"
 
 #include <array>
 #include <charconv>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::report {
 

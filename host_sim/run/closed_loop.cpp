@@ -1,10 +1,10 @@
-#include "run/closed_loop.hpp"
+#include "host_sim/run/closed_loop.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "mrd/units.hpp"
-#include "run/controller.hpp"
+#include "host_sim/run/controller.hpp"
 
 namespace mrd::run {
 

@@ -18,7 +18,7 @@
 #include "mrd/control/io.hpp"
 #include "mrd/physics/mr_damper.hpp"
 #include "mrd/physics/settling.hpp"
-#include "structure/discrete_building.hpp"
+#include "host_sim/structure/discrete_building.hpp"
 
 namespace mrd::run {
 

@@ -1,6 +1,6 @@
-#include "run/controller.hpp"
+#include "host_sim/run/controller.hpp"
 
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::run {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/damper_controller.hpp"
+#include "firmware/core/damper_controller.hpp"
 #include "mrd/control/io.hpp"
 
 namespace mrd::run {

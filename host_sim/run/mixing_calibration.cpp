@@ -1,10 +1,10 @@
-#include "run/mixing_calibration.hpp"
+#include "host_sim/run/mixing_calibration.hpp"
 
 #include <cmath>
 #include <algorithm>
 #include <limits>
 
-#include "run/sine_test.hpp"
+#include "host_sim/run/sine_test.hpp"
 
 namespace mrd::run {
 

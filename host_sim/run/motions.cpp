@@ -1,9 +1,9 @@
-#include "run/motions.hpp"
+#include "host_sim/run/motions.hpp"
 
 #include <cstdlib>
 
-#include "excitation/ground_motion.hpp"
-#include "excitation/synthetic_motion.hpp"
+#include "host_sim/excitation/ground_motion.hpp"
+#include "host_sim/excitation/synthetic_motion.hpp"
 #include "mrd/units.hpp"
 
 #ifndef MRD_SHARED_DIR

@@ -1,9 +1,9 @@
-#include "run/run_outputs.hpp"
+#include "host_sim/run/run_outputs.hpp"
 
 #include <algorithm>
 
-#include "report/plot.hpp"
-#include "report/time_series.hpp"
+#include "host_sim/report/plot.hpp"
+#include "host_sim/report/time_series.hpp"
 
 namespace mrd::run {
 namespace {

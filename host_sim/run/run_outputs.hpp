@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "run/closed_loop.hpp"
+#include "host_sim/run/closed_loop.hpp"
 
 namespace mrd::run {
 

@@ -1,4 +1,4 @@
-#include "run/settle_study.hpp"
+#include "host_sim/run/settle_study.hpp"
 
 #include "mrd/units.hpp"
 

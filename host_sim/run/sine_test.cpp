@@ -1,4 +1,4 @@
-#include "run/sine_test.hpp"
+#include "host_sim/run/sine_test.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "run/study.hpp"
+#include "host_sim/run/study.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -7,14 +7,14 @@
 
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
-#include "run/controller.hpp"
-#include "run/motions.hpp"
-#include "run/run_outputs.hpp"
-#include "run/sine_test.hpp"
-#include "run/sweep.hpp"
-#include "run/sweep_report.hpp"
-#include "structure/modal.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/run/controller.hpp"
+#include "host_sim/run/motions.hpp"
+#include "host_sim/run/run_outputs.hpp"
+#include "host_sim/run/sine_test.hpp"
+#include "host_sim/run/sweep.hpp"
+#include "host_sim/run/sweep_report.hpp"
+#include "host_sim/structure/modal.hpp"
 
 namespace mrd::run {
 namespace {

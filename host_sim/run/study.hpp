@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "mrd/control/io.hpp"
-#include "run/closed_loop.hpp"
+#include "host_sim/run/closed_loop.hpp"
 
 namespace mrd::run {
 

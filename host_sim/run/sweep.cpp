@@ -1,4 +1,4 @@
-#include "run/sweep.hpp"
+#include "host_sim/run/sweep.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <mutex>
 #include <thread>
 
-#include "run/controller.hpp"
+#include "host_sim/run/controller.hpp"
 
 namespace mrd::run {
 

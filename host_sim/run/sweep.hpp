@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "mrd/control/io.hpp"
-#include "run/closed_loop.hpp"
-#include "run/motions.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/motions.hpp"
 
 namespace mrd::run {
 

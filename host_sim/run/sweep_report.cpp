@@ -1,10 +1,10 @@
-#include "run/sweep_report.hpp"
+#include "host_sim/run/sweep_report.hpp"
 
 #include <cstdio>
 #include <sstream>
 
-#include "report/output_dir.hpp"
-#include "report/plot.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/plot.hpp"
 
 namespace mrd::run {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "run/sweep.hpp"
+#include "host_sim/run/sweep.hpp"
 
 namespace mrd::run {
 

@@ -1,4 +1,4 @@
-#include "schedule/schedule_report.hpp"
+#include "host_sim/schedule/schedule_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <string>
 
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
-#include "report/plot.hpp"
-#include "report/time_series.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/plot.hpp"
+#include "host_sim/report/time_series.hpp"
 
 namespace mrd::schedule {
 namespace {

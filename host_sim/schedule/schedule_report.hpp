@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "schedule/service_life.hpp"
+#include "host_sim/schedule/service_life.hpp"
 
 namespace mrd::schedule {
 

@@ -1,4 +1,4 @@
-#include "schedule/service_life.hpp"
+#include "host_sim/schedule/service_life.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <random>
 #include <string>
 
-#include "excitation/synthetic_motion.hpp"
+#include "host_sim/excitation/synthetic_motion.hpp"
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::schedule {
 namespace {

@@ -44,8 +44,8 @@
 #include <string>
 #include <vector>
 
-#include "core/idle_estimator.hpp"
-#include "core/mixing_scheduler.hpp"
+#include "firmware/core/idle_estimator.hpp"
+#include "firmware/core/mixing_scheduler.hpp"
 
 namespace mrd::schedule {
 

@@ -1,4 +1,4 @@
-#include "structure/building.hpp"
+#include "host_sim/structure/building.hpp"
 
 #include <cmath>
 #include <stdexcept>

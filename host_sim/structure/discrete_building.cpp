@@ -1,4 +1,4 @@
-#include "structure/discrete_building.hpp"
+#include "host_sim/structure/discrete_building.hpp"
 
 #include <cmath>
 #include <stdexcept>

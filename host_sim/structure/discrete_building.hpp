@@ -23,7 +23,7 @@
 
 #include <cstdint>
 
-#include "structure/building.hpp"
+#include "host_sim/structure/building.hpp"
 
 namespace mrd::structure {
 

@@ -1,4 +1,4 @@
-#include "structure/modal.hpp"
+#include "host_sim/structure/modal.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -16,7 +16,7 @@
 
 #include <array>
 
-#include "structure/building.hpp"
+#include "host_sim/structure/building.hpp"
 
 namespace mrd::structure {
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "app/board_config.hpp"
-#include "peers/in_process_board.hpp"
+#include "firmware/app/board_config.hpp"
+#include "host_sim/peers/in_process_board.hpp"
 
 namespace mrd {
 namespace {

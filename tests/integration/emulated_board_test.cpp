@@ -30,8 +30,8 @@
 #include <string>
 
 #include "quantized_reference.hpp"
-#include "run/closed_loop.hpp"
-#include "run/motions.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/motions.hpp"
 
 namespace mrd {
 namespace {

@@ -12,11 +12,11 @@
 #include <cmath>
 #include <filesystem>
 
-#include "app/board_config.hpp"
-#include "peers/in_process_board.hpp"
+#include "firmware/app/board_config.hpp"
+#include "host_sim/peers/in_process_board.hpp"
 #include "quantized_reference.hpp"
-#include "run/closed_loop.hpp"
-#include "run/motions.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/motions.hpp"
 
 namespace mrd {
 namespace {

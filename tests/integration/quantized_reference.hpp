@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "mrd/protocol/codec.hpp"
-#include "run/controller.hpp"
+#include "host_sim/run/controller.hpp"
 
 namespace mrd::testing {
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "peers/actuator_logic.hpp"
+#include "host_sim/peers/actuator_logic.hpp"
 
 namespace mrd::peers {
 namespace {

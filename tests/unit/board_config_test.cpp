@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "app/board_config.hpp"
+#include "firmware/app/board_config.hpp"
 
 namespace mrd::app {
 namespace {

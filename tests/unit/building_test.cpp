@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "structure/building.hpp"
+#include "host_sim/structure/building.hpp"
 
 namespace mrd::structure {
 namespace {

@@ -6,11 +6,11 @@
 #include <complex>
 
 #include "mrd/units.hpp"
-#include "run/closed_loop.hpp"
-#include "run/controller.hpp"
-#include "run/motions.hpp"
-#include "run/sweep.hpp"
-#include "structure/building.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/controller.hpp"
+#include "host_sim/run/motions.hpp"
+#include "host_sim/run/sweep.hpp"
+#include "host_sim/structure/building.hpp"
 
 namespace mrd::run {
 namespace {

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <memory>
 
-#include "app/control_task.hpp"
-#include "core/damper_controller.hpp"
-#include "platform/sim/memory_bus.hpp"
-#include "platform/sim/memory_io.hpp"
+#include "firmware/app/control_task.hpp"
+#include "firmware/core/damper_controller.hpp"
+#include "firmware/platform/sim/memory_bus.hpp"
+#include "firmware/platform/sim/memory_io.hpp"
 
 namespace mrd::app {
 namespace {

@@ -1,8 +1,8 @@
 // The firmware loop's deadlines and overrun counting, on a manual clock.
 #include <gtest/gtest.h>
 
-#include "app/periodic_schedule.hpp"
-#include "platform/sim/manual_clock.hpp"
+#include "firmware/app/periodic_schedule.hpp"
+#include "firmware/platform/sim/manual_clock.hpp"
 
 namespace mrd::app {
 namespace {

@@ -8,7 +8,7 @@
 #include <limits>
 #include <utility>
 
-#include "core/damper_controller.hpp"
+#include "firmware/core/damper_controller.hpp"
 #include "mrd/physics/mr_damper.hpp"
 #include "mrd/units.hpp"
 

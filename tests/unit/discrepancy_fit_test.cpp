@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "discrepancy/fit.hpp"
-#include "discrepancy/synth.hpp"
-#include "discrepancy/workflow.hpp"
+#include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/discrepancy/synth.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
 #include "mrd/units.hpp"
 
 namespace mrd::discrepancy {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
 #include "mrd/physics/mr_damper.hpp"
 #include "mrd/units.hpp"
 

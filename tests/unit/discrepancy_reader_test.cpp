@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <string>
 
-#include "discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::discrepancy {
 namespace {

@@ -19,12 +19,12 @@
 #include <map>
 #include <string>
 
-#include "discrepancy/synth.hpp"
-#include "discrepancy/workflow.hpp"
+#include "host_sim/discrepancy/synth.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
-#include "run/sine_test.hpp"
+#include "host_sim/run/sine_test.hpp"
 
 #ifndef MRD_DISCREPANCY_CASES
 #define MRD_DISCREPANCY_CASES 112

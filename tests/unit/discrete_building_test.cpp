@@ -8,9 +8,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "structure/building.hpp"
-#include "structure/discrete_building.hpp"
-#include "structure/modal.hpp"
+#include "host_sim/structure/building.hpp"
+#include "host_sim/structure/discrete_building.hpp"
+#include "host_sim/structure/modal.hpp"
 
 namespace mrd::structure {
 namespace {

@@ -4,7 +4,7 @@
 // foreign commands.
 #include <gtest/gtest.h>
 
-#include "peers/drive_logic.hpp"
+#include "host_sim/peers/drive_logic.hpp"
 
 namespace mrd::peers {
 namespace {

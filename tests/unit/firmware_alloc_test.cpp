@@ -9,7 +9,7 @@
 #include <limits>
 #include <new>
 
-#include "core/damper_controller.hpp"
+#include "firmware/core/damper_controller.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

@@ -10,9 +10,9 @@
 #include <tuple>
 #include <vector>
 
-#include "run/closed_loop.hpp"
-#include "run/controller.hpp"
-#include "run/motions.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/controller.hpp"
+#include "host_sim/run/motions.hpp"
 
 namespace mrd::run {
 namespace {

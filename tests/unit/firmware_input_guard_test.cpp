@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "core/damper_controller.hpp"
-#include "core/input_guard.hpp"
+#include "firmware/core/damper_controller.hpp"
+#include "firmware/core/input_guard.hpp"
 
 namespace mrd::fw {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/numeric_formats.hpp"
+#include "firmware/core/numeric_formats.hpp"
 
 namespace mrd::fw {
 namespace {

@@ -1,6 +1,6 @@
 // Ground-motion records: CSV and PEER .AT2 readers, PGA scaling (Tables
 // 6.2–6.3), resampling to the simulator step.
-#include "excitation/ground_motion.hpp"
+#include "host_sim/excitation/ground_motion.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::excitation {
 namespace {

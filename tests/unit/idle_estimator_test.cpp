@@ -1,7 +1,7 @@
 // Idle-time estimator: the thesis model reproduced for one episode
 // (against physics::MrDamper), consistency over repeated episodes, the dead
 // band, the clock rules, the save cadence and the capacity definition.
-#include "core/idle_estimator.hpp"
+#include "firmware/core/idle_estimator.hpp"
 
 #include <gtest/gtest.h>
 

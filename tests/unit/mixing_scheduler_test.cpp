@@ -1,14 +1,14 @@
 // Mixing scheduler: the plan within the actuator's limits, the state
 // machine (request, confirm, abort on shaking, failures, maintenance), and
 // the estimator and scheduler together on a simulated mixing stroke.
-#include "core/mixing_scheduler.hpp"
+#include "firmware/core/mixing_scheduler.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/idle_estimator.hpp"
-#include "core/mixing_scheduler_can.hpp"
+#include "firmware/core/idle_estimator.hpp"
+#include "firmware/core/mixing_scheduler_can.hpp"
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
 

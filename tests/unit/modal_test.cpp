@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "structure/building.hpp"
-#include "structure/modal.hpp"
+#include "host_sim/structure/building.hpp"
+#include "host_sim/structure/modal.hpp"
 
 namespace mrd::structure {
 namespace {

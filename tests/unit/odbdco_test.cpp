@@ -3,8 +3,8 @@
 // both numeric builds.
 #include <gtest/gtest.h>
 
-#include "core/controller_config.hpp"
-#include "core/odbdco.hpp"
+#include "firmware/core/controller_config.hpp"
+#include "firmware/core/odbdco.hpp"
 
 namespace mrd::fw {
 namespace {

@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "report/output_dir.hpp"
-#include "report/plot.hpp"
-#include "report/time_series.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/plot.hpp"
+#include "host_sim/report/time_series.hpp"
 
 namespace mrd::report {
 namespace {

@@ -7,7 +7,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/rild_filter.hpp"
+#include "firmware/core/rild_filter.hpp"
 #include "mrd/units.hpp"
 
 namespace mrd::fw {

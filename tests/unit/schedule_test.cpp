@@ -3,7 +3,7 @@
 // by hand from Eq. 5.4–5.9 and Table 4.1, earthquakes meeting the fluid as
 // it is, aborts, maintenance, and the requirement that the estimator keeps
 // the threshold with fewer cycles than the fixed interval that does.
-#include "schedule/service_life.hpp"
+#include "host_sim/schedule/service_life.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
-#include "report/output_dir.hpp"
-#include "schedule/schedule_report.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/schedule/schedule_report.hpp"
 
 namespace mrd::schedule {
 namespace {

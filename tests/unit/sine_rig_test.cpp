@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "run/mixing_calibration.hpp"
-#include "run/sine_test.hpp"
+#include "host_sim/run/mixing_calibration.hpp"
+#include "host_sim/run/sine_test.hpp"
 
 namespace mrd::run {
 namespace {

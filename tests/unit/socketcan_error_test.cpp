@@ -4,7 +4,7 @@
 
 #include <linux/can/error.h>
 
-#include "platform/linux/socketcan_bus.hpp"
+#include "firmware/platform/linux/socketcan_bus.hpp"
 
 namespace mrd::posix {
 namespace {

@@ -2,7 +2,7 @@
 // (checked against zlib), the Linux file store (write-new, fsync, rename,
 // fsync folder), and the worst-case boot when the record is missing,
 // truncated, damaged, of another version, or the clock went backwards.
-#include "core/state_store.hpp"
+#include "firmware/core/state_store.hpp"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "core/idle_estimator.hpp"
-#include "platform/linux/file_state_store.hpp"
+#include "firmware/core/idle_estimator.hpp"
+#include "firmware/platform/linux/file_state_store.hpp"
 
 namespace mrd::fw {
 namespace {

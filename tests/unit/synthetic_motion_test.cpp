@@ -1,6 +1,6 @@
 // Synthetic Kanai–Tajimi / Clough–Penzien ground motion with a Jennings-type
 // envelope.
-#include "excitation/synthetic_motion.hpp"
+#include "host_sim/excitation/synthetic_motion.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "report/output_dir.hpp"
+#include "host_sim/report/output_dir.hpp"
 
 namespace mrd::excitation {
 namespace {

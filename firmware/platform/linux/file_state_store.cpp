@@ -1,4 +1,4 @@
-#include "platform/linux/file_state_store.hpp"
+#include "firmware/platform/linux/file_state_store.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -13,7 +13,7 @@
 
 #include <string>
 
-#include "core/state_store.hpp"
+#include "firmware/core/state_store.hpp"
 
 namespace mrd::posix {
 

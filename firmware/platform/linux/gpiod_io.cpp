@@ -1,4 +1,4 @@
-#include "platform/linux/gpiod_io.hpp"
+#include "firmware/platform/linux/gpiod_io.hpp"
 
 #include <gpiod.hpp>
 

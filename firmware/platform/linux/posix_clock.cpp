@@ -1,4 +1,4 @@
-#include "platform/linux/posix_clock.hpp"
+#include "firmware/platform/linux/posix_clock.hpp"
 
 #include <sched.h>
 #include <sys/mman.h>

@@ -1,4 +1,4 @@
-#include "platform/linux/socketcan_bus.hpp"
+#include "firmware/platform/linux/socketcan_bus.hpp"
 
 #include <linux/can.h>
 #include <linux/can/error.h>
