@@ -68,4 +68,8 @@ double settling_quotient(double idle_time_s, double max_settling_time_s) noexcep
   return std::min(idle_time_s / max_settling_time_s, 1.0);
 }
 
+double settling_quotient_after_idle(double idle_time_s, const SettlingParams& p) noexcept {
+  return settling_quotient(idle_time_s, max_settling_time_s(p));  // Eq. 5.4, 5.5
+}
+
 }  // namespace mrd::physics

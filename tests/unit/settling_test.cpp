@@ -77,6 +77,24 @@ TEST(Settling, SettlingQuotientSaturates) {
   EXPECT_DOUBLE_EQ(settling_quotient(units::years_to_s(2.5), tmax), 1.0);
 }
 
+// SQ after an idle time with the fluid's own maximum settling time (Eq. 5.4:
+// 0.8531 years in the thesis, within 0.5 %): none idle is fully mixed, half of
+// T_max is half settled, T_max and beyond is fully settled.
+TEST(Settling, SettlingQuotientAfterIdle) {
+  const SettlingParams p;
+  const double tmax = max_settling_time_s(p);
+  EXPECT_NEAR(units::s_to_years(tmax), 0.8531, 0.005 * 0.8531);
+  EXPECT_DOUBLE_EQ(settling_quotient_after_idle(0.0, p), 0.0);
+  EXPECT_DOUBLE_EQ(settling_quotient_after_idle(-5.0, p), 0.0);
+  EXPECT_DOUBLE_EQ(settling_quotient_after_idle(0.5 * tmax, p), 0.5);
+  EXPECT_NEAR(settling_quotient_after_idle(units::years_to_s(0.25), p), 0.25 / 0.8531, 0.005 * 0.25 / 0.8531);
+  EXPECT_DOUBLE_EQ(settling_quotient_after_idle(tmax, p), 1.0);
+  EXPECT_DOUBLE_EQ(settling_quotient_after_idle(units::years_to_s(0.9), p), 1.0);
+  EXPECT_DOUBLE_EQ(settling_quotient_after_idle(units::years_to_s(2.5), p), 1.0);
+  // The same as Eq. 5.5 with Eq. 5.4 written out.
+  EXPECT_EQ(settling_quotient_after_idle(units::years_to_s(0.4), p), settling_quotient(units::years_to_s(0.4), tmax));
+}
+
 // The maximum settling time scales with viscosity (Eq. 5.1: V_t ∝ 1/η), as
 // §6.5 says: doubling η doubles it.
 TEST(Settling, MaxSettlingTimeScalesWithViscosity) {

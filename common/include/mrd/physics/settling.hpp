@@ -3,6 +3,7 @@
 /// Stokes velocity (Eq. 5.1), hindered velocity (Eq. 5.2), settled-layer
 /// height from the cylindrical-segment volume (Eq. 5.3, Tables 5.4–5.5),
 /// maximum settling time (Eq. 5.4) and settling quotient SQ (Eq. 5.5).
+/// Idle times are in seconds.
 
 namespace mrd::physics {
 
@@ -47,5 +48,10 @@ double max_settling_time_s(const SettlingParams& p) noexcept;
 /// Settling quotient SQ as a fraction, Eq. 5.5, saturating at 1 (a fluid
 /// cannot be more than fully settled). Negative idle time is treated as 0.
 double settling_quotient(double idle_time_s, double max_settling_time_s) noexcept;
+
+/// Settling quotient after `idle_time_s` seconds idle: Eq. 5.5 with the
+/// maximum settling time of Eq. 5.4 for `p`. 0 for no idle time, 0.5 at half
+/// the maximum settling time, 1 at and past it.
+double settling_quotient_after_idle(double idle_time_s, const SettlingParams& p) noexcept;
 
 }  // namespace mrd::physics
