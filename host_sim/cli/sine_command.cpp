@@ -12,7 +12,7 @@
 #include "host_sim/report/plot.hpp"
 #include "host_sim/report/time_series.hpp"
 #include "host_sim/run/mixing_calibration.hpp"
-#include "host_sim/run/sine_test.hpp"
+#include "host_sim/run/sine_rig.hpp"
 
 namespace mrd::cli {
 namespace {
@@ -55,7 +55,7 @@ std::string thesis_cases_markdown() {
   char buf[256];
   os << "| case | metric | model | measured (Table 5.2) | error |\n|---|---|---:|---:|---:|\n";
   for (const auto& c : run::thesis_sine_cases()) {
-    const run::SineMetrics m = run::run_sine_test(c.spec);
+    const run::SineMetrics m = run::run_sine_rig(c.spec);
     const struct {
       const char* name;
       double model, measured;
@@ -85,7 +85,7 @@ void run_thesis_cases(const SineOptions& o) {
                                 "# Sine tests of Table 5.1: model against Table 5.2 (a)\n\n" + md);
   nlohmann::json cases = nlohmann::json::array();
   for (const auto& c : run::thesis_sine_cases()) {
-    const run::SineMetrics m = run::run_sine_test(c.spec);
+    const run::SineMetrics m = run::run_sine_rig(c.spec);
     cases.push_back({{"name", c.name},
                      {"model", {{"fully_mixed_force_kn", m.fully_mixed_force_n / 1e3},
                                 {"initial_force_kn", m.initial_force_n / 1e3},
@@ -113,10 +113,10 @@ void run_calibration() {
 }
 
 void run_single(const SineOptions& o) {
-  run::SineTestSpec spec{units::mm_to_m(o.amplitude_mm), o.freq_hz, o.current_a, o.idle_years, o.duration_s, o.step_s};
+  run::SineRigSpec spec{units::mm_to_m(o.amplitude_mm), o.freq_hz, o.current_a, o.idle_years, o.duration_s, o.step_s};
   run::SineRecord rec;
   const bool keep = !o.out_dir.empty();
-  const run::SineMetrics m = run::run_sine_test(spec, {}, {}, keep ? &rec : nullptr);
+  const run::SineMetrics m = run::run_sine_rig(spec, {}, {}, keep ? &rec : nullptr);
   std::printf("sine %.4g mm, %.4g Hz, %.4g A, idle %.4g years (SQ %.3f), %.4g s\n", o.amplitude_mm, o.freq_hz,
               o.current_a, o.idle_years, m.sq, o.duration_s);
   std::printf("  fully mixed force   %9.2f kN\n  initial force       %9.2f kN (%.1f %% of fully mixed)\n",

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "host_sim/run/sine_test.hpp"
+#include "host_sim/run/sine_rig.hpp"
 
 namespace mrd::run {
 
@@ -15,7 +15,7 @@ MixingCalibration evaluate_rise_times(const physics::MrDamperParams& damper) {
   double sum_sq = 0.0;
   int n = 0;
   for (const auto& c : thesis_sine_cases()) {
-    const SineMetrics m = run_sine_test(c.spec, damper);
+    const SineMetrics m = run_sine_rig(c.spec, damper);
     cal.cases.push_back({c.name, m.rise_time_90_s, c.rise_time_90_s, m.rise_time_95_s, c.rise_time_95_s});
     for (const auto& [model, thesis] : {std::pair{m.rise_time_90_s, c.rise_time_90_s},
                                         std::pair{m.rise_time_95_s, c.rise_time_95_s}}) {

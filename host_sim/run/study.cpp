@@ -11,7 +11,7 @@
 #include "host_sim/run/controller.hpp"
 #include "host_sim/run/motions.hpp"
 #include "host_sim/run/run_outputs.hpp"
-#include "host_sim/run/sine_test.hpp"
+#include "host_sim/run/sine_rig.hpp"
 #include "host_sim/run/sweep.hpp"
 #include "host_sim/run/sweep_report.hpp"
 #include "host_sim/structure/modal.hpp"
@@ -59,7 +59,7 @@ StudyResult run_study(const StudyOptions& o, const std::filesystem::path& dir) {
      << " years idle is a fully settled damper.\n\n";
   md << "Sine tests of Table 5.1, model against Table 5.2 (a):\n\n| case | initial force | max force | rise to 90 % | rise to 95 % |\n|---|---:|---:|---:|---:|\n";
   for (const auto& c : thesis_sine_cases()) {
-    const SineMetrics m = run_sine_test(c.spec);
+    const SineMetrics m = run_sine_rig(c.spec);
     md << "| " << c.name << " | " << fmt("%.1f", m.initial_force_n / 1e3) << " / " << c.initial_force_kn << " kN | "
        << fmt("%.1f", m.max_force_n / 1e3) << " / " << c.max_force_kn << " kN | " << fmt("%.2f", m.rise_time_90_s)
        << " / " << c.rise_time_90_s << " s | " << fmt("%.2f", m.rise_time_95_s) << " / " << c.rise_time_95_s

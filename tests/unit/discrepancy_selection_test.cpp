@@ -5,7 +5,7 @@
 // effect is present, at least halve the gap. Prints the confusion matrix.
 //
 // And the thesis's own gap: the Table 5.1 sine tests simulated with idle time
-// (host_sim/run/sine_test) must be recognised as idle_settling.
+// (host_sim/run/sine_rig) must be recognised as idle_settling.
 #include <gtest/gtest.h>
 
 #include "test_normals.hpp"
@@ -24,7 +24,7 @@
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
-#include "host_sim/run/sine_test.hpp"
+#include "host_sim/run/sine_rig.hpp"
 
 #ifndef MRD_DISCREPANCY_CASES
 #define MRD_DISCREPANCY_CASES 112
@@ -133,18 +133,18 @@ TEST(DiscrepancyStudy, CoversEveryEffectAndNone) {
 using test::Normals;
 
 // The thesis's own gap: the three sine tests of Table 5.1, simulated with
-// their idle times (chapter 5, host_sim/run/sine_test), sampled at 500 Hz
+// their idle times (chapter 5, host_sim/run/sine_rig), sampled at 500 Hz
 // with 0.5 kN load-cell and 10 µm LVDT noise, are compared with the chapter-4
 // model. The workflow must name idle_settling alone and recover the SQ of
 // Eq. 5.5 (0.25/0.8534, 0.5/0.8534 years, and 1 for 2.5 years).
 TEST(DiscrepancyThesis, IdleSineTestsOfTable51AreIdleSettling) {
   Normals noise(51);
   for (const auto& c : run::thesis_sine_cases()) {
-    run::SineTestSpec spec = c.spec;
+    run::SineRigSpec spec = c.spec;
     spec.duration_s = std::min(spec.duration_s, 60.0);
     spec.step_s = 2e-3;
     run::SineRecord rec;
-    const run::SineMetrics m = run::run_sine_test(spec, {}, {}, &rec);
+    const run::SineMetrics m = run::run_sine_rig(spec, {}, {}, &rec);
     MeasuredData d;
     d.source = c.name;
     d.time_s = rec.time_s;
@@ -180,12 +180,12 @@ TEST(DiscrepancyThesis, FullyMixedForcesOfTable52PointToAParticipantRatioBelowOn
   const auto& cases = run::thesis_sine_cases();
   const double pr_by_hand[2] = {0.968, 0.881};
   for (std::size_t i = 0; i < 2; ++i) {
-    run::SineTestSpec spec = cases[i].spec;
+    run::SineRigSpec spec = cases[i].spec;
     spec.idle_years = 0.0;
     spec.duration_s = 20.0;
     spec.step_s = 2e-3;
     run::SineRecord rec;
-    const run::SineMetrics m = run::run_sine_test(spec, {}, {}, &rec);
+    const run::SineMetrics m = run::run_sine_rig(spec, {}, {}, &rec);
     const double scale = units::kn_to_n(cases[i].fully_mixed_force_kn) / m.fully_mixed_force_n;
     MeasuredData d;
     d.source = cases[i].name;

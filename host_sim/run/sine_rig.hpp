@@ -10,7 +10,7 @@
 
 namespace mrd::run {
 
-struct SineTestSpec {
+struct SineRigSpec {
   double amplitude_m = 0.0254;
   double frequency_hz = 0.5;
   double current_a = 2.5;
@@ -44,13 +44,13 @@ struct SineRecord {
 /// Runs the rig. The coil current is steady at `current_a` from the start
 /// (the thesis supplied a constant current); the displacement is
 /// A sin(2π f t) with its exact velocity A ω cos(ω t).
-SineMetrics run_sine_test(const SineTestSpec& spec, const physics::MrDamperParams& damper = {},
-                          const physics::SettlingParams& settling = {}, SineRecord* record = nullptr);
+SineMetrics run_sine_rig(const SineRigSpec& spec, const physics::MrDamperParams& damper = {},
+                         const physics::SettlingParams& settling = {}, SineRecord* record = nullptr);
 
 /// One row of Table 5.1 / 5.2: the test and what was measured.
 struct ThesisSineCase {
   const char* name;
-  SineTestSpec spec;
+  SineRigSpec spec;
   double fully_mixed_force_kn;
   double max_force_kn;
   double initial_force_kn;

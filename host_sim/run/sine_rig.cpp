@@ -1,4 +1,4 @@
-#include "host_sim/run/sine_test.hpp"
+#include "host_sim/run/sine_rig.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@ struct RunOutput {
   std::vector<double> abs_force_n;
 };
 
-RunOutput simulate(const SineTestSpec& s, const physics::MrDamperParams& damper, double sq, SineRecord* rec) {
+RunOutput simulate(const SineRigSpec& s, const physics::MrDamperParams& damper, double sq, SineRecord* rec) {
   physics::MrDamper d(damper, s.step_s, sq);
   d.reset(sq, s.current_a);
   const double w = 2.0 * units::kPi * s.frequency_hz;
@@ -59,13 +59,13 @@ double first_time_reaching(const std::vector<double>& abs_force_n, double thresh
 
 }  // namespace
 
-SineMetrics run_sine_test(const SineTestSpec& spec, const physics::MrDamperParams& damper,
-                          const physics::SettlingParams& settling, SineRecord* record) {
+SineMetrics run_sine_rig(const SineRigSpec& spec, const physics::MrDamperParams& damper,
+                         const physics::SettlingParams& settling, SineRecord* record) {
   SineMetrics m;
   m.sq = physics::settling_quotient(units::years_to_s(spec.idle_years), physics::max_settling_time_s(settling));
   const RunOutput idle = simulate(spec, damper, m.sq, record);
   // The fully mixed reference needs only a few steady cycles.
-  SineTestSpec mixed = spec;
+  SineRigSpec mixed = spec;
   mixed.duration_s = std::min(spec.duration_s, 3.0 / spec.frequency_hz);
   const RunOutput ref = simulate(mixed, damper, 0.0, nullptr);
   m.fully_mixed_force_n = ref.max_force_n;
