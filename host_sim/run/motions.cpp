@@ -1,8 +1,10 @@
 #include "host_sim/run/motions.hpp"
 
 #include <cstdlib>
+#include <utility>
 
 #include "host_sim/excitation/ground_motion.hpp"
+#include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/excitation/synthetic_motion.hpp"
 #include "mrd/units.hpp"
 
@@ -47,20 +49,17 @@ std::optional<fs::path> find_shared_ground_motions() {
 }
 
 StudyMotion load_study_motion(const fs::path& path, double pga_g, double step_s, double duration_s) {
-  const excitation::GroundMotion raw = excitation::read_ground_motion(path);
-  const double target = pga_g * units::kStandardGravity_m_s2;
+  excitation::ScaledMotion scaled = excitation::load_scaled_motion(path, pga_g, step_s, duration_s);
   StudyMotion m;
-  m.name = raw.name;
-  m.label = raw.name;
+  m.name = scaled.name;
+  m.label = scaled.name;
   for (const auto& r : kThesisRecords) {
     if (path.filename() == r.file) m.label = r.label;
   }
-  m.source = raw.source;
-  m.scale_factor = excitation::scale_factor_for_pga(raw, target);
-  const excitation::GroundMotion scaled = excitation::scaled_to_pga(raw, target);
-  m.pga_m_s2 = scaled.pga_m_s2();
-  m.accel_m_s2 = duration_s > 0.0 ? excitation::resample_linear(scaled, step_s, duration_s)
-                                  : excitation::resample_linear(scaled, step_s);
+  m.source = scaled.source;
+  m.scale_factor = scaled.scale_factor;
+  m.pga_m_s2 = scaled.pga_m_s2;
+  m.accel_m_s2 = std::move(scaled.accel_m_s2);
   return m;
 }
 

@@ -30,7 +30,8 @@ struct StudyMotion {
 std::optional<std::filesystem::path> find_shared_ground_motions();
 
 /// Loads `path` (CSV or PEER AT2), scales it to `pga_g` and resamples it to
-/// `step_s`, covering `duration_s` when > 0 (zero-padded), else the record.
+/// `step_s`, covering `duration_s` when > 0 (zero-padded), else the record
+/// (excitation::load_scaled_motion), labelled as Table 6.2 names it.
 StudyMotion load_study_motion(const std::filesystem::path& path, double pga_g, double step_s,
                               double duration_s = 0.0);
 
