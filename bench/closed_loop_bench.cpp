@@ -9,6 +9,7 @@
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/controller.hpp"
 #include "host_sim/run/motions.hpp"
+#include "mrd/units.hpp"
 
 namespace {
 
@@ -19,8 +20,8 @@ const mrd::run::StudyMotion& motion() {
 }
 
 void run(benchmark::State& state, mrd::run::Controller& controller) {
-  mrd::run::ClosedLoopSpec spec;
-  spec.idle_years = 0.5;
+  mrd::plant::PlantSpec spec;
+  spec.idle_time_s = mrd::units::years_to_s(0.5);
   double simulated_s = 0.0;
   for (auto _ : state) {
     const auto s = mrd::run::run_closed_loop(spec, motion().accel_m_s2, controller);

@@ -7,6 +7,7 @@
 #include "host_sim/cli/command.hpp"
 #include "host_sim/report/output_dir.hpp"
 #include "host_sim/run/settle_study.hpp"
+#include "mrd/units.hpp"
 
 namespace mrd::cli {
 namespace {
@@ -29,8 +30,8 @@ struct SettleOptions {
   std::string out_dir;
 };
 
-void print_table(const run::SettleSummary& s) {
-  std::printf("Idle-time settling after %.4g years idle (thesis §5.3)\n\n", s.idle_years);
+void print_table(double idle_years, const run::SettleSummary& s) {
+  std::printf("Idle-time settling after %.4g years idle (thesis §5.3)\n\n", idle_years);
   std::printf("  %-34s %14s  %-6s %s\n", "quantity", "value", "unit", "source");
   const auto row = [](const char* name, double v, const char* unit, const char* src) {
     std::printf("  %-34s %14.6g  %-6s %s\n", name, v, unit, src);
@@ -38,20 +39,20 @@ void print_table(const run::SettleSummary& s) {
   row("Stokes settling velocity V_t", s.settling_velocity_m_s, "m/s", "Eq. 5.1");
   row("hindered settling velocity V_ts", s.hindered_settling_velocity_m_s, "m/s", "Eq. 5.2");
   row("settled-layer height h_max", s.settled_layer_height_m, "m", "Eq. 5.3, Table 5.5");
-  row("maximum settling time", s.max_settling_time_years, "years", "Eq. 5.4");
+  row("maximum settling time", units::s_to_years(s.max_settling_time_s), "years", "Eq. 5.4");
   row("settling quotient SQ", s.sq, "-", "Eq. 5.5");
   row("initial participant ratio a_PR", s.pr.a_pr, "-", "Eq. 5.6");
   row("final participant ratio b_PR", s.pr.b_pr, "-", "Eq. 5.7");
   row("participant-ratio rate c_PR", s.pr.c_pr, "1/L", "Eq. 5.8");
 }
 
-nlohmann::json to_json(const run::SettleSummary& s) {
+nlohmann::json to_json(double idle_years, const run::SettleSummary& s) {
   return nlohmann::json{
-      {"idle_years", s.idle_years},
+      {"idle_years", idle_years},
       {"settling_velocity_m_s", s.settling_velocity_m_s},
       {"hindered_settling_velocity_m_s", s.hindered_settling_velocity_m_s},
       {"settled_layer_height_m", s.settled_layer_height_m},
-      {"max_settling_time_years", s.max_settling_time_years},
+      {"max_settling_time_years", units::s_to_years(s.max_settling_time_s)},
       {"sq", s.sq},
       {"a_pr", s.pr.a_pr},
       {"b_pr", s.pr.b_pr},
@@ -71,11 +72,11 @@ Command add_settle_command(CLI::App& parent) {
   return {app, [opts] {
             require_finite_at_least("--idle-years", opts->idle_years, 0.0);
             if (!opts->out_dir.empty()) report::prepare_output_dir(opts->out_dir);
-            const run::SettleSummary s = run::settle_study(opts->idle_years);
-            print_table(s);
+            const run::SettleSummary s = run::settle_study(units::years_to_s(opts->idle_years));
+            print_table(opts->idle_years, s);
             if (!opts->out_dir.empty()) {
               const auto path = std::filesystem::path(opts->out_dir) / "summary.json";
-              report::write_file_atomically(path, to_json(s).dump(2) + "\n");
+              report::write_file_atomically(path, to_json(opts->idle_years, s).dump(2) + "\n");
               std::printf("\nwrote %s\n", path.c_str());
             }
           }};

@@ -80,12 +80,12 @@ Command add_sim_command(CLI::App& parent) {
               motion = run::load_study_motion(o->record, o->pga_g, o->step_s, o->duration_s);
             }
 
-            run::ClosedLoopSpec spec;
+            plant::PlantSpec spec;
             spec.step_s = o->step_s;
-            spec.idle_years = o->idle_years;
+            spec.idle_time_s = units::years_to_s(o->idle_years);
             run::ClosedLoopRecord rec;
             const bool keep = !o->out_dir.empty();
-            const run::ClosedLoopSummary s = run::run_closed_loop(spec, motion.accel_m_s2, *controller, keep ? &rec : nullptr);
+            const plant::PlantSummary s = run::run_closed_loop(spec, motion.accel_m_s2, *controller, keep ? &rec : nullptr);
 
             std::printf("%s, PGA %.4g g (x%.4f), %s (%s core), idle %.4g years (SQ %.3f), %.2f s\n",
                         motion.name.c_str(), motion.pga_m_s2 / units::kStandardGravity_m_s2, motion.scale_factor,

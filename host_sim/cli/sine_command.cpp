@@ -113,7 +113,8 @@ void run_calibration() {
 }
 
 void run_single(const SineOptions& o) {
-  run::SineRigSpec spec{units::mm_to_m(o.amplitude_mm), o.freq_hz, o.current_a, o.idle_years, o.duration_s, o.step_s};
+  const run::SineRigSpec spec{units::mm_to_m(o.amplitude_mm), o.freq_hz, o.current_a,
+                              units::years_to_s(o.idle_years), o.duration_s, o.step_s};
   run::SineRecord rec;
   const bool keep = !o.out_dir.empty();
   const run::SineMetrics m = run::run_sine_rig(spec, {}, {}, keep ? &rec : nullptr);

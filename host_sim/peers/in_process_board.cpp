@@ -7,7 +7,7 @@
 
 namespace mrd::peers {
 
-InProcessBoard::InProcessBoard(const app::BoardConfig& board, const PlantSpec& plant, const DriveConfig& drive) {
+InProcessBoard::InProcessBoard(const app::BoardConfig& board, const plant::PlantSpec& plant, const DriveConfig& drive) {
   controller_ep_ = &bus_.attach();
   drive_ep_ = &bus_.attach();
   plant_ep_ = &bus_.attach();

@@ -22,7 +22,7 @@ class InProcessBoard {
 
   /// Throws std::invalid_argument when the core rejects the board's
   /// configuration (naming the field).
-  InProcessBoard(const app::BoardConfig& board, const PlantSpec& plant, const DriveConfig& drive);
+  InProcessBoard(const app::BoardConfig& board, const plant::PlantSpec& plant, const DriveConfig& drive);
 
   /// One lockstep tick at ground acceleration `ag`: plant → drive status →
   /// controller → command → drive → plant. A command lost on the wire makes
@@ -30,10 +30,10 @@ class InProcessBoard {
   /// leaves the coil on the drive's previous output.
   void step(double ground_accel_m_s2);
 
-  PlantSummary summary() const noexcept { return plant_->model().summary(); }
+  plant::PlantSummary summary() const noexcept { return plant_->model().summary(); }
   const app::ControlTaskStatus& task_status() const noexcept { return task_->status(); }
   const DriveLogic& drive() const noexcept { return drive_->logic(); }
-  const PlantModel& plant() const noexcept { return plant_->model(); }
+  const plant::Plant& plant() const noexcept { return plant_->model(); }
 
   // Fault injection.
   sim::MemoryBus& bus() noexcept { return bus_; }

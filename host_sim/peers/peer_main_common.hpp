@@ -8,7 +8,7 @@
 #include <string>
 
 #include "firmware/app/board_config.hpp"
-#include "host_sim/peers/plant.hpp"
+#include "host_sim/plant/plant.hpp"
 
 namespace mrd::peers {
 
@@ -34,7 +34,7 @@ inline app::BoardConfig board_or_defaults(const std::string& path) {
 }
 
 /// "key=value ..." with every double to 17 significant digits (round-trip).
-inline void print_plant_summary(const char* who, const PlantSummary& s) {
+inline void print_plant_summary(const char* who, const plant::PlantSummary& s) {
   std::printf(
       "%s: summary ticks=%llu duration_s=%.17g peak_base_displacement_m=%.17g peak_damper_force_n=%.17g "
       "peak_superstructure_accel_m_s2=%.17g peak_base_accel_m_s2=%.17g peak_current_a=%.17g "

@@ -18,12 +18,12 @@ std::vector<hal::CanFilter> actuator_filters(const protocol::NodeIds& n) {
 
 // ---- Plant -----------------------------------------------------------------
 
-PlantNode::PlantNode(hal::CanBus& bus, const protocol::NodeIds& nodes, const PlantSpec& spec)
+PlantNode::PlantNode(hal::CanBus& bus, const protocol::NodeIds& nodes, const plant::PlantSpec& spec)
     : bus_(bus), nodes_(nodes) {
   plant_.init(spec);
 }
 
-void PlantNode::send_sensors(const PlantSensors& s, std::uint8_t counter) noexcept {
+void PlantNode::send_sensors(const plant::PlantSensors& s, std::uint8_t counter) noexcept {
   hal::CanFrame f;
   // A value the protocol cannot carry goes out as "not available".
   protocol::DaqMotion m{s.damper_disp_m, true, s.damper_force_n, true, counter};
@@ -48,7 +48,7 @@ void PlantNode::send_sensors(const PlantSensors& s, std::uint8_t counter) noexce
 }
 
 void PlantNode::begin_tick(double ground_accel_m_s2) noexcept {
-  const PlantSensors s = plant_.sense(ground_accel_m_s2);
+  const plant::PlantSensors s = plant_.sense(ground_accel_m_s2);
   const auto counter = static_cast<std::uint8_t>(tick_ & 0xFFu);
   hal::CanFrame f;
   // The coil first: the drive answers it with its status in the same tick.
@@ -87,7 +87,7 @@ bool PlantNode::try_finish_tick() noexcept {
   if (!pending_) return true;
   drain(true);
   if (!got_drive_) return false;
-  plant_.advance(drive_.output_on ? static_cast<double>(drive_.applied_current_a) : 0.0);
+  plant_.advance({static_cast<double>(drive_.applied_current_a), drive_.output_on});
   pending_ = false;
   ++tick_;
   return true;
@@ -95,19 +95,19 @@ bool PlantNode::try_finish_tick() noexcept {
 
 void PlantNode::force_finish_tick() noexcept {
   if (!pending_) return;
-  plant_.advance(drive_.output_on ? static_cast<double>(drive_.applied_current_a) : 0.0);
+  plant_.advance({static_cast<double>(drive_.applied_current_a), drive_.output_on});
   pending_ = false;
   ++tick_;
 }
 
 void PlantNode::free_tick(double ground_accel_m_s2) noexcept {
   drain(false);
-  const PlantSensors s = plant_.sense(ground_accel_m_s2);
+  const plant::PlantSensors s = plant_.sense(ground_accel_m_s2);
   const auto counter = static_cast<std::uint8_t>(tick_ & 0xFFu);
   hal::CanFrame f;
   if (protocol::encode(protocol::SimCoilState{s.coil_current_a, counter}, nodes_.daq, f)) bus_.send(f);
   send_sensors(s, counter);
-  plant_.advance(got_drive_ && drive_.output_on ? static_cast<double>(drive_.applied_current_a) : 0.0);
+  plant_.advance({static_cast<double>(drive_.applied_current_a), got_drive_ && drive_.output_on});
   ++tick_;
 }
 

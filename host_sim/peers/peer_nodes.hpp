@@ -23,14 +23,15 @@
 #include "mrd/hal/can_bus.hpp"
 #include "host_sim/peers/actuator_logic.hpp"
 #include "host_sim/peers/drive_logic.hpp"
-#include "host_sim/peers/plant.hpp"
+#include "host_sim/plant/plant.hpp"
 
 namespace mrd::peers {
 
-/// DAQ + plant node.
+/// DAQ + plant node: the plant (host_sim/plant/plant.hpp) with its sensors
+/// sent as DAQ frames and its coil driven by the drive's SimCoilDrive.
 class PlantNode {
  public:
-  PlantNode(hal::CanBus& bus, const protocol::NodeIds& nodes, const PlantSpec& spec);
+  PlantNode(hal::CanBus& bus, const protocol::NodeIds& nodes, const plant::PlantSpec& spec);
 
   /// Lockstep: samples t_k for ground acceleration `ag` and sends the tick's frames.
   void begin_tick(double ground_accel_m_s2) noexcept;
@@ -44,18 +45,18 @@ class PlantNode {
   /// Free-running: one period: drain the drive's output, sample, send, advance.
   void free_tick(double ground_accel_m_s2) noexcept;
 
-  const PlantModel& model() const noexcept { return plant_; }
+  const plant::Plant& model() const noexcept { return plant_; }
   std::uint64_t ticks() const noexcept { return tick_; }
   std::uint32_t rejected() const noexcept { return rejected_; }
   std::uint32_t encode_errors() const noexcept { return encode_errors_; }
 
  private:
-  void send_sensors(const PlantSensors& s, std::uint8_t counter) noexcept;
+  void send_sensors(const plant::PlantSensors& s, std::uint8_t counter) noexcept;
   void drain(bool lockstep) noexcept;
 
   hal::CanBus& bus_;
   protocol::NodeIds nodes_;
-  PlantModel plant_;
+  plant::Plant plant_;
   protocol::CounterCheck drive_counter_{};
   std::uint64_t tick_ = 0;
   bool pending_ = false;

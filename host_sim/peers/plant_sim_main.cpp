@@ -12,7 +12,9 @@
 #include "host_sim/peers/peer_nodes.hpp"
 #include "firmware/platform/linux/posix_clock.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
+#include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/report/output_dir.hpp"
+#include "mrd/units.hpp"
 
 int main(int argc, char** argv) {
   using namespace mrd;
@@ -33,15 +35,15 @@ int main(int argc, char** argv) {
 
   peers::install_stop_signals();
   app::BoardConfig board;
-  peers::PlantSpec spec;
+  plant::PlantSpec spec;
   std::vector<double> ag;
   try {
     board = peers::board_or_defaults(board_file);
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
       throw report::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     spec.step_s = board.period_s();
-    spec.idle_years = idle_years;
-    ag = peers::load_ground_accel(record, pga_g, spec.step_s, duration_s);
+    spec.idle_time_s = units::years_to_s(idle_years);
+    ag = excitation::load_scaled_motion(record, pga_g, spec.step_s, duration_s).accel_m_s2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrd-plant-sim: error: %s\n", e.what());
     return 2;

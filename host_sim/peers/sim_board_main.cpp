@@ -8,7 +8,9 @@
 
 #include "host_sim/peers/in_process_board.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
+#include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/report/output_dir.hpp"
+#include "mrd/units.hpp"
 
 int main(int argc, char** argv) {
   using namespace mrd;
@@ -29,10 +31,11 @@ int main(int argc, char** argv) {
       throw report::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
       throw report::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
-    peers::PlantSpec spec;
+    plant::PlantSpec spec;
     spec.step_s = board.period_s();
-    spec.idle_years = idle_years;
-    const std::vector<double> ag = peers::load_ground_accel(record, pga_g, spec.step_s, duration_s);
+    spec.idle_time_s = units::years_to_s(idle_years);
+    const std::vector<double> ag =
+        excitation::load_scaled_motion(record, pga_g, spec.step_s, duration_s).accel_m_s2;
     peers::InProcessBoard b(board, spec, peers::DriveConfig{});
     for (double a : ag) b.step(a);
     const auto& t = b.task_status();

@@ -10,11 +10,12 @@
 
 namespace mrd::run {
 
+/// One sine test on the rig.
 struct SineRigSpec {
-  double amplitude_m = 0.0254;
+  double amplitude_m = 0.0254;   ///< displacement amplitude, m
   double frequency_hz = 0.5;
-  double current_a = 2.5;
-  double idle_years = 0.0;
+  double current_a = 2.5;        ///< constant coil current, A
+  double idle_time_s = 0.0;      ///< idle time before the test, s (sets SQ, Eq. 5.4–5.5)
   double duration_s = 60.0;
   double step_s = 1.0e-3;
 };

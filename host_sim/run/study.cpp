@@ -77,12 +77,12 @@ StudyResult run_study(const StudyOptions& o, const std::filesystem::path& dir) {
   for (const auto& m : motions) {
     for (auto mode : modes) {
       StudyRow row{m.name, mode, {}, {}};
-      ClosedLoopSpec spec;
+      plant::PlantSpec spec;
       spec.step_s = o.step_s;
       ClosedLoopRecord rec_mixed, rec_idle;
       auto c1 = make_controller(mode, o.step_s);
       row.fully_mixed = run_closed_loop(spec, m.accel_m_s2, *c1, &rec_mixed);
-      spec.idle_years = o.idle_years;
+      spec.idle_time_s = units::years_to_s(o.idle_years);
       auto c2 = make_controller(mode, o.step_s);
       row.idle = run_closed_loop(spec, m.accel_m_s2, *c2, &rec_idle);
       const std::string png = m.name + "_" + control::mode_name(mode) + ".png";
@@ -101,7 +101,7 @@ StudyResult run_study(const StudyOptions& o, const std::filesystem::path& dir) {
          << pct(b.peak_damper_force_n, a.peak_damper_force_n) << ") | "
          << fmt("%.3f", a.peak_superstructure_accel_m_s2) << " → " << fmt("%.3f", b.peak_superstructure_accel_m_s2)
          << " (" << pct(b.peak_superstructure_accel_m_s2, a.peak_superstructure_accel_m_s2) << ") |\n";
-      const auto js = [](const ClosedLoopSummary& s) {
+      const auto js = [](const plant::PlantSummary& s) {
         return nlohmann::json{{"peak_base_displacement_m", s.peak_base_displacement_m},
                               {"peak_damper_force_kn", s.peak_damper_force_n / 1e3},
                               {"peak_superstructure_accel_m_s2", s.peak_superstructure_accel_m_s2},

@@ -15,7 +15,7 @@ namespace mrd::run {
 
 struct StudyOptions {
   double pga_g = 0.1127;
-  double idle_years = 2.5;    ///< the idle case compared with fully mixed
+  double idle_years = 2.5;    ///< the idle case compared with fully mixed, years, as the report states it
   double step_s = 1.0e-3;
   bool with_sweep = true;
   unsigned threads = 0;
@@ -24,8 +24,8 @@ struct StudyOptions {
 struct StudyRow {
   std::string motion;
   control::ControlMode mode = control::ControlMode::kPassiveOff;
-  ClosedLoopSummary fully_mixed;
-  ClosedLoopSummary idle;
+  plant::PlantSummary fully_mixed;
+  plant::PlantSummary idle;
 };
 
 struct StudyResult {

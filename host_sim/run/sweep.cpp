@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "host_sim/run/controller.hpp"
+#include "mrd/units.hpp"
 
 namespace mrd::run {
 
@@ -42,8 +43,8 @@ std::vector<SweepRow> run_sweep(const SweepSpec& spec, const std::function<void(
       if (i >= total) return;
       try {
         SweepRow& r = rows[i];
-        ClosedLoopSpec s = spec.base;
-        s.idle_years = r.idle_years;
+        plant::PlantSpec s = spec.base;
+        s.idle_time_s = units::years_to_s(r.idle_years);
         auto controller = make_controller(r.mode, s.step_s);
         r.summary = run_closed_loop(s, spec.motions[r.motion_index].accel_m_s2, *controller);
       } catch (...) {

@@ -15,16 +15,16 @@ namespace mrd::run {
 struct SweepSpec {
   std::vector<StudyMotion> motions;
   std::vector<control::ControlMode> modes;
-  std::vector<double> idle_years;
-  ClosedLoopSpec base{};     ///< step, building, damper, settling (idle_years is overridden)
-  unsigned threads = 0;      ///< 0: all hardware threads
+  std::vector<double> idle_years;  ///< the idle-time axis of the reports, years
+  plant::PlantSpec base{};         ///< step, building, damper, settling (idle_time_s is set per run)
+  unsigned threads = 0;            ///< 0: all hardware threads
 };
 
 struct SweepRow {
   std::size_t motion_index = 0;
   control::ControlMode mode = control::ControlMode::kPassiveOff;
-  double idle_years = 0.0;
-  ClosedLoopSummary summary;
+  double idle_years = 0.0;  ///< the run's idle time, years
+  plant::PlantSummary summary;
 };
 
 /// 0 to `to_years` every `step_years`, inclusive of the end (within rounding).

@@ -13,16 +13,16 @@ struct Metric {
   const char* file;
   const char* title;
   const char* axis;
-  double (*value)(const ClosedLoopSummary&);
+  double (*value)(const plant::PlantSummary&);
 };
 
 constexpr Metric kMetrics[] = {
     {"peak_base_displacement", "Max. displacement of base isolation", "max |base displacement| [mm]",
-     [](const ClosedLoopSummary& s) { return s.peak_base_displacement_m * 1e3; }},
+     [](const plant::PlantSummary& s) { return s.peak_base_displacement_m * 1e3; }},
     {"peak_damper_force", "Max. damping force", "max |damper force| [kN]",
-     [](const ClosedLoopSummary& s) { return s.peak_damper_force_n / 1e3; }},
+     [](const plant::PlantSummary& s) { return s.peak_damper_force_n / 1e3; }},
     {"peak_superstructure_accel", "Max. acceleration of superstructure", "max |floor acceleration| [m/s²]",
-     [](const ClosedLoopSummary& s) { return s.peak_superstructure_accel_m_s2; }},
+     [](const plant::PlantSummary& s) { return s.peak_superstructure_accel_m_s2; }},
 };
 
 /// Thesis figure numbers for (mode, metric): semi-active 6.12–6.14,

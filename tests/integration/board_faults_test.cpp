@@ -22,7 +22,7 @@ double ag(int k) { return 0.5 * std::sin(2.0 * 3.141592653589793 * 1e-3 * k); }
 std::unique_ptr<peers::InProcessBoard> board(control::ControlMode mode) {
   app::BoardConfig b = app::load_board_config(std::string(MRD_BOARDS_DIR) + "/sim/board.toml");
   b.mode = mode;
-  return std::make_unique<peers::InProcessBoard>(b, peers::PlantSpec{}, peers::DriveConfig{});
+  return std::make_unique<peers::InProcessBoard>(b, plant::PlantSpec{}, peers::DriveConfig{});
 }
 
 bool is(const hal::CanFrame& f, MsgId m) { return protocol::msg_of(f.id) == static_cast<std::uint8_t>(m); }

@@ -32,6 +32,7 @@
 #include "quantized_reference.hpp"
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/motions.hpp"
+#include "mrd/units.hpp"
 
 namespace mrd {
 namespace {
@@ -95,10 +96,10 @@ TEST(EmulatedBoard, ClosedLoopOverSocketCanEqualsTheInProcessSimulation) {
     const std::string plant_line = find_line(serial, tag + "plant] mrd-plant-sim: summary");
     ASSERT_FALSE(plant_line.empty()) << "no plant summary in " << out / "serial.txt";
     const auto guest = key_values(plant_line);
-    run::ClosedLoopSpec spec;
-    spec.idle_years = r.idle_years;
+    plant::PlantSpec spec;
+    spec.idle_time_s = units::years_to_s(r.idle_years);
     testing::QuantizedController controller(run::make_controller(r.mode, 1e-3));
-    const run::ClosedLoopSummary ref = run::run_closed_loop(spec, motion.accel_m_s2, controller);
+    const plant::PlantSummary ref = run::run_closed_loop(spec, motion.accel_m_s2, controller);
     EXPECT_EQ(guest.at("ticks"), static_cast<double>(motion.accel_m_s2.size()));
     const std::pair<const char*, double> peaks[] = {
         {"peak_base_displacement_m", ref.peak_base_displacement_m},

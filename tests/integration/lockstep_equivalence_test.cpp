@@ -13,10 +13,12 @@
 #include <filesystem>
 
 #include "firmware/app/board_config.hpp"
+#include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/peers/in_process_board.hpp"
 #include "quantized_reference.hpp"
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/motions.hpp"
+#include "mrd/units.hpp"
 
 namespace mrd {
 namespace {
@@ -27,7 +29,7 @@ constexpr double kStepS = 1e-3;
 std::vector<double> ground_motion() {
   const std::filesystem::path rec = std::filesystem::path(MRD_SHARED_DIR) / "ground_motions" / "hachinohe_ns.csv";
   if (std::filesystem::exists(rec)) {
-    const auto mine = peers::load_ground_accel(rec, run::kThesisPga_g, kStepS, kDurationS);
+    const auto mine = excitation::load_scaled_motion(rec, run::kThesisPga_g, kStepS, kDurationS).accel_m_s2;
     const auto theirs = run::load_study_motion(rec, run::kThesisPga_g, kStepS, kDurationS).accel_m_s2;
     EXPECT_EQ(mine, theirs) << "the plant loads the record exactly as `mrd sim` does";
     return mine;
@@ -42,28 +44,28 @@ app::BoardConfig sim_board(control::ControlMode mode) {
   return b;
 }
 
-peers::PlantSummary over_can(control::ControlMode mode, double idle_years, const std::vector<double>& ag,
+plant::PlantSummary over_can(control::ControlMode mode, double idle_years, const std::vector<double>& ag,
                              app::ControlTaskStatus* task = nullptr) {
-  peers::PlantSpec spec;
+  plant::PlantSpec spec;
   spec.step_s = kStepS;
-  spec.idle_years = idle_years;
+  spec.idle_time_s = units::years_to_s(idle_years);
   peers::InProcessBoard board(sim_board(mode), spec, peers::DriveConfig{});
   for (double a : ag) board.step(a);
   if (task) *task = board.task_status();
   return board.summary();
 }
 
-run::ClosedLoopSummary in_process(control::ControlMode mode, double idle_years, const std::vector<double>& ag,
-                                  bool quantized) {
-  run::ClosedLoopSpec spec;
+plant::PlantSummary in_process(control::ControlMode mode, double idle_years, const std::vector<double>& ag,
+                               bool quantized) {
+  plant::PlantSpec spec;
   spec.step_s = kStepS;
-  spec.idle_years = idle_years;
+  spec.idle_time_s = units::years_to_s(idle_years);
   std::unique_ptr<run::Controller> c = run::make_controller(mode, kStepS);
   if (quantized) c = std::make_unique<testing::QuantizedController>(std::move(c));
   return run::run_closed_loop(spec, ag, *c);
 }
 
-void expect_identical(const peers::PlantSummary& a, const run::ClosedLoopSummary& b) {
+void expect_identical(const plant::PlantSummary& a, const plant::PlantSummary& b) {
   EXPECT_EQ(a.peak_base_displacement_m, b.peak_base_displacement_m);
   EXPECT_EQ(a.peak_damper_force_n, b.peak_damper_force_n);
   EXPECT_EQ(a.peak_superstructure_accel_m_s2, b.peak_superstructure_accel_m_s2);

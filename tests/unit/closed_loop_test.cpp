@@ -49,7 +49,7 @@ TEST(ClosedLoop, AtRestWithoutGroundMotion) {
 // a_g = A sin(ωt) follows from the frequency-domain solution, computed here
 // independently of the simulator: (K − ω²M + iωC) X = −M·1·A.
 TEST(ClosedLoop, WithoutDamperMatchesFrequencyDomainSolution) {
-  ClosedLoopSpec spec;
+  plant::PlantSpec spec;
   spec.damper.bingham.fc_a_n = spec.damper.bingham.fc_b_n = 0.0;
   spec.damper.bingham.c0_a_ns_m = spec.damper.bingham.c0_b_ns_m = 0.0;
   const double f_hz = 0.4;
@@ -106,9 +106,9 @@ TEST(ClosedLoop, PassiveOnReducesBaseDisplacement) {
 TEST(ClosedLoop, IdleTimeEffectSaturatesPastMaxSettlingTime) {
   const auto m = synthetic_study_motion(4, kThesisPga_g, 1e-3, 20.0);
   ConstantCurrentController on(kPassiveOnCurrent_a);
-  ClosedLoopSpec spec;
+  plant::PlantSpec spec;
   const auto at = [&](double years) {
-    spec.idle_years = years;
+    spec.idle_time_s = units::years_to_s(years);
     return run_closed_loop(spec, m.accel_m_s2, on);
   };
   const auto fresh = at(0.0), settled_09 = at(0.9), settled_1 = at(1.0), settled_25 = at(2.5), half = at(0.4);

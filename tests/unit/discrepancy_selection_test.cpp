@@ -181,7 +181,7 @@ TEST(DiscrepancyThesis, FullyMixedForcesOfTable52PointToAParticipantRatioBelowOn
   const double pr_by_hand[2] = {0.968, 0.881};
   for (std::size_t i = 0; i < 2; ++i) {
     run::SineRigSpec spec = cases[i].spec;
-    spec.idle_years = 0.0;
+    spec.idle_time_s = 0.0;
     spec.duration_s = 20.0;
     spec.step_s = 2e-3;
     run::SineRecord rec;

@@ -13,6 +13,7 @@
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/controller.hpp"
 #include "host_sim/run/motions.hpp"
+#include "mrd/units.hpp"
 
 namespace mrd::run {
 namespace {
@@ -33,9 +34,9 @@ Peaks peaks(const StudyMotion& motion, const std::string& control, double idle_y
   static std::map<std::tuple<std::string, std::string, double>, Peaks> cache;
   const auto key = std::make_tuple(motion.name, control, idle_years);
   if (auto it = cache.find(key); it != cache.end()) return it->second;
-  ClosedLoopSpec spec;
-  spec.idle_years = idle_years;
-  ClosedLoopSummary s;
+  plant::PlantSpec spec;
+  spec.idle_time_s = units::years_to_s(idle_years);
+  plant::PlantSummary s;
   if (control == "passive-off") {
     auto off = make_controller(control::ControlMode::kPassiveOff, spec.step_s);
     s = run_closed_loop(spec, motion.accel_m_s2, *off);

@@ -5,6 +5,7 @@
 
 #include "host_sim/run/mixing_calibration.hpp"
 #include "host_sim/run/sine_rig.hpp"
+#include "mrd/units.hpp"
 
 namespace mrd::run {
 namespace {
@@ -29,7 +30,7 @@ TEST(SineRig, FullyMixedForceIsEq41AtPeakVelocity) {
 //   c_0 = 0.100821·0.365 + (0.0825 − 0.0368)·e^−2.875 = 0.036800 + 0.002578 = 0.039378 kN·s/mm
 //   F = 14.8736 + 0.039378·79.7965 = 18.0158 kN   (Table 5.2 measured 20.06 kN)
 TEST(SineRig, InitialForceUsesTheInitialParticipantRatio) {
-  SineRigSpec s{0.0254, 0.5, 2.5, 2.5, 2.0, 1e-3};
+  SineRigSpec s{0.0254, 0.5, 2.5, units::years_to_s(2.5), 2.0, 1e-3};
   const SineMetrics m = run_sine_rig(s);
   EXPECT_DOUBLE_EQ(m.sq, 1.0);
   EXPECT_NEAR(m.initial_force_n / 1e3, 18.0158, 1e-3);
@@ -41,14 +42,14 @@ TEST(SineRig, InitialForceUsesTheInitialParticipantRatio) {
 //   c_0 = 0.609388·0.365 + (0.0825 − 0.222427)·e^−2.875 = 0.222427 − 0.007894 = 0.214533 kN·s/mm
 //   F = 86.306 + 0.214533·79.7965 = 103.425 kN
 TEST(SineRig, MaxForceBoundedByFinalParticipantRatio) {
-  SineRigSpec s{0.0254, 0.5, 2.5, 2.5, 200.0, 1e-3};
+  SineRigSpec s{0.0254, 0.5, 2.5, units::years_to_s(2.5), 200.0, 1e-3};
   const SineMetrics m = run_sine_rig(s);
   EXPECT_LE(m.max_force_n / 1e3, 103.425 + 1e-3);
   EXPECT_GT(m.max_force_n / 1e3, 103.0);  // and it gets close after 100 cycles
 }
 
 TEST(SineRig, RecordHoldsTheTimeSeries) {
-  SineRigSpec s{0.0254, 0.5, 2.5, 0.5, 2.0, 1e-3};
+  SineRigSpec s{0.0254, 0.5, 2.5, units::years_to_s(0.5), 2.0, 1e-3};
   SineRecord rec;
   run_sine_rig(s, {}, {}, &rec);
   ASSERT_EQ(rec.time_s.size(), 2001u);
@@ -81,7 +82,7 @@ TEST(SineRig, OnlyTheRatioOfAreaToUnitMatters) {
   physics::MrDamperParams b;
   b.pr.flow_area_m2 *= 2.0;
   b.pr.volume_unit_m3 *= 2.0;
-  SineRigSpec s{0.00762, 1.0, 2.5, 0.5, 20.0, 1e-3};
+  SineRigSpec s{0.00762, 1.0, 2.5, units::years_to_s(0.5), 20.0, 1e-3};
   EXPECT_NEAR(run_sine_rig(s, a).rise_time_90_s, run_sine_rig(s, b).rise_time_90_s, 1e-9);
 }
 
