@@ -46,7 +46,7 @@ struct Formats<num::Fixed32Policy> {
   using Disp = num::Fixed<3, 28>;
   using Force = num::Fixed<19, 12>;
   using Current = num::Fixed<7, 24>;
-  using Coef = num::Fixed32Policy::Coef;  // Q2.29
+  using Coef = num::Fixed<2, 29>;
   using Gain = num::Fixed<23, 8>;
 };
 

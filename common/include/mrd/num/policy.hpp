@@ -2,9 +2,11 @@
 /// Numeric policies: the one place where a control block learns whether it
 /// computes in float or in fixed point.
 ///
-/// A block is written once as a template on a policy `N` and touches numbers
-/// only through `N`'s types and the free functions below, which are
-/// overloaded for `float` and for every `Fixed<I, F>`:
+/// A block is written once as a template on a policy `N`, takes its number
+/// types per physical role from a formats table keyed on `N` (for the control
+/// core, `fw::Formats<N>`), and touches numbers only through those types and
+/// the free functions below, which are overloaded for `float` and for every
+/// `Fixed<I, F>`:
 ///
 ///   - `num::from_double<T>(x)`  design-time conversion (coefficients, limits)
 ///   - `num::to_double(x)`       for tests, logs and the host side
@@ -72,22 +74,17 @@ constexpr float to_float(Fixed<I, F> v) noexcept {
   return static_cast<float>(v.raw()) * (1.0f / static_cast<float>(std::int64_t{1} << F));
 }
 
-/// Single-precision float for every role.
+/// The single-precision float build. A policy only names a build: each block
+/// maps it to the number types of its physical roles (for the control core,
+/// `fw::Formats<Policy>` in firmware/core/numeric_formats.hpp).
 struct Float32Policy {
   static constexpr const char* kName = "float32";
-  using Signal = float;  ///< physical signals in SI (m, m/s, N, A)
-  using Coef = float;    ///< filter coefficients
-  using State = float;   ///< filter states / accumulators
 };
 
-/// 32-bit fixed point. Roles get formats sized for this damper: signals in
-/// scaled SI units chosen by each block (documented there), coefficients in
-/// Q2.29 ([−4, 4)), states in Q15.16.
+/// The 32-bit fixed-point build (formats per role in the block that uses them,
+/// each documented with its range, resolution and overflow behaviour).
 struct Fixed32Policy {
   static constexpr const char* kName = "fixed32";
-  using Signal = Q15_16;
-  using Coef = Fixed<2, 29>;
-  using State = Q15_16;
 };
 
 }  // namespace mrd::num
