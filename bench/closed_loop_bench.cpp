@@ -35,7 +35,7 @@ void run(benchmark::State& state, mrd::run::Controller& controller) {
 }
 
 void BM_Plant(benchmark::State& state) {
-  mrd::run::ConstantCurrentController c(mrd::run::kPassiveOnCurrent_a);
+  mrd::run::ConstantCurrentController c(mrd::fw::kPassiveOnCurrent_a);
   run(state, c);
 }
 BENCHMARK(BM_Plant)->Unit(benchmark::kMillisecond);

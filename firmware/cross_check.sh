@@ -4,8 +4,9 @@
 #   - it compiles warning-free with -fno-exceptions -fno-rtti -ffreestanding;
 #   - it references no heap (operator new/delete, malloc, free), no exception
 #     machinery and no stdio;
-#   - DamperController<...>::step() calls no double-precision soft-float
-#     routine (__aeabi_d*): the M4's FPU is single precision.
+#   - DamperController<...>::step() and its parts (step_*) call no
+#     double-precision soft-float routine (__aeabi_d*): the M4's FPU is
+#     single precision.
 # Usage: cross_check.sh ARM_GXX SOURCE OBJECT SOURCE_ROOT COMMON_INCLUDE_DIR
 set -euo pipefail
 cxx=$1 src=$2 obj=$3 root=$4 common=$5
@@ -32,17 +33,20 @@ if [[ -n $bad ]]; then
   exit 1
 fi
 
-# The body of step(): from its label to the next function label.
+# The bodies of step() and its parts: from each label to the next function label.
 step_body=$("$objdump" -dr -C "$obj" | awk '
-  /^[0-9a-f]+ <.*>:$/ { in_step = ($0 ~ /DamperController<.*>::step\(/) }
+  /^[0-9a-f]+ <.*>:$/ { in_step = ($0 ~ /DamperController<.*>::step(_[a-z]+)?\(/) }
   in_step { print }')
 if [[ -z $step_body ]]; then
   echo "cross_check: no DamperController<...>::step in $(basename "$obj")" >&2
   exit 1
 fi
 if grep -q '__aeabi_d' <<<"$step_body"; then
-  echo "cross_check: step() uses double-precision soft float:" >&2
+  echo "cross_check: step() or a part of it uses double-precision soft float:" >&2
   grep '__aeabi_d' <<<"$step_body" >&2
   exit 1
 fi
-echo "step(): $(grep -cE '^\s+[0-9a-f]+:' <<<"$step_body") instructions of Thumb-2, no heap, no exceptions, no double"
+step_only=$("$objdump" -d -C "$obj" | awk '
+  /^[0-9a-f]+ <.*>:$/ { in_step = ($0 ~ /DamperController<.*>::step\(/) }
+  in_step { print }')
+echo "step(): $(grep -cE '^\s+[0-9a-f]+:' <<<"$step_only") instructions of Thumb-2, no heap, no exceptions, no double"

@@ -1,10 +1,9 @@
-# Idle-time estimator, mixing scheduler and the persistence of their state
-# (firmware/core/idle_estimator, mixing_scheduler, state_store) plus the Linux
-# file store. Included from firmware/CMakeLists.txt.
+# Idle-time estimator, mixing scheduler and the record of their persisted
+# state (firmware/core/idle_estimator, mixing_scheduler, state_store): pure,
+# freestanding. Included from firmware/CMakeLists.txt.
 add_library(mrd_fw_idle STATIC
   ${CMAKE_CURRENT_LIST_DIR}/core/idle_estimator.cpp
   ${CMAKE_CURRENT_LIST_DIR}/core/mixing_scheduler.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/platform/linux/file_state_store.cpp
 )
 target_include_directories(mrd_fw_idle PUBLIC ${PROJECT_SOURCE_DIR})
 target_link_libraries(mrd_fw_idle PUBLIC mrd_common)
@@ -16,7 +15,8 @@ if(MRD_BUILD_TESTS)
     ${PROJECT_SOURCE_DIR}/tests/unit/mixing_scheduler_test.cpp
     ${PROJECT_SOURCE_DIR}/tests/unit/state_store_test.cpp
   )
-  target_link_libraries(mrd_fw_idle_tests PRIVATE mrd_fw_idle ZLIB::ZLIB GTest::gtest_main)
+  target_link_libraries(mrd_fw_idle_tests PRIVATE mrd_fw_idle mrd_platform_linux mrd_platform_sim ZLIB::ZLIB
+    GTest::gtest_main)
   gtest_discover_tests(mrd_fw_idle_tests DISCOVERY_MODE PRE_TEST PROPERTIES LABELS unit)
 
   # Bare-metal Cortex-M4F compile of the estimator and the scheduler:

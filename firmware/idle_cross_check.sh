@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Cross-compiles one source of the idle-time estimator or mixing scheduler
-# for a bare-metal Cortex-M4F and checks the object: warning-free with
-# -fno-exceptions -fno-rtti -ffreestanding, and no reference to the heap
-# (operator new/delete, malloc, free), exception machinery or stdio.
+# Cross-compiles one source of the idle-time estimator, the mixing scheduler
+# or the mixing task for a bare-metal Cortex-M4F and checks the object:
+# warning-free with -fno-exceptions -fno-rtti -ffreestanding, and no reference
+# to the heap (operator new/delete, malloc, free), exception machinery or stdio.
 # These blocks compute in double (soft-float on the M4; they may run
 # decimated), so unlike the control core no single-precision check applies.
 # Usage: idle_cross_check.sh ARM_GXX SOURCE OBJECT SOURCE_ROOT COMMON_INCLUDE_DIR

@@ -74,12 +74,12 @@ class Table {
     const toml::node* n = t_ ? t_->get(key) : nullptr;
     return n ? n->source() : (t_ ? t_->source() : toml::source_region{});
   }
-  /// Refuses keys that were never asked for.
-  void no_unknown_keys() const {
+  /// Refuses keys that were never asked for, saying `problem`.
+  void no_unknown_keys(const char* problem = "unknown key") const {
     if (!t_) return;
     for (const auto& [k, v] : *t_) {
       if (!asked_.count(std::string(k.str())))
-        fail(origin_, v.source(), field(std::string(k.str()).c_str()), "unknown key");
+        fail(origin_, v.source(), field(std::string(k.str()).c_str()), problem);
     }
   }
   std::string field(const char* key) const { return name_ + "." + key; }
@@ -94,18 +94,81 @@ class Table {
   std::set<std::string> asked_;
 };
 
-}  // namespace
-
-bool parse_mode_name(const std::string& text, control::ControlMode& mode) noexcept {
-  for (auto m : {control::ControlMode::kPassiveOff, control::ControlMode::kPassiveOn,
-                 control::ControlMode::kSemiActive}) {
-    if (text == control::mode_name(m)) {
-      mode = m;
-      return true;
-    }
-  }
-  return false;
+void read_board(const toml::table& root, const std::string& origin, BoardConfig& c) {
+  Table board(root, "board", origin, true);
+  if (!board.string("name", c.name) || c.name.empty())
+    fail(origin, board.where("name"), "board.name", "missing board name");
+  board.string("description", c.description);
+  board.no_unknown_keys();
 }
+
+void read_control(const toml::table& root, const std::string& origin, BoardConfig& c) {
+  Table control(root, "control", origin, true);
+  control.integer("period_us", c.period_us, 100, 100000);
+  std::string mode;
+  if (control.string("mode", mode)) {
+    const auto m = control::parse_mode_name(mode);
+    if (!m)
+      fail(origin, control.where("mode"), "control.mode",
+           "expected passive-off, passive-on or semi-active, got '" + mode + "'");
+    c.mode = *m;
+  }
+  std::string numeric = "float";
+  if (control.string("numeric", numeric) && numeric != "float" && numeric != "fixed")
+    fail(origin, control.where("numeric"), "control.numeric", "expected float or fixed, got '" + numeric + "'");
+  c.fixed_point = numeric == "fixed";
+  control.integer("sensor_timeout_ticks", c.sensor_timeout_ticks, 1, 100000);
+  control.integer("drive_status_timeout_ticks", c.drive_status_timeout_ticks, 1, 100000);
+  control.integer("heartbeat_period_ticks", c.heartbeat_period_ticks, 1, 100000);
+  control.no_unknown_keys();
+}
+
+void read_can(const toml::table& root, const std::string& origin, BoardConfig& c) {
+  Table can(root, "can", origin, true);
+  can.string("interface", c.can_interface);
+  can.integer("controller_node", c.nodes.controller, 1, protocol::kMaxNodeId);
+  can.integer("drive_node", c.nodes.drive, 1, protocol::kMaxNodeId);
+  can.integer("daq_node", c.nodes.daq, 1, protocol::kMaxNodeId);
+  can.integer("actuator_node", c.nodes.actuator, 1, protocol::kMaxNodeId);
+  can.no_unknown_keys();
+  const std::set<int> ids{c.nodes.controller, c.nodes.drive, c.nodes.daq, c.nodes.actuator};
+  if (ids.size() != 4) fail(origin, can.where("controller_node"), "can", "node ids must be four different numbers");
+}
+
+/// [gpio] is required: the chip and its lines, or `fitted = false` alone.
+void read_gpio(const toml::table& root, const std::string& origin, BoardConfig& c) {
+  if (!root.get("gpio"))
+    throw BoardConfigError(origin + ":1: [gpio]: missing table (the chip and its lines, or fitted = false "
+                           "for a board without GPIO)");
+  Table gpio(root, "gpio", origin, true);
+  c.gpio_fitted = true;
+  gpio.boolean("fitted", c.gpio_fitted);
+  if (!c.gpio_fitted) {
+    gpio.no_unknown_keys("not allowed with fitted = false (a board without GPIO has no lines)");
+    return;
+  }
+  if (!gpio.string("chip", c.gpio_chip) || c.gpio_chip.empty())
+    fail(origin, gpio.where("chip"), "gpio.chip", "missing GPIO chip (e.g. \"gpiochip0\")");
+  if (!gpio.line("drive_enable", c.drive_enable))
+    fail(origin, gpio.where("drive_enable"), "gpio.drive_enable", "missing line");
+  if (!gpio.line("drive_fault", c.drive_fault))
+    fail(origin, gpio.where("drive_fault"), "gpio.drive_fault", "missing line");
+  gpio.line("maintenance_due", c.maintenance_due);
+  gpio.boolean("drive_enable_active_low", c.drive_enable.active_low);
+  gpio.boolean("drive_fault_active_low", c.drive_fault.active_low);
+  gpio.boolean("maintenance_due_active_low", c.maintenance_due.active_low);
+  gpio.no_unknown_keys();
+}
+
+void read_realtime(const toml::table& root, const std::string& origin, BoardConfig& c) {
+  Table rt(root, "realtime", origin, false);
+  rt.integer("sched_fifo_priority", c.sched_fifo_priority, 0, 99);
+  rt.boolean("lock_memory", c.lock_memory);
+  rt.integer("cpu", c.cpu, -1, 1023);
+  rt.no_unknown_keys();
+}
+
+}  // namespace
 
 ControlTaskConfig BoardConfig::task_config() const noexcept {
   ControlTaskConfig c;
@@ -129,60 +192,12 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
     if (key != "board" && key != "control" && key != "can" && key != "gpio" && key != "realtime")
       fail(origin, v.source(), key, "unknown table (expected board, control, can, gpio, realtime)");
   }
-
   BoardConfig c;
-  Table board(root, "board", origin, true);
-  if (!board.string("name", c.name) || c.name.empty())
-    fail(origin, board.where("name"), "board.name", "missing board name");
-  board.string("description", c.description);
-  board.no_unknown_keys();
-
-  Table control(root, "control", origin, true);
-  control.integer("period_us", c.period_us, 100, 100000);
-  std::string mode;
-  if (control.string("mode", mode) && !parse_mode_name(mode, c.mode))
-    fail(origin, control.where("mode"), "control.mode",
-         "expected passive-off, passive-on or semi-active, got '" + mode + "'");
-  std::string numeric = "float";
-  if (control.string("numeric", numeric) && numeric != "float" && numeric != "fixed")
-    fail(origin, control.where("numeric"), "control.numeric", "expected float or fixed, got '" + numeric + "'");
-  c.fixed_point = numeric == "fixed";
-  control.integer("sensor_timeout_ticks", c.sensor_timeout_ticks, 1, 100000);
-  control.integer("drive_status_timeout_ticks", c.drive_status_timeout_ticks, 1, 100000);
-  control.integer("heartbeat_period_ticks", c.heartbeat_period_ticks, 1, 100000);
-  control.no_unknown_keys();
-
-  Table can(root, "can", origin, true);
-  can.string("interface", c.can_interface);
-  can.integer("controller_node", c.nodes.controller, 1, protocol::kMaxNodeId);
-  can.integer("drive_node", c.nodes.drive, 1, protocol::kMaxNodeId);
-  can.integer("daq_node", c.nodes.daq, 1, protocol::kMaxNodeId);
-  can.integer("actuator_node", c.nodes.actuator, 1, protocol::kMaxNodeId);
-  can.no_unknown_keys();
-  const std::set<int> ids{c.nodes.controller, c.nodes.drive, c.nodes.daq, c.nodes.actuator};
-  if (ids.size() != 4) fail(origin, can.where("controller_node"), "can", "node ids must be four different numbers");
-
-  Table gpio(root, "gpio", origin, false);
-  if (gpio.present()) {
-    c.gpio_enabled = true;
-    if (!gpio.string("chip", c.gpio_chip) || c.gpio_chip.empty())
-      fail(origin, gpio.where("chip"), "gpio.chip", "missing GPIO chip (e.g. \"gpiochip0\")");
-    if (!gpio.line("drive_enable", c.drive_enable))
-      fail(origin, gpio.where("drive_enable"), "gpio.drive_enable", "missing line");
-    if (!gpio.line("drive_fault", c.drive_fault))
-      fail(origin, gpio.where("drive_fault"), "gpio.drive_fault", "missing line");
-    gpio.line("maintenance_due", c.maintenance_due);
-    gpio.boolean("drive_enable_active_low", c.drive_enable.active_low);
-    gpio.boolean("drive_fault_active_low", c.drive_fault.active_low);
-    gpio.boolean("maintenance_due_active_low", c.maintenance_due.active_low);
-    gpio.no_unknown_keys();
-  }
-
-  Table rt(root, "realtime", origin, false);
-  rt.integer("sched_fifo_priority", c.sched_fifo_priority, 0, 99);
-  rt.boolean("lock_memory", c.lock_memory);
-  rt.integer("cpu", c.cpu, -1, 1023);
-  rt.no_unknown_keys();
+  read_board(root, origin, c);
+  read_control(root, origin, c);
+  read_can(root, origin, c);
+  read_gpio(root, origin, c);
+  read_realtime(root, origin, c);
   return c;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 /// The board file (boards/<name>/board.toml): CAN interface and node ids,
-/// GPIO chip and lines, control period and mode, real-time settings.
-/// Read once at start-up; every error names the file, the line and the field.
+/// GPIO chip and lines (or `fitted = false` for a board without them),
+/// control period and mode, real-time settings. Read once at start-up; every
+/// error names the file, the line and the field.
 
 #include <cstdint>
 #include <filesystem>
@@ -41,9 +42,9 @@ struct BoardConfig {
   // [can]
   std::string can_interface;  ///< e.g. "can0", "vcan0"; empty for the in-process board
   protocol::NodeIds nodes{};
-  // [gpio]
-  bool gpio_enabled = false;
-  std::string gpio_chip;  ///< e.g. "gpiochip0"
+  // [gpio]: required; either the chip and its lines or `fitted = false`
+  bool gpio_fitted = false;  ///< false: the board has no discrete lines (app::NoLinesFitted)
+  std::string gpio_chip;     ///< e.g. "gpiochip0"
   GpioLine drive_enable, drive_fault, maintenance_due;
   // [realtime]
   int sched_fifo_priority = 0;  ///< 1..99 asks for SCHED_FIFO; 0 leaves the scheduler alone
@@ -59,8 +60,5 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
 
 /// Reads and parses `path`.
 BoardConfig load_board_config(const std::filesystem::path& path);
-
-/// "passive-off" | "passive-on" | "semi-active", or nullopt-like false.
-bool parse_mode_name(const std::string& text, control::ControlMode& mode) noexcept;
 
 }  // namespace mrd::app

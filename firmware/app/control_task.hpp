@@ -1,5 +1,6 @@
 #pragma once
-/// The runtime task around the control core: one call per control period.
+/// The control task around the control core: one call per control period,
+/// made by the board runtime (firmware/app/runtime.hpp).
 ///
 /// <pre>
 ///   poll_rx():   drain the bus → decode (codec) → counter check → latest sample per stream
@@ -147,71 +148,19 @@ class ControlTask {
   /// Steps the core on the latest samples and sends its command.
   control::ControllerOutput step_tick() noexcept {
     const std::uint64_t now = tick_;
-
-    // Stream ages.
-    const bool motion_ok = alive(motion_, config_.sensor_timeout_ticks);
-    const bool accel_ok = alive(accel_, config_.sensor_timeout_ticks);
-    const bool drive_ok = alive(drive_, config_.drive_status_timeout_ticks);
-    status_.actuator_present = alive(mixing_, config_.actuator_timeout_ticks);
-    if (!motion_ok && motion_.seen) motion_.counter.desync();
-    if (!accel_ok && accel_.seen) accel_.counter.desync();
-    if (!drive_ok && drive_.seen) drive_.counter.desync();
-    status_.sensor_timeout = !motion_ok;
-    if (!motion_ok) bump(status_.sensor_timeout_ticks);
-    status_.drive_silent = !drive_ok;
-
-    // Fault line; an unreadable line counts as a fault.
-    bool line_fault = false;
-    if (!io_.read(hal::InputLine::kDriveFault, line_fault)) {
-      bump(status_.gpio_errors);
-      line_fault = true;
-    }
-    constexpr std::uint8_t kHardFaults = protocol::drive_fault::kOverCurrent | protocol::drive_fault::kOverTemperature |
-                                         protocol::drive_fault::kUnderVoltage | protocol::drive_fault::kFaultLine;
-    const bool reported_fault =
-        drive_ok && (drive_.msg.state == protocol::DriveState::kFault || (drive_.msg.faults & kHardFaults) != 0);
-    status_.drive_fault = line_fault || reported_fault;
+    const StreamHealth health = age_streams();
+    status_.drive_fault = read_fault_line() || reported_fault(health.drive_ok);
     if (status_.drive_fault) bump(status_.drive_fault_ticks);
 
-    // The core's input: the sample's own tick lets the core judge staleness.
-    control::ControllerInput in;
-    in.tick = motion_.seen ? motion_.tick : now;
-    in.damper_disp_m = motion_.msg.damper_disp_m;
-    in.damper_force_n = motion_.msg.damper_force_n;
-    in.flags.disp_valid = motion_ok && motion_.msg.disp_valid;
-    in.flags.force_valid = motion_ok && motion_.msg.force_valid;
-    in.ground_accel_m_s2 = accel_.msg.ground_accel_m_s2;
-    in.base_accel_m_s2 = accel_.msg.base_accel_m_s2;
-    in.flags.ground_accel_valid = accel_ok && accel_.msg.ground_valid;
-    in.flags.base_accel_valid = accel_ok && accel_.msg.base_valid;
-    in.coil_current_a = drive_.msg.measured_current_a;
-    in.flags.drive_fault = status_.drive_fault;
-
+    const control::ControllerInput in = core_input(health, now);
     control::ControllerOutput out = core_.step(in);
-
-    // Command frame; what cannot be encoded goes out as "off".
-    protocol::CurrentCommand cmd{out.current_command_a, out.drive_enable, config_.mode, command_counter_};
-    hal::CanFrame f;
-    if (!protocol::encode(cmd, config_.nodes.controller, f)) {
-      bump(status_.encode_errors);
-      out.current_command_a = 0.0f;
-      out.drive_enable = false;
-      cmd = protocol::CurrentCommand{0.0f, false, config_.mode, command_counter_};
-      (void)protocol::encode(cmd, config_.nodes.controller, f);
-    }
-    ++command_counter_;
-    transmit(f);
+    send_command(out);
 
     // Lines: written when they change (and once at the start).
     write_line(hal::OutputLine::kDriveEnable, out.drive_enable, enable_written_, enable_level_);
     write_line(hal::OutputLine::kMaintenanceDue, maintenance_due_, maintenance_written_, maintenance_level_);
 
-    // Bus state and heartbeat.
-    status_.bus_state = bus_.state();
-    if (status_.bus_state == hal::BusState::kPassive || status_.bus_state == hal::BusState::kBusOff) {
-      bump(status_.bus_error_ticks);
-      bus_error_since_heartbeat_ = true;
-    }
+    watch_bus();
     if (now % config_.heartbeat_period_ticks == 0) {
       send_heartbeat(out);
       if (mixing_request_.action == protocol::MixingAction::kStart || mixing_stop_pending_) send_mixing();
@@ -249,6 +198,88 @@ class ControlTask {
     bool fresh = false;
     std::uint64_t tick = 0;  ///< task tick of the latest accepted frame
   };
+
+  /// Which streams arrived within their timeouts this tick.
+  struct StreamHealth {
+    bool motion_ok = false;
+    bool accel_ok = false;
+    bool drive_ok = false;
+  };
+
+  /// Stream ages: a stream past its timeout is invalid and its counter
+  /// re-synchronises; the actuator counts as present while it reports.
+  StreamHealth age_streams() noexcept {
+    StreamHealth h;
+    h.motion_ok = alive(motion_, config_.sensor_timeout_ticks);
+    h.accel_ok = alive(accel_, config_.sensor_timeout_ticks);
+    h.drive_ok = alive(drive_, config_.drive_status_timeout_ticks);
+    status_.actuator_present = alive(mixing_, config_.actuator_timeout_ticks);
+    if (!h.motion_ok && motion_.seen) motion_.counter.desync();
+    if (!h.accel_ok && accel_.seen) accel_.counter.desync();
+    if (!h.drive_ok && drive_.seen) drive_.counter.desync();
+    status_.sensor_timeout = !h.motion_ok;
+    if (!h.motion_ok) bump(status_.sensor_timeout_ticks);
+    status_.drive_silent = !h.drive_ok;
+    return h;
+  }
+
+  /// The drive's fault line; an unreadable line counts as a fault.
+  bool read_fault_line() noexcept {
+    bool line_fault = false;
+    if (!io_.read(hal::InputLine::kDriveFault, line_fault)) {
+      bump(status_.gpio_errors);
+      line_fault = true;
+    }
+    return line_fault;
+  }
+
+  /// A hard fault in the drive's own status (when it is recent).
+  bool reported_fault(bool drive_ok) const noexcept {
+    constexpr std::uint8_t kHardFaults = protocol::drive_fault::kOverCurrent | protocol::drive_fault::kOverTemperature |
+                                         protocol::drive_fault::kUnderVoltage | protocol::drive_fault::kFaultLine;
+    return drive_ok && (drive_.msg.state == protocol::DriveState::kFault || (drive_.msg.faults & kHardFaults) != 0);
+  }
+
+  /// The core's input: the sample's own tick lets the core judge staleness.
+  control::ControllerInput core_input(const StreamHealth& h, std::uint64_t now) const noexcept {
+    control::ControllerInput in;
+    in.tick = motion_.seen ? motion_.tick : now;
+    in.damper_disp_m = motion_.msg.damper_disp_m;
+    in.damper_force_n = motion_.msg.damper_force_n;
+    in.flags.disp_valid = h.motion_ok && motion_.msg.disp_valid;
+    in.flags.force_valid = h.motion_ok && motion_.msg.force_valid;
+    in.ground_accel_m_s2 = accel_.msg.ground_accel_m_s2;
+    in.base_accel_m_s2 = accel_.msg.base_accel_m_s2;
+    in.flags.ground_accel_valid = h.accel_ok && accel_.msg.ground_valid;
+    in.flags.base_accel_valid = h.accel_ok && accel_.msg.base_valid;
+    in.coil_current_a = drive_.msg.measured_current_a;
+    in.flags.drive_fault = status_.drive_fault;
+    return in;
+  }
+
+  /// The command frame; what cannot be encoded goes out as "off" (and `out` says so).
+  void send_command(control::ControllerOutput& out) noexcept {
+    protocol::CurrentCommand cmd{out.current_command_a, out.drive_enable, config_.mode, command_counter_};
+    hal::CanFrame f;
+    if (!protocol::encode(cmd, config_.nodes.controller, f)) {
+      bump(status_.encode_errors);
+      out.current_command_a = 0.0f;
+      out.drive_enable = false;
+      cmd = protocol::CurrentCommand{0.0f, false, config_.mode, command_counter_};
+      (void)protocol::encode(cmd, config_.nodes.controller, f);
+    }
+    ++command_counter_;
+    transmit(f);
+  }
+
+  /// Bus state: error-passive and bus-off ticks are counted and flagged in the next heartbeat.
+  void watch_bus() noexcept {
+    status_.bus_state = bus_.state();
+    if (status_.bus_state == hal::BusState::kPassive || status_.bus_state == hal::BusState::kBusOff) {
+      bump(status_.bus_error_ticks);
+      bus_error_since_heartbeat_ = true;
+    }
+  }
 
   static void bump(std::uint32_t& c) noexcept {
     if (c != 0xFFFFFFFFu) ++c;

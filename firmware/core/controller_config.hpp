@@ -10,6 +10,11 @@
 
 namespace mrd::fw {
 
+/// Passive-on current, A (thesis §6.4): the passive-on command, the
+/// controller's fallback on bad input and the drive's safe current when
+/// commands stop.
+inline constexpr double kPassiveOnCurrent_a = 2.5;
+
 struct ControllerConfig {
   double period_s = 1.0e-3;  ///< control period T (1 kHz)
   control::ControlMode mode = control::ControlMode::kSemiActive;
@@ -25,7 +30,7 @@ struct ControllerConfig {
   double velocity_deadband_m_s = 1e-3;  ///< v_db: below it the direction is unknown
 
   // ODBDCO, §6.3 and Phillips & Spencer 2012 (law in odbdco.hpp).
-  double nominal_current_a = 2.5;        ///< passive-on current (§6.4)
+  double nominal_current_a = kPassiveOnCurrent_a;  ///< passive-on current (§6.4)
   double overdrive_current_a = 10.0;     ///< I_od
   double coil_current_ceiling_a = 10.0;  ///< I_ceil: over-drive holds here once the coil reaches it
   double backdrive_current_a = -10.0;    ///< I_bd
@@ -51,8 +56,19 @@ struct ControllerConfig {
   /// Semi-active with bad input: repeat the last command this many ticks, then fall back.
   std::uint32_t fault_hold_ticks = 5;
   /// Semi-active with bad input beyond the hold: this current (passive-on's 2.5 A).
-  double fallback_current_a = 2.5;
+  double fallback_current_a = kPassiveOnCurrent_a;
 };
+
+/// The controller every board and the simulator run: the thesis defaults
+/// above at `period_s`, in `mode`. The velocity estimate's cut-off (30 Hz)
+/// is lowered to a quarter of the sampling rate for periods above 1/120 s.
+constexpr ControllerConfig default_controller_config(control::ControlMode mode, double period_s) noexcept {
+  ControllerConfig c;
+  c.mode = mode;
+  c.period_s = period_s;
+  if (c.velocity_cutoff_hz > 0.25 / period_s) c.velocity_cutoff_hz = 0.25 / period_s;
+  return c;
+}
 
 enum class ConfigError : std::uint8_t {
   kNone = 0,

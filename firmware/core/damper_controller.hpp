@@ -51,7 +51,9 @@
 
 namespace mrd::fw {
 
-struct ControllerStatus {
+/// The control core's own counters and state (what `status()` returns); not
+/// the CAN heartbeat protocol::ControllerStatus, which the control task sends.
+struct DamperControllerStatus {
   std::uint64_t ticks = 0;  ///< step() calls since reset()
   control::ControlMode mode = control::ControlMode::kPassiveOff;
   bool initialized = false;
@@ -94,7 +96,7 @@ class DamperController {
 
   control::ControllerOutput step(const control::ControllerInput& in) noexcept;
 
-  const ControllerStatus& status() const noexcept { return status_; }
+  const DamperControllerStatus& status() const noexcept { return status_; }
   const ControllerConfig& config() const noexcept { return config_; }
   bool initialized() const noexcept { return initialized_; }
 
@@ -120,7 +122,18 @@ class DamperController {
   Current last_command_a_{};
   std::uint32_t bad_run_ = 0;
   std::uint32_t drive_hold_ = 0;
-  ControllerStatus status_{};
+  DamperControllerStatus status_{};
+
+  // The parts of step(), always inlined: step() stays one function, as
+  // measured (bench/) and cross-checked (firmware/cross_check.sh).
+  /// Counts the guard's faults and judges the sample's age; true when stale.
+  [[gnu::always_inline]] bool step_guard(const control::ControllerInput& in, std::uint64_t now,
+                                         const InputGuard::Faults& faults) noexcept;
+  /// RILD and the velocity estimate on a usable stroke.
+  [[gnu::always_inline]] void step_filters(const control::ControllerInput& in, bool disp_ok) noexcept;
+  /// The mode's command (SAFE-2 in semi-active on bad input); sets F_d in `out`.
+  [[gnu::always_inline]] Current step_law(const control::ControllerInput& in, const InputGuard::Faults& faults,
+                                          bool disp_ok, control::ControllerOutput& out) noexcept;
 
   static constexpr void bump(std::uint32_t& c) noexcept {
     if (c != 0xffffffffu) ++c;
@@ -178,7 +191,7 @@ void DamperController<Policy>::reset() noexcept {
   bad_run_ = 0;
   drive_hold_ = 0;
   const ConfigError err = status_.config_error;
-  status_ = ControllerStatus{};
+  status_ = DamperControllerStatus{};
   status_.config_error = err;
   status_.initialized = initialized_;
   status_.mode = mode_;
@@ -210,6 +223,35 @@ control::ControllerOutput DamperController<Policy>::step(const control::Controll
 
   // 1. Input guard and staleness.
   const InputGuard::Faults faults = guard_.check(in);
+  const bool stale = step_guard(in, now, faults);
+
+  // 2. Filters on a usable stroke.
+  const bool disp_ok = !stale && faults[InputGuard::idx(InputSignal::kDisp)] == InputFault::kNone;
+  step_filters(in, disp_ok);
+
+  // 3. Output: SAFE-1 (the drive's fault line) first, then the mode's law.
+  if (in.flags.drive_fault) {
+    bump(status_.drive_fault_ticks);
+    drive_hold_ = config_.drive_reenable_delay_ticks;
+  } else if (drive_hold_ > 0) {
+    --drive_hold_;
+  } else {
+    const Current command = step_law(in, faults, disp_ok, out);
+    last_command_a_ = command;
+    out.current_command_a = num::to_float(command);
+    out.drive_enable = true;
+    return out;
+  }
+  bump(status_.drive_disabled_ticks);
+  last_command_a_ = Current{};
+  out.current_command_a = 0.0f;
+  out.drive_enable = false;
+  return out;
+}
+
+template <class Policy>
+inline bool DamperController<Policy>::step_guard(const control::ControllerInput& in, std::uint64_t now,
+                                          const InputGuard::Faults& faults) noexcept {
   for (int s = 0; s < kInputSignals; ++s) {
     if (faults[s] != InputFault::kNone) {
       bump(status_.invalid_by_kind[static_cast<int>(faults[s])]);
@@ -226,9 +268,11 @@ control::ControllerOutput DamperController<Policy>::step(const control::Controll
     have_sample_ = true;
     last_sample_tick_ = in.tick;
   }
+  return stale;
+}
 
-  // 2. Filters on a usable stroke.
-  const bool disp_ok = !stale && faults[InputGuard::idx(InputSignal::kDisp)] == InputFault::kNone;
+template <class Policy>
+inline void DamperController<Policy>::step_filters(const control::ControllerInput& in, bool disp_ok) noexcept {
   if (disp_ok) {
     const Disp x = num::from_float<Disp>(in.damper_disp_m);
     if (!primed_) {
@@ -245,53 +289,34 @@ control::ControllerOutput DamperController<Policy>::step(const control::Controll
     (void)velocity_.step(x);
   }
   disp_gap_ = !disp_ok;
+}
 
-  // 3. Output: SAFE-1 (the drive's fault line) first, then the mode's law.
-  if (in.flags.drive_fault) {
-    bump(status_.drive_fault_ticks);
-    drive_hold_ = config_.drive_reenable_delay_ticks;
-  } else if (drive_hold_ > 0) {
-    --drive_hold_;
-  } else {
-    Current command{};
-    switch (mode_) {
-      case control::ControlMode::kPassiveOff: command = Current{}; break;
-      case control::ControlMode::kPassiveOn: command = nominal_a_; break;
-      case control::ControlMode::kSemiActive: {
-        const bool usable = disp_ok && faults[InputGuard::idx(InputSignal::kForce)] == InputFault::kNone &&
-                            faults[InputGuard::idx(InputSignal::kCoilCurrent)] == InputFault::kNone;
-        if (usable) {
-          bad_run_ = 0;
-          const OdbdcoDecision<Policy> d =
-              odbdco<Policy>(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n),
-                             num::from_float<Current>(in.coil_current_a), velocity_.per_tick_m());
-          bump(status_.branch_ticks[static_cast<int>(d.branch)]);
-          command = d.command_a;
-          out.desired_force_n = num::to_float(desired_n_);
-        } else {
-          // SAFE-2
-          bump(bad_run_);
-          if (bad_run_ <= config_.fault_hold_ticks) {
-            bump(status_.held_ticks);
-            command = last_command_a_;
-          } else {
-            bump(status_.fallback_ticks);
-            command = fallback_a_;
-          }
-        }
-        break;
-      }
-    }
-    last_command_a_ = command;
-    out.current_command_a = num::to_float(command);
-    out.drive_enable = true;
-    return out;
+template <class Policy>
+inline typename DamperController<Policy>::Current DamperController<Policy>::step_law(const control::ControllerInput& in,
+                                                                             const InputGuard::Faults& faults,
+                                                                             bool disp_ok,
+                                                                             control::ControllerOutput& out) noexcept {
+  if (mode_ == control::ControlMode::kPassiveOn) return nominal_a_;
+  if (mode_ != control::ControlMode::kSemiActive) return Current{};  // passive-off
+  const bool usable = disp_ok && faults[InputGuard::idx(InputSignal::kForce)] == InputFault::kNone &&
+                      faults[InputGuard::idx(InputSignal::kCoilCurrent)] == InputFault::kNone;
+  if (usable) {
+    bad_run_ = 0;
+    const OdbdcoDecision<Policy> d = odbdco<Policy>(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n),
+                                                    num::from_float<Current>(in.coil_current_a),
+                                                    velocity_.per_tick_m());
+    bump(status_.branch_ticks[static_cast<int>(d.branch)]);
+    out.desired_force_n = num::to_float(desired_n_);
+    return d.command_a;
   }
-  bump(status_.drive_disabled_ticks);
-  last_command_a_ = Current{};
-  out.current_command_a = 0.0f;
-  out.drive_enable = false;
-  return out;
+  // SAFE-2
+  bump(bad_run_);
+  if (bad_run_ <= config_.fault_hold_ticks) {
+    bump(status_.held_ticks);
+    return last_command_a_;
+  }
+  bump(status_.fallback_ticks);
+  return fallback_a_;
 }
 
 extern template class DamperController<num::Float32Policy>;

@@ -154,7 +154,8 @@ void IdleEstimator::assume_worst(std::uint32_t cause) noexcept {
   save_due_ = true;
 }
 
-IdleBootReport IdleEstimator::boot(StateStore& store, std::uint64_t tick, double rtc_s, bool rtc_valid) noexcept {
+IdleBootReport IdleEstimator::boot(hal::StateStore& store, std::uint64_t tick, double rtc_s,
+                                   bool rtc_valid) noexcept {
   IdleBootReport rep;
   start(tick);
   est_.flags = 0;
@@ -162,12 +163,12 @@ IdleBootReport IdleEstimator::boot(StateStore& store, std::uint64_t tick, double
   last_rtc_s_ = rtc_s;
   last_rtc_t_s_ = 0.0;
 
-  StateRecord rec{};
+  hal::StateRecord rec{};
   rep.load = store.load(rec);
   PersistedIdleState s;
-  if (rep.load == StoreStatus::kOk) rep.decode = decode_state(rec, s);
+  if (rep.load == hal::StoreStatus::kOk) rep.decode = decode_state(rec, s);
 
-  if (rep.load == StoreStatus::kOk && rep.decode == DecodeStatus::kOk) {
+  if (rep.load == hal::StoreStatus::kOk && rep.decode == DecodeStatus::kOk) {
     est_.lifetime_volume_m3 = s.lifetime_volume_m3;
     est_.mixing_volume_m3 = s.mixing_volume_m3;
     est_.mixing_cycles = s.mixing_cycles;
@@ -182,9 +183,9 @@ IdleBootReport IdleEstimator::boot(StateStore& store, std::uint64_t tick, double
       model_.reset(s.equivalent_idle_s + rep.offline_s, 0.0);  // the time off was idle time
       episodes_seen_ = model_.episodes_closed();
     }
-  } else if (rep.load == StoreStatus::kMissing) {
+  } else if (rep.load == hal::StoreStatus::kMissing) {
     assume_worst(kIdleNoSavedState);
-  } else if (rep.load == StoreStatus::kIoError) {
+  } else if (rep.load == hal::StoreStatus::kIoError) {
     assume_worst(kIdleStoreIoError);
   } else {
     assume_worst(kIdleCorruptState);  // wrong size or refused by decode_state
@@ -269,7 +270,7 @@ void IdleEstimator::refresh() noexcept {
   est_.time_since_motion_s = max0(t_s_ - model_.last_motion_s());
 }
 
-SaveOutcome IdleEstimator::save(StateStore& store) noexcept {
+SaveOutcome IdleEstimator::save(hal::StateStore& store) noexcept {
   if (!rtc_seen_) return SaveOutcome::kSkippedNoClock;
   PersistedIdleState s;
   s.equivalent_idle_s = model_.equivalent_idle_s(t_s_);
@@ -279,7 +280,7 @@ SaveOutcome IdleEstimator::save(StateStore& store) noexcept {
   s.mixing_cycles = est_.mixing_cycles;
   s.save_sequence = save_sequence_ + 1;
   s.flags = est_.flags;
-  if (store.save(encode_state(s)) != StoreStatus::kOk) {
+  if (store.save(encode_state(s)) != hal::StoreStatus::kOk) {
     est_.flags |= kIdleSaveFailed;
     return SaveOutcome::kFailed;  // still due: the caller retries later
   }

@@ -194,7 +194,7 @@ struct IdleEstimate {
 
 /// How boot() went.
 struct IdleBootReport {
-  StoreStatus load = StoreStatus::kOk;
+  hal::StoreStatus load = hal::StoreStatus::kOk;
   DecodeStatus decode = DecodeStatus::kOk;
   double offline_s = 0.0;          ///< time off by the RTC (0 when unknown), s
   std::uint32_t flags = 0;
@@ -216,7 +216,7 @@ class IdleEstimator {
   /// not from it). The time off is the RTC minus the stored stamp and counts
   /// as idle time. Missing or refused record, invalid RTC, or an RTC behind
   /// the stamp: fully settled, with the flag saying why.
-  IdleBootReport boot(StateStore& store, std::uint64_t tick, double rtc_s, bool rtc_valid) noexcept;
+  IdleBootReport boot(hal::StateStore& store, std::uint64_t tick, double rtc_s, bool rtc_valid) noexcept;
   /// Starts from a known state without a store (commissioning right after
   /// a full mixing, tests, simulation).
   void boot_with(double equivalent_idle_s, std::uint64_t tick, double rtc_s) noexcept;
@@ -231,7 +231,7 @@ class IdleEstimator {
   /// Writes the state through `store` (I/O: call from a low-priority
   /// context when save_due()). The stamp is the last RTC reading advanced
   /// by the ticks since.
-  SaveOutcome save(StateStore& store) noexcept;
+  SaveOutcome save(hal::StateStore& store) noexcept;
 
   /// The mixing scheduler confirmed a cycle: counted and saved soon.
   void note_mixing_confirmed() noexcept;

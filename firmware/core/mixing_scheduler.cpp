@@ -50,7 +50,7 @@ void MixingScheduler::reset() noexcept {
   failed_in_row_ = 0;
 }
 
-void MixingScheduler::end_cycle(MixingState next, MixingEndReason why, double t_s) noexcept {
+void MixingScheduler::end_cycle(SchedulerState next, MixingEndReason why, double t_s) noexcept {
   if (out_.request_active) out_.abort = why != MixingEndReason::kConfirmed;
   out_.request_active = false;
   out_.reason = why;
@@ -73,91 +73,92 @@ void MixingScheduler::end_cycle(MixingState next, MixingEndReason why, double t_
 }
 
 bool MixingScheduler::transition(const MixingSchedulerInput& in, double t_s) noexcept {
-  const bool below = in.forecast_capacity_fraction < c_.capacity_threshold;
-  const bool quiet = !out_.shaking && (!shaking_ever_ || t_s - last_shaking_s_ >= c_.holdoff_s);
-  const bool can_watch = in.ground_accel_valid || in.base_accel_valid;
-  const double measured_m3 = in.measured_volume_m3 - volume_at_request_m3_;
-  const double in_state_s = t_s - state_since_s_;
-  const MixingState before = out_.state;
+  Conditions c;
+  c.below = in.forecast_capacity_fraction < c_.capacity_threshold;
+  c.quiet = !out_.shaking && (!shaking_ever_ || t_s - last_shaking_s_ >= c_.holdoff_s);
+  c.can_watch = in.ground_accel_valid || in.base_accel_valid;
+  c.measured_m3 = in.measured_volume_m3 - volume_at_request_m3_;
+  c.in_state_s = t_s - state_since_s_;
+  const SchedulerState before = out_.state;
 
   switch (out_.state) {
-    case MixingState::kIdle:
-      if (below && quiet) {
-        out_.state = MixingState::kDue;
-        state_since_s_ = t_s;
-      }
+    case SchedulerState::kIdle:
+      if (c.below && c.quiet) enter(SchedulerState::kDue, t_s);
       break;
-    case MixingState::kDue:
-      if (!below) {
-        out_.state = MixingState::kIdle;
-        state_since_s_ = t_s;
-      } else if (!c_.actuator_fitted) {
-        out_.state = MixingState::kMaintenanceRequired;
-        out_.reason = MixingEndReason::kNoActuator;
-        ++counters_.maintenance_raised;
-        state_since_s_ = t_s;
-      } else if (!in.actuator_ready) {
-        if (in_state_s > c_.start_timeout_s) end_cycle(MixingState::kAborted, MixingEndReason::kStartTimeout, t_s);
-      } else if (!out_.shaking && can_watch) {
-        out_.plan = plan_mixing(c_, in.volume_needed_m3);
-        out_.state = MixingState::kRequested;
-        out_.request_active = true;
-        out_.reason = MixingEndReason::kNone;
-        ++out_.request_id;
-        ++counters_.requested;
-        volume_at_request_m3_ = in.measured_volume_m3;
-        state_since_s_ = t_s;
-      }
+    case SchedulerState::kDue: from_due(in, c, t_s); break;
+    case SchedulerState::kRequested: from_requested(in, c, t_s); break;
+    case SchedulerState::kRunning: from_running(c, t_s); break;
+    case SchedulerState::kConfirmed:
+      if (c.in_state_s >= c_.confirm_hold_s) enter(SchedulerState::kIdle, t_s);
       break;
-    case MixingState::kRequested:
-      if (out_.shaking) {
-        end_cycle(MixingState::kAborted, MixingEndReason::kSeismic, t_s);
-      } else if (!can_watch) {
-        end_cycle(MixingState::kAborted, MixingEndReason::kSensorFault, t_s);
-      } else if (in.actuator_busy || measured_m3 >= c_.start_fraction * out_.plan.volume_m3) {
-        out_.state = MixingState::kRunning;
-        state_since_s_ = t_s;
-      } else if (in_state_s > c_.start_timeout_s) {
-        end_cycle(MixingState::kAborted, MixingEndReason::kStartTimeout, t_s);
-      }
-      break;
-    case MixingState::kRunning:
-      if (out_.shaking) {
-        end_cycle(MixingState::kAborted, MixingEndReason::kSeismic, t_s);
-      } else if (!can_watch) {
-        end_cycle(MixingState::kAborted, MixingEndReason::kSensorFault, t_s);
-      } else if (measured_m3 >= c_.confirm_fraction * out_.plan.volume_m3) {
-        end_cycle(MixingState::kConfirmed, MixingEndReason::kConfirmed, t_s);
-      } else if (in_state_s > out_.plan.duration_s * c_.run_timeout_factor + c_.run_margin_s) {
-        end_cycle(MixingState::kAborted, MixingEndReason::kIncomplete, t_s);
-      }
-      break;
-    case MixingState::kConfirmed:
-      if (in_state_s >= c_.confirm_hold_s) {
-        out_.state = MixingState::kIdle;
-        state_since_s_ = t_s;
-      }
-      break;
-    case MixingState::kAborted:
+    case SchedulerState::kAborted:
       if (failed_in_row_ >= c_.max_attempts) {
-        out_.state = MixingState::kMaintenanceRequired;
-        out_.reason = MixingEndReason::kAttemptsExhausted;
-        ++counters_.maintenance_raised;
-        state_since_s_ = t_s;
-      } else if (quiet && in_state_s >= c_.holdoff_s) {
-        out_.state = MixingState::kIdle;
-        state_since_s_ = t_s;
+        raise_maintenance(MixingEndReason::kAttemptsExhausted, t_s);
+      } else if (c.quiet && c.in_state_s >= c_.holdoff_s) {
+        enter(SchedulerState::kIdle, t_s);
       }
       break;
-    case MixingState::kMaintenanceRequired:
-      if (!below) {
-        out_.state = MixingState::kIdle;
+    case SchedulerState::kMaintenanceRequired:
+      if (!c.below) {
+        enter(SchedulerState::kIdle, t_s);
         failed_in_row_ = 0;
-        state_since_s_ = t_s;
       }
       break;
   }
   return out_.state != before;
+}
+
+void MixingScheduler::enter(SchedulerState next, double t_s) noexcept {
+  out_.state = next;
+  state_since_s_ = t_s;
+}
+
+void MixingScheduler::raise_maintenance(MixingEndReason why, double t_s) noexcept {
+  out_.reason = why;
+  ++counters_.maintenance_raised;
+  enter(SchedulerState::kMaintenanceRequired, t_s);
+}
+
+void MixingScheduler::from_due(const MixingSchedulerInput& in, const Conditions& c, double t_s) noexcept {
+  if (!c.below) {
+    enter(SchedulerState::kIdle, t_s);
+  } else if (!c_.actuator_fitted) {
+    raise_maintenance(MixingEndReason::kNoActuator, t_s);
+  } else if (!in.actuator_ready) {
+    if (c.in_state_s > c_.start_timeout_s) end_cycle(SchedulerState::kAborted, MixingEndReason::kStartTimeout, t_s);
+  } else if (!out_.shaking && c.can_watch) {
+    out_.plan = plan_mixing(c_, in.volume_needed_m3);
+    out_.request_active = true;
+    out_.reason = MixingEndReason::kNone;
+    ++out_.request_id;
+    ++counters_.requested;
+    volume_at_request_m3_ = in.measured_volume_m3;
+    enter(SchedulerState::kRequested, t_s);
+  }
+}
+
+void MixingScheduler::from_requested(const MixingSchedulerInput& in, const Conditions& c, double t_s) noexcept {
+  if (out_.shaking) {
+    end_cycle(SchedulerState::kAborted, MixingEndReason::kSeismic, t_s);
+  } else if (!c.can_watch) {
+    end_cycle(SchedulerState::kAborted, MixingEndReason::kSensorFault, t_s);
+  } else if (in.actuator_busy || c.measured_m3 >= c_.start_fraction * out_.plan.volume_m3) {
+    enter(SchedulerState::kRunning, t_s);
+  } else if (c.in_state_s > c_.start_timeout_s) {
+    end_cycle(SchedulerState::kAborted, MixingEndReason::kStartTimeout, t_s);
+  }
+}
+
+void MixingScheduler::from_running(const Conditions& c, double t_s) noexcept {
+  if (out_.shaking) {
+    end_cycle(SchedulerState::kAborted, MixingEndReason::kSeismic, t_s);
+  } else if (!c.can_watch) {
+    end_cycle(SchedulerState::kAborted, MixingEndReason::kSensorFault, t_s);
+  } else if (c.measured_m3 >= c_.confirm_fraction * out_.plan.volume_m3) {
+    end_cycle(SchedulerState::kConfirmed, MixingEndReason::kConfirmed, t_s);
+  } else if (c.in_state_s > out_.plan.duration_s * c_.run_timeout_factor + c_.run_margin_s) {
+    end_cycle(SchedulerState::kAborted, MixingEndReason::kIncomplete, t_s);
+  }
 }
 
 const MixingSchedulerOutput& MixingScheduler::step(const MixingSchedulerInput& in) noexcept {
@@ -165,7 +166,7 @@ const MixingSchedulerOutput& MixingScheduler::step(const MixingSchedulerInput& i
   out_.abort = false;
 
   // Seismic trigger: consecutive valid samples above the threshold.
-  const bool mixing = out_.state == MixingState::kRequested || out_.state == MixingState::kRunning;
+  const bool mixing = out_.state == SchedulerState::kRequested || out_.state == SchedulerState::kRunning;
   const double base_trigger =
       c_.base_trigger_m_s2 + (mixing && c_.mixing_moves_base ? out_.plan.peak_accel_m_s2 : 0.0);
   ground_count_ = in.ground_accel_valid && std::fabs(in.ground_accel_m_s2) > c_.ground_trigger_m_s2
@@ -184,7 +185,7 @@ const MixingSchedulerOutput& MixingScheduler::step(const MixingSchedulerInput& i
   // requested); seven is more than any chain needs.
   for (int k = 0; k < 7 && transition(in, t_s); ++k) {
   }
-  out_.maintenance_required = out_.state == MixingState::kMaintenanceRequired;
+  out_.maintenance_required = out_.state == SchedulerState::kMaintenanceRequired;
   return out_;
 }
 

@@ -35,7 +35,9 @@
 
 namespace mrd::fw {
 
-enum class MixingState : std::uint8_t {
+/// The scheduler's state (the diagram above); not the actuator's reported
+/// protocol::MixingState.
+enum class SchedulerState : std::uint8_t {
   kIdle = 0,
   kDue,
   kRequested,
@@ -45,15 +47,15 @@ enum class MixingState : std::uint8_t {
   kMaintenanceRequired,
 };
 
-constexpr const char* mixing_state_name(MixingState s) noexcept {
+constexpr const char* scheduler_state_name(SchedulerState s) noexcept {
   switch (s) {
-    case MixingState::kIdle: return "idle";
-    case MixingState::kDue: return "due";
-    case MixingState::kRequested: return "requested";
-    case MixingState::kRunning: return "running";
-    case MixingState::kConfirmed: return "confirmed";
-    case MixingState::kAborted: return "aborted";
-    case MixingState::kMaintenanceRequired: return "maintenance-required";
+    case SchedulerState::kIdle: return "idle";
+    case SchedulerState::kDue: return "due";
+    case SchedulerState::kRequested: return "requested";
+    case SchedulerState::kRunning: return "running";
+    case SchedulerState::kConfirmed: return "confirmed";
+    case SchedulerState::kAborted: return "aborted";
+    case SchedulerState::kMaintenanceRequired: return "maintenance-required";
   }
   return "unknown";
 }
@@ -146,7 +148,7 @@ struct MixingSchedulerInput {
 };
 
 struct MixingSchedulerOutput {
-  MixingState state = MixingState::kIdle;
+  SchedulerState state = SchedulerState::kIdle;
   bool request_active = false;  ///< the actuator shall run `plan` (level); false: stop, damper in control
   bool abort = false;           ///< the request was withdrawn this step (edge)
   bool maintenance_required = false;
@@ -188,8 +190,23 @@ class MixingScheduler {
   const MixingSchedulerConfig& config() const noexcept { return c_; }
 
  private:
+  /// What the transitions of one step look at.
+  struct Conditions {
+    bool below = false;        ///< forecast under the threshold
+    bool quiet = false;        ///< no shaking now, none for holdoff_s
+    bool can_watch = false;    ///< an accelerometer is valid
+    double measured_m3 = 0.0;  ///< volume measured since the request, m³
+    double in_state_s = 0.0;   ///< time in the present state, s
+  };
+
+  /// One transition if its condition holds; true when the state changed.
   bool transition(const MixingSchedulerInput& in, double t_s) noexcept;
-  void end_cycle(MixingState next, MixingEndReason why, double t_s) noexcept;
+  void from_due(const MixingSchedulerInput& in, const Conditions& c, double t_s) noexcept;
+  void from_requested(const MixingSchedulerInput& in, const Conditions& c, double t_s) noexcept;
+  void from_running(const Conditions& c, double t_s) noexcept;
+  void enter(SchedulerState next, double t_s) noexcept;
+  void raise_maintenance(MixingEndReason why, double t_s) noexcept;
+  void end_cycle(SchedulerState next, MixingEndReason why, double t_s) noexcept;
 
   MixingSchedulerConfig c_{};
   MixingSchedulerOutput out_{};

@@ -1,10 +1,7 @@
 #pragma once
-/// Crash-safe persistence of the idle-time estimator's state.
-///
-/// The estimator's state travels as one fixed-size record of kStateRecordSize
-/// bytes. The board implements StateStore (a file on Linux, see
-/// firmware/platform/linux/file_state_store.hpp; a flash page on a
-/// microcontroller); InMemoryStateStore serves tests and the simulator.
+/// The record in which the idle-time estimator's state persists: its layout,
+/// CRC, encoding and checks. The bytes go through hal::StateStore
+/// (mrd/hal/state_store.hpp), which the board implements.
 ///
 /// Record layout (all fields little-endian, doubles as IEEE-754 binary64):
 /// <pre>
@@ -30,48 +27,13 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "mrd/hal/state_store.hpp"
+
 namespace mrd::fw {
 
-inline constexpr std::size_t kStateRecordSize = 64;
 inline constexpr std::uint32_t kStateRecordMagic = 0x4944524Du;  // "MRDI" read as little-endian
 inline constexpr std::uint16_t kStateRecordVersion = 1;
-
-/// One persisted record, as bytes.
-using StateRecord = std::array<std::uint8_t, kStateRecordSize>;
-
-/// What a StateStore reports.
-enum class StoreStatus : std::uint8_t {
-  kOk = 0,
-  kMissing,    ///< nothing stored yet
-  kWrongSize,  ///< a record is there but has the wrong length (e.g. truncated)
-  kIoError,    ///< the medium failed (read, write, sync or rename)
-};
-
-constexpr const char* store_status_name(StoreStatus s) noexcept {
-  switch (s) {
-    case StoreStatus::kOk: return "ok";
-    case StoreStatus::kMissing: return "missing";
-    case StoreStatus::kWrongSize: return "wrong-size";
-    case StoreStatus::kIoError: return "io-error";
-  }
-  return "unknown";
-}
-
-/// Where the board keeps the record. `save` must be atomic with respect to
-/// power loss: after a crash, `load` returns the previous record or the new
-/// one, never a mix (the record's CRC catches what the medium does not).
-/// Neither call is made from the control step; see IdleEstimator.
-class StateStore {
- public:
-  virtual StoreStatus load(StateRecord& out) noexcept = 0;
-  virtual StoreStatus save(const StateRecord& record) noexcept = 0;
-
- protected:
-  StateStore() = default;
-  StateStore(const StateStore&) = default;
-  StateStore& operator=(const StateStore&) = default;
-  ~StateStore() = default;
-};
+static_assert(hal::kStateRecordSize == 64, "the layout above fills 64 bytes");
 
 /// CRC-32 as in IEEE 802.3 / zlib (polynomial 0x04C11DB7 reflected =
 /// 0xEDB88320, initial value and final XOR 0xFFFFFFFF); check value
@@ -110,7 +72,7 @@ struct PersistedIdleState {
 enum class DecodeStatus : std::uint8_t {
   kOk = 0,
   kBadMagic,    ///< not an estimator record
-  kBadSize,     ///< the size field does not match kStateRecordSize
+  kBadSize,     ///< the size field does not match hal::kStateRecordSize
   kBadVersion,  ///< a record of another layout version
   kBadCrc,      ///< bytes changed since the save
   kBadValue,    ///< CRC fine but a value is not finite or out of range
@@ -129,39 +91,39 @@ constexpr const char* decode_status_name(DecodeStatus s) noexcept {
 }
 
 namespace detail {
-constexpr void put_u16(StateRecord& r, std::size_t at, std::uint16_t v) noexcept {
+constexpr void put_u16(hal::StateRecord& r, std::size_t at, std::uint16_t v) noexcept {
   r[at] = static_cast<std::uint8_t>(v & 0xFFu);
   r[at + 1] = static_cast<std::uint8_t>(v >> 8);
 }
-constexpr void put_u32(StateRecord& r, std::size_t at, std::uint32_t v) noexcept {
+constexpr void put_u32(hal::StateRecord& r, std::size_t at, std::uint32_t v) noexcept {
   for (std::size_t k = 0; k < 4; ++k) r[at + k] = static_cast<std::uint8_t>((v >> (8 * k)) & 0xFFu);
 }
-constexpr void put_f64(StateRecord& r, std::size_t at, double v) noexcept {
+constexpr void put_f64(hal::StateRecord& r, std::size_t at, double v) noexcept {
   const auto bits = std::bit_cast<std::uint64_t>(v);
   for (std::size_t k = 0; k < 8; ++k) r[at + k] = static_cast<std::uint8_t>((bits >> (8 * k)) & 0xFFu);
 }
-constexpr std::uint16_t get_u16(const StateRecord& r, std::size_t at) noexcept {
+constexpr std::uint16_t get_u16(const hal::StateRecord& r, std::size_t at) noexcept {
   return static_cast<std::uint16_t>(r[at] | (r[at + 1] << 8));
 }
-constexpr std::uint32_t get_u32(const StateRecord& r, std::size_t at) noexcept {
+constexpr std::uint32_t get_u32(const hal::StateRecord& r, std::size_t at) noexcept {
   std::uint32_t v = 0;
   for (std::size_t k = 0; k < 4; ++k) v |= static_cast<std::uint32_t>(r[at + k]) << (8 * k);
   return v;
 }
-constexpr double get_f64(const StateRecord& r, std::size_t at) noexcept {
+constexpr double get_f64(const hal::StateRecord& r, std::size_t at) noexcept {
   std::uint64_t bits = 0;
   for (std::size_t k = 0; k < 8; ++k) bits |= static_cast<std::uint64_t>(r[at + k]) << (8 * k);
   return std::bit_cast<double>(bits);
 }
-inline constexpr std::size_t kCrcOffset = kStateRecordSize - 4;
+inline constexpr std::size_t kCrcOffset = hal::kStateRecordSize - 4;
 }  // namespace detail
 
 /// Writes `s` as a record with version, size and CRC filled in.
-constexpr StateRecord encode_state(const PersistedIdleState& s) noexcept {
-  StateRecord r{};
+constexpr hal::StateRecord encode_state(const PersistedIdleState& s) noexcept {
+  hal::StateRecord r{};
   detail::put_u32(r, 0, kStateRecordMagic);
   detail::put_u16(r, 4, kStateRecordVersion);
-  detail::put_u16(r, 6, static_cast<std::uint16_t>(kStateRecordSize));
+  detail::put_u16(r, 6, static_cast<std::uint16_t>(hal::kStateRecordSize));
   detail::put_f64(r, 8, s.equivalent_idle_s);
   detail::put_f64(r, 16, s.rtc_s);
   detail::put_f64(r, 24, s.lifetime_volume_m3);
@@ -175,9 +137,9 @@ constexpr StateRecord encode_state(const PersistedIdleState& s) noexcept {
 
 /// Checks magic, size, version, CRC and value ranges, in that order, and
 /// fills `out` only when all pass.
-inline DecodeStatus decode_state(const StateRecord& r, PersistedIdleState& out) noexcept {
+inline DecodeStatus decode_state(const hal::StateRecord& r, PersistedIdleState& out) noexcept {
   if (detail::get_u32(r, 0) != kStateRecordMagic) return DecodeStatus::kBadMagic;
-  if (detail::get_u16(r, 6) != kStateRecordSize) return DecodeStatus::kBadSize;
+  if (detail::get_u16(r, 6) != hal::kStateRecordSize) return DecodeStatus::kBadSize;
   if (detail::get_u16(r, 4) != kStateRecordVersion) return DecodeStatus::kBadVersion;
   if (detail::get_u32(r, detail::kCrcOffset) != crc32(r.data(), detail::kCrcOffset)) return DecodeStatus::kBadCrc;
   PersistedIdleState s;
@@ -195,48 +157,5 @@ inline DecodeStatus decode_state(const StateRecord& r, PersistedIdleState& out) 
   out = s;
   return DecodeStatus::kOk;
 }
-
-/// A StateStore in RAM, for tests and the simulator. A stored record can be
-/// damaged on purpose (`bytes()`, `truncate()`) and the next save made to
-/// fail (`fail_next_save()`).
-class InMemoryStateStore final : public StateStore {
- public:
-  StoreStatus load(StateRecord& out) noexcept override {
-    ++loads_;
-    if (!has_record_) return StoreStatus::kMissing;
-    if (size_ != kStateRecordSize) return StoreStatus::kWrongSize;
-    out = record_;
-    return StoreStatus::kOk;
-  }
-  StoreStatus save(const StateRecord& record) noexcept override {
-    if (fail_next_save_) {
-      fail_next_save_ = false;
-      return StoreStatus::kIoError;
-    }
-    record_ = record;
-    size_ = kStateRecordSize;
-    has_record_ = true;
-    ++saves_;
-    return StoreStatus::kOk;
-  }
-
-  bool has_record() const noexcept { return has_record_; }
-  void clear() noexcept { has_record_ = false; }
-  StateRecord& bytes() noexcept { return record_; }
-  const StateRecord& bytes() const noexcept { return record_; }
-  /// Pretends only the first `size` bytes survived.
-  void truncate(std::size_t size) noexcept { size_ = size < kStateRecordSize ? size : kStateRecordSize; }
-  void fail_next_save() noexcept { fail_next_save_ = true; }
-  std::uint32_t saves() const noexcept { return saves_; }
-  std::uint32_t loads() const noexcept { return loads_; }
-
- private:
-  StateRecord record_{};
-  std::size_t size_ = 0;
-  bool has_record_ = false;
-  bool fail_next_save_ = false;
-  std::uint32_t saves_ = 0;
-  std::uint32_t loads_ = 0;
-};
 
 }  // namespace mrd::fw

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 
+#include "firmware/core/controller_config.hpp"
 #include "mrd/hal/can_bus.hpp"
 #include "mrd/protocol/codec.hpp"
 
@@ -24,7 +25,8 @@ namespace mrd::peers {
 
 struct DriveConfig {
   protocol::NodeIds nodes{};
-  float safe_current_a = 2.5f;                   ///< passive-on (§6.4): the damper keeps damping
+  /// Applied when commands stop: passive-on (§6.4), the damper keeps damping.
+  float safe_current_a = static_cast<float>(fw::kPassiveOnCurrent_a);
   std::int64_t command_timeout_ns = 20'000'000;  ///< 20 ms (CAN_PROTOCOL.md)
   float peak_limit_a = 30.0f;                    ///< over-current fault above this measured current
 };

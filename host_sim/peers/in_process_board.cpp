@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "firmware/app/core_config.hpp"
+#include "firmware/core/controller_config.hpp"
 
 namespace mrd::peers {
 
@@ -14,12 +14,14 @@ InProcessBoard::InProcessBoard(const app::BoardConfig& board, const plant::Plant
   controller_ep_->set_filters(app::control_task_filters(board.nodes));
   drive_ep_->set_filters(drive_filters(board.nodes));
   plant_ep_->set_filters(plant_filters(board.nodes));
-  const fw::ConfigError e = core_.init(app::core_config(board));
+  const fw::ConfigError e = core_.init(fw::default_controller_config(board.mode, board.period_s()));
   if (e != fw::ConfigError::kNone)
     throw std::invalid_argument(std::string("control core rejects the board configuration: ") +
                                 fw::config_error_name(e));
-  task_ = std::make_unique<app::ControlTask<Core>>(core_, *controller_ep_, io_, board.task_config());
-  task_->reset();
+  period_ns_ = static_cast<std::int64_t>(board.period_us) * 1000;
+  app::RuntimeConfig rc;
+  rc.period_ns = period_ns_;
+  runtime_ = std::make_unique<Runtime>(core_, app::RuntimePorts{clock_, *controller_ep_, io_}, board.task_config(), rc);
   DriveConfig dc = drive;
   dc.nodes = board.nodes;
   drive_ = std::make_unique<DriveNode>(*drive_ep_, dc, board.period_s(), true);
@@ -28,13 +30,12 @@ InProcessBoard::InProcessBoard(const app::BoardConfig& board, const plant::Plant
 
 void InProcessBoard::step(double ground_accel_m_s2) {
   plant_->begin_tick(ground_accel_m_s2);
-  drive_->poll();        // SimCoilState → DriveStatus
-  task_->poll_rx();
+  drive_->poll();  // SimCoilState → DriveStatus
   // In lockstep every input of the tick is here unless a frame was lost on
-  // the wire; the task then runs on what it has, as on a board.
-  (void)task_->lockstep_ready();
-  task_->step_tick();    // → CurrentCommand
-  drive_->poll();        // command → SimCoilDrive
+  // the wire; the runtime then runs on what it has, as on a board.
+  runtime_->run_tick();  // → CurrentCommand
+  clock_.advance_ns(period_ns_);
+  drive_->poll();  // command → SimCoilDrive
   if (drive_->awaiting_command()) drive_->decide_without_command();
   // A lost coil-drive frame: the coil keeps the drive's previous output.
   if (!plant_->try_finish_tick()) plant_->force_finish_tick();

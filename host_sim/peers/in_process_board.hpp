@@ -1,24 +1,27 @@
 #pragma once
-/// The `sim` board: the firmware's control task and control core, the drive
-/// node and the DAQ + plant node on an in-memory CAN bus in one process, in
-/// lockstep. The firmware side is the code the Linux board runs; only the
-/// adapters differ (in-memory bus and lines instead of SocketCAN and
-/// libgpiod). Every tick goes through real frames and the shared codec.
+/// The `sim` board: the firmware's board runtime (control task and control
+/// core), the drive node and the DAQ + plant node on an in-memory CAN bus in
+/// one process, in lockstep. The firmware side is the runtime the Linux board
+/// runs; only the adapters differ (in-memory bus and lines and a manual clock
+/// instead of SocketCAN, libgpiod and CLOCK_MONOTONIC). Every tick goes
+/// through real frames and the shared codec.
 
 #include <memory>
 
 #include "firmware/app/board_config.hpp"
-#include "firmware/app/control_task.hpp"
+#include "firmware/app/runtime.hpp"
 #include "firmware/core/damper_controller.hpp"
-#include "host_sim/peers/peer_nodes.hpp"
+#include "firmware/platform/sim/manual_clock.hpp"
 #include "firmware/platform/sim/memory_bus.hpp"
 #include "firmware/platform/sim/memory_io.hpp"
+#include "host_sim/peers/peer_nodes.hpp"
 
 namespace mrd::peers {
 
 class InProcessBoard {
  public:
   using Core = fw::DamperController<num::Float32Policy>;
+  using Runtime = app::BoardRuntime<Core>;
 
   /// Throws std::invalid_argument when the core rejects the board's
   /// configuration (naming the field).
@@ -31,7 +34,7 @@ class InProcessBoard {
   void step(double ground_accel_m_s2);
 
   plant::PlantSummary summary() const noexcept { return plant_->model().summary(); }
-  const app::ControlTaskStatus& task_status() const noexcept { return task_->status(); }
+  const app::ControlTaskStatus& task_status() const noexcept { return runtime_->task().status(); }
   const DriveLogic& drive() const noexcept { return drive_->logic(); }
   const plant::Plant& plant() const noexcept { return plant_->model(); }
 
@@ -49,8 +52,10 @@ class InProcessBoard {
   sim::MemoryCanEndpoint* drive_ep_ = nullptr;
   sim::MemoryCanEndpoint* plant_ep_ = nullptr;
   sim::MemoryIo io_;
+  sim::ManualClock clock_;
+  std::int64_t period_ns_ = 0;
   Core core_;
-  std::unique_ptr<app::ControlTask<Core>> task_;
+  std::unique_ptr<Runtime> runtime_;
   std::unique_ptr<DriveNode> drive_;
   std::unique_ptr<PlantNode> plant_;
 };

@@ -1,4 +1,4 @@
-/// `mrd-sim-board`: the `sim` board — firmware control task and core, drive
+/// `mrd-sim-board`: the `sim` board — the firmware runtime (control task and core), drive
 /// and DAQ + plant nodes on an in-memory CAN bus in one process, in lockstep.
 /// Prints the same summary line as `mrd-plant-sim`.
 
@@ -27,8 +27,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     app::BoardConfig board = app::load_board_config(board_file);
-    if (!mode.empty() && !app::parse_mode_name(mode, board.mode))
-      throw report::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");
+    if (!mode.empty()) {
+      const auto m = control::parse_mode_name(mode);
+      if (!m) throw report::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");
+      board.mode = *m;
+    }
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
       throw report::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     plant::PlantSpec spec;

@@ -5,10 +5,7 @@
 namespace mrd::run {
 
 control::ControlMode parse_control_mode(const std::string& text) {
-  for (auto m : {control::ControlMode::kPassiveOff, control::ControlMode::kPassiveOn,
-                 control::ControlMode::kSemiActive}) {
-    if (text == control::mode_name(m)) return m;
-  }
+  if (const auto m = control::parse_mode_name(text)) return *m;
   throw report::UsageError("--control: expected passive-off, passive-on or semi-active, got '" + text + "'");
 }
 
@@ -33,15 +30,6 @@ NumericKind parse_numeric_kind(const std::string& text) {
   throw report::UsageError("--numeric: expected float or fixed, got '" + text + "'");
 }
 
-fw::ControllerConfig firmware_config(control::ControlMode mode, double period_s) {
-  fw::ControllerConfig c;
-  c.mode = mode;
-  c.period_s = period_s;
-  c.nominal_current_a = kPassiveOnCurrent_a;
-  if (c.velocity_cutoff_hz > 0.25 / period_s) c.velocity_cutoff_hz = 0.25 / period_s;
-  return c;
-}
-
 namespace {
 template <class Policy>
 std::unique_ptr<Controller> make_firmware(const fw::ControllerConfig& c) {
@@ -59,7 +47,7 @@ std::unique_ptr<Controller> make_firmware(const fw::ControllerConfig& c) {
 }  // namespace
 
 std::unique_ptr<Controller> make_controller(control::ControlMode mode, double period_s, NumericKind numeric) {
-  const fw::ControllerConfig c = firmware_config(mode, period_s);
+  const fw::ControllerConfig c = fw::default_controller_config(mode, period_s);
   if (numeric == NumericKind::kFixed) return make_firmware<num::Fixed32Policy>(c);
   return make_firmware<num::Float32Policy>(c);
 }

@@ -34,9 +34,6 @@ class ConstantCurrentController final : public Controller {
   float current_a_;
 };
 
-/// Nominal current of passive-on (thesis §6.4: 2.5 A).
-inline constexpr double kPassiveOnCurrent_a = 2.5;
-
 /// Which numeric build of the firmware control core runs.
 enum class NumericKind { kFloat, kFixed };
 
@@ -52,32 +49,28 @@ NumericKind parse_numeric_kind(const std::string& text);
 template <class Policy>
 class FirmwareController final : public Controller {
  public:
-  /// `config` must be valid (see firmware_config()).
+  /// `config` must be valid (see fw::default_controller_config()).
   explicit FirmwareController(const fw::ControllerConfig& config) noexcept { error_ = core_.init(config); }
   fw::ConfigError init_error() const noexcept { return error_; }
   void reset() override { core_.reset(); }
   control::ControllerOutput step(const control::ControllerInput& in) override { return core_.step(in); }
-  const fw::ControllerStatus& status() const noexcept { return core_.status(); }
+  const fw::DamperControllerStatus& status() const noexcept { return core_.status(); }
 
  private:
   fw::DamperController<Policy> core_{};
   fw::ConfigError error_ = fw::ConfigError::kNone;
 };
 
-/// The firmware configuration the simulator runs: the thesis defaults at
-/// `period_s`, in `mode`. The velocity estimate's cut-off (30 Hz) is lowered
-/// to a quarter of the sampling rate for periods above 1/120 s.
-fw::ControllerConfig firmware_config(control::ControlMode mode, double period_s);
-
-/// Parses "passive-off" | "passive-on" | "semi-active"; throws
-/// report::UsageError naming the option otherwise.
+/// control::parse_mode_name() for the command line: throws
+/// report::UsageError naming --control for an unknown mode.
 control::ControlMode parse_control_mode(const std::string& text);
 
 /// The modes this build can run, in the order reports list them.
 std::vector<control::ControlMode> available_modes();
 
 /// The controller for a mode at the given control period: the firmware
-/// control core in the chosen numeric build, for every mode. Throws
+/// control core in the chosen numeric build, configured by
+/// fw::default_controller_config() as on a board, for every mode. Throws
 /// report::UsageError naming --step-s when the core rejects the period.
 std::unique_ptr<Controller> make_controller(control::ControlMode mode, double period_s,
                                             NumericKind numeric = NumericKind::kFloat);

@@ -146,7 +146,7 @@ StudyResult run_study(const StudyOptions& o, const std::filesystem::path& dir) {
         "Table 4.1), coil dynamics Eq. 4.5 at unity DC gain, idle time through the participant ratio "
         "(Eq. 5.5-5.12, Table 5.6) with the mixing integral calibrated to Table 5.2. Structure: 6-DOF shear building "
         "of Table 6.1, exact zero-order hold at "
-     << o.step_s * 1e3 << " ms. Passive-on is " << kPassiveOnCurrent_a << " A.\n";
+     << o.step_s * 1e3 << " ms. Passive-on is " << fw::kPassiveOnCurrent_a << " A.\n";
 
   report::write_file_atomically(dir / "report.md", md.str());
   const nlohmann::json j{{"pga_g", o.pga_g},

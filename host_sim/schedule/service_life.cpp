@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "firmware/app/mixing_task.hpp"
 #include "host_sim/excitation/synthetic_motion.hpp"
 #include "mrd/units.hpp"
 #include "host_sim/report/output_dir.hpp"
@@ -38,15 +39,11 @@ class Run {
     fixed_ = p.kind == PolicyKind::kFixedInterval;
     estimator_ = p.kind == PolicyKind::kEstimator;
     if (estimator_) {
-      fw::IdleEstimatorConfig ec = c.estimator;
-      ec.dead_band_m = 0.0;  // the world's ambient volume is already the credited volume
-      est_.init(ec);
-      est_.boot_with(0.0, 0, kRtc0_s);
-      fw::MixingSchedulerConfig sc = c.scheduler;
-      sc.period_s = ec.period_s;
-      sc.flow_area_m2 = area_m2_;
-      sch_.init(sc);
-      period_s_ = ec.period_s;
+      app::MixingTaskConfig mc{c.estimator, c.scheduler};
+      mc.estimator.dead_band_m = 0.0;  // the world's ambient volume is already the credited volume
+      firmware_.init(mc);
+      firmware_.boot_with(0.0, 0, kRtc0_s);
+      period_s_ = mc.estimator.period_s;
     }
     next_fixed_s_ = fixed_ ? p.interval_s : kInf;
     const auto days = static_cast<std::size_t>(std::ceil(w.duration_s / kDay_s));
@@ -68,7 +65,7 @@ class Run {
     }
     const double years = units::s_to_years(w_.duration_s);
     r_.mixing_cycles_per_year = r_.mixing_cycles / years;
-    if (estimator_) r_.maintenance_requests = sch_.counters().maintenance_raised;
+    if (estimator_) r_.maintenance_requests = firmware_.scheduler().counters().maintenance_raised;
     r_.maintenance_requests_per_year = r_.maintenance_requests / years;
     r_.min_capacity_at_quakes = r_.quake_capacity.empty()
                                     ? std::numeric_limits<double>::quiet_NaN()
@@ -125,35 +122,24 @@ class Run {
     sample();
   }
 
+  /// The board's mixing task on the sampled stroke and ground acceleration.
   void step_firmware(double accel_m_s2, bool mixing) {
-    const auto tick = static_cast<std::uint64_t>(std::llround(t_ / period_s_));
-    fw::IdleEstimatorInput ei;
-    ei.tick = tick;
-    ei.rtc_s = kRtc0_s + t_;
-    ei.damper_disp_m = x_amb_m_ + x_mix_m_;
-    ei.mixing_active = mixing;
-    est_.step(ei);
-
-    fw::MixingSchedulerInput si;
-    si.tick = tick;
-    si.ground_accel_m_s2 = accel_m_s2;
-    si.base_accel_m_s2 = 0.0;
-    si.actuator_ready = c_.scheduler.actuator_fitted;
-    si.actuator_busy = mixing;
-    si.forecast_capacity_fraction = est_.predicted_capacity_fraction(sch_.forecast_horizon_s());
-    si.volume_needed_m3 = est_.volume_to_ceiling_m3(c_.scheduler.ceiling_gap_fraction);
-    si.measured_volume_m3 = est_.estimate().lifetime_volume_m3;
-    const fw::MixingSchedulerOutput& o = sch_.step(si);
-    if (o.state == fw::MixingState::kConfirmed && o.request_id != confirmed_id_) {
-      confirmed_id_ = o.request_id;
-      est_.note_mixing_confirmed();
-    }
-    if (o.state == fw::MixingState::kRequested && o.request_active && o.request_id != started_id_) {
+    app::MixingTaskInput in;
+    in.tick = static_cast<std::uint64_t>(std::llround(t_ / period_s_));
+    in.rtc_s = kRtc0_s + t_;
+    in.damper_disp_m = x_amb_m_ + x_mix_m_;
+    in.ground_accel_m_s2 = accel_m_s2;
+    in.base_accel_m_s2 = 0.0;
+    in.actuator_ready = c_.scheduler.actuator_fitted;
+    in.actuator_busy = mixing;
+    const fw::MixingSchedulerOutput& o = firmware_.step(in);
+    if (o.state == fw::SchedulerState::kRequested && o.request_active && o.request_id != started_id_) {
       pending_request_ = true;
     }
     // A new maintenance request brings one technician visit.
-    if (sch_.counters().maintenance_raised != maintenance_seen_) {
-      maintenance_seen_ = sch_.counters().maintenance_raised;
+    const std::uint32_t raised = firmware_.scheduler().counters().maintenance_raised;
+    if (raised != maintenance_seen_) {
+      maintenance_seen_ = raised;
       if (!std::isfinite(next_visit_s_)) next_visit_s_ = t_ + c_.maintenance_response_s;
     }
   }
@@ -175,13 +161,14 @@ class Run {
         // motion since the request (wind, an earthquake) mixed the fluid
         // enough, the visit is called off.
         next_visit_s_ = kInf;
-        if (t_ < w_.duration_s && sch_.output().maintenance_required) {
-          mix(fw::plan_mixing(sch_.config(), est_.volume_to_ceiling_m3(c_.scheduler.ceiling_gap_fraction)));
+        if (t_ < w_.duration_s && firmware_.output().maintenance_required) {
+          const double volume_m3 = firmware_.estimator().volume_to_ceiling_m3(c_.scheduler.ceiling_gap_fraction);
+          mix(fw::plan_mixing(firmware_.scheduler().config(), volume_m3));
         }
       } else if (pending_request_) {
         pending_request_ = false;
-        started_id_ = sch_.output().request_id;
-        mix(sch_.output().plan);
+        started_id_ = firmware_.output().request_id;
+        mix(firmware_.output().plan);
       } else {
         break;
       }
@@ -234,8 +221,7 @@ class Run {
   const ServiceConfig& c_;
   const PolicySpec p_;
   fw::SettlingModel truth_;
-  fw::IdleEstimator est_;
-  fw::MixingScheduler sch_;
+  app::MixingTask firmware_;
   PolicyResult r_;
   bool fixed_ = false;
   bool estimator_ = false;
@@ -250,7 +236,6 @@ class Run {
   double next_visit_s_ = kInf;
   bool pending_request_ = false;
   std::uint32_t started_id_ = 0;
-  std::uint32_t confirmed_id_ = 0;
   std::uint32_t maintenance_seen_ = 0;
 };
 

@@ -26,7 +26,8 @@
 ///  - fixed-interval: a mixing cycle every interval, planned like the
 ///    scheduler's (fw::plan_mixing for the volume that brings PR within the
 ///    ceiling gap). Without an actuator the cycle is a maintenance visit.
-///  - estimator: the firmware's fw::IdleEstimator and fw::MixingScheduler,
+///  - estimator: the firmware's app::MixingTask (fw::IdleEstimator and
+///    fw::MixingScheduler composed as the board runtime composes them),
 ///    fed the damper displacement and ground acceleration as the board would
 ///    feed them (sampled at the event grid; 20 samples a period while a
 ///    mixing cycle runs; 4 a second during an earthquake). A request starts

@@ -1,5 +1,5 @@
 // Board files: every board in boards/ parses; bad files get one line naming
-// file, line and field.
+// file, line and field; a board says whether it has GPIO lines.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -19,21 +19,23 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
+/// Everything but [gpio].
 constexpr const char* kMinimal = R"([board]
 name = "x"
 [control]
 [can]
 interface = "can0"
 )";
+constexpr const char* kNoGpio = "[gpio]\nfitted = false\n";
 
 TEST(BoardConfig, MinimalFileTakesTheDefaults) {
-  const BoardConfig c = parse_board_config(kMinimal, "b.toml");
+  const BoardConfig c = parse_board_config(std::string(kMinimal) + kNoGpio, "b.toml");
   EXPECT_EQ(c.name, "x");
   EXPECT_EQ(c.period_us, 1000u);
   EXPECT_EQ(c.mode, control::ControlMode::kSemiActive);
   EXPECT_EQ(c.nodes.controller, 1);
   EXPECT_EQ(c.nodes.drive, 2);
-  EXPECT_FALSE(c.gpio_enabled);
+  EXPECT_FALSE(c.gpio_fitted);
   EXPECT_EQ(c.sched_fifo_priority, 0);
 }
 
@@ -52,7 +54,7 @@ TEST(BoardConfig, EveryBoardInTheRepositoryParses) {
 TEST(BoardConfig, EmulatedBoardUsesVcanAndThePl061) {
   const BoardConfig c = load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "emulated-arm64" / "board.toml");
   EXPECT_EQ(c.can_interface, "vcan0");
-  EXPECT_TRUE(c.gpio_enabled);
+  EXPECT_TRUE(c.gpio_fitted);
   EXPECT_EQ(c.gpio_chip, "gpiochip0");
   EXPECT_EQ(c.drive_enable.offset, 0);
 }
@@ -88,6 +90,31 @@ TEST(BoardConfig, DuplicateNodeIdsAreRefused) {
 
 TEST(BoardConfig, MissingTableIsNamed) {
   EXPECT_EQ(error_of("[board]\nname = \"x\"\n[can]\n"), "b.toml:1: [control]: missing table");
+}
+
+TEST(BoardConfig, AFileThatDoesNotSayWhetherGpioIsFittedIsRefused) {
+  EXPECT_EQ(error_of(kMinimal),
+            "b.toml:1: [gpio]: missing table (the chip and its lines, or fitted = false for a board without GPIO)");
+}
+
+TEST(BoardConfig, NotFittedTakesNoLines) {
+  const std::string e = error_of(std::string(kMinimal) + "[gpio]\nfitted = false\nchip = \"gpiochip0\"\n");
+  EXPECT_EQ(e, "b.toml:8: gpio.chip: not allowed with fitted = false (a board without GPIO has no lines)");
+}
+
+TEST(BoardConfig, FittedMustBeTrueOrFalse) {
+  const std::string e = error_of(std::string(kMinimal) + "[gpio]\nfitted = \"no\"\n");
+  EXPECT_EQ(e, "b.toml:7: gpio.fitted: expected true or false");
+}
+
+TEST(BoardConfig, FittedLinesNeedTheChip) {
+  const std::string e = error_of(std::string(kMinimal) + "[gpio]\nfitted = true\ndrive_enable = 0\ndrive_fault = 1\n");
+  EXPECT_EQ(e, "b.toml:6: gpio.chip: missing GPIO chip (e.g. \"gpiochip0\")");
+}
+
+TEST(BoardConfig, OnlyTheSimBoardHasNoGpio) {
+  EXPECT_FALSE(load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "sim" / "board.toml").gpio_fitted);
+  EXPECT_TRUE(load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "rpi-cm4-mcp2515" / "board.toml").gpio_fitted);
 }
 
 TEST(BoardConfig, MissingFileIsNamed) {

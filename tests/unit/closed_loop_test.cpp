@@ -94,7 +94,7 @@ TEST(ClosedLoop, DamperForceOpposesBaseVelocity) {
 // More current, more damping force, less base displacement.
 TEST(ClosedLoop, PassiveOnReducesBaseDisplacement) {
   const auto m = synthetic_study_motion(2, kThesisPga_g, 1e-3, 30.0);
-  ConstantCurrentController off(0.0), on(kPassiveOnCurrent_a);
+  ConstantCurrentController off(0.0), on(fw::kPassiveOnCurrent_a);
   const auto s_off = run_closed_loop({}, m.accel_m_s2, off);
   const auto s_on = run_closed_loop({}, m.accel_m_s2, on);
   EXPECT_LT(s_on.peak_base_displacement_m, s_off.peak_base_displacement_m);
@@ -105,7 +105,7 @@ TEST(ClosedLoop, PassiveOnReducesBaseDisplacement) {
 // every result is the same; before it, idle time weakens the damper.
 TEST(ClosedLoop, IdleTimeEffectSaturatesPastMaxSettlingTime) {
   const auto m = synthetic_study_motion(4, kThesisPga_g, 1e-3, 20.0);
-  ConstantCurrentController on(kPassiveOnCurrent_a);
+  ConstantCurrentController on(fw::kPassiveOnCurrent_a);
   plant::PlantSpec spec;
   const auto at = [&](double years) {
     spec.idle_time_s = units::years_to_s(years);

@@ -41,12 +41,12 @@ Peaks peaks(const StudyMotion& motion, const std::string& control, double idle_y
     auto off = make_controller(control::ControlMode::kPassiveOff, spec.step_s);
     s = run_closed_loop(spec, motion.accel_m_s2, *off);
   } else if (control == "semi-active-float") {
-    FirmwareController<num::Float32Policy> c(firmware_config(control::ControlMode::kSemiActive, spec.step_s));
+    FirmwareController<num::Float32Policy> c(fw::default_controller_config(control::ControlMode::kSemiActive, spec.step_s));
     s = run_closed_loop(spec, motion.accel_m_s2, c);
     // A clean simulation never trips the input guard.
     EXPECT_EQ(c.status().fallback_ticks + c.status().held_ticks + c.status().stale_inputs, 0u) << motion.name;
   } else {
-    FirmwareController<num::Fixed32Policy> c(firmware_config(control::ControlMode::kSemiActive, spec.step_s));
+    FirmwareController<num::Fixed32Policy> c(fw::default_controller_config(control::ControlMode::kSemiActive, spec.step_s));
     s = run_closed_loop(spec, motion.accel_m_s2, c);
     EXPECT_EQ(c.status().fallback_ticks + c.status().held_ticks + c.status().stale_inputs, 0u) << motion.name;
   }

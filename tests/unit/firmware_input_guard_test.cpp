@@ -97,7 +97,7 @@ TYPED_TEST_SUITE(BadInputTest, Policies);
 
 TYPED_TEST(BadInputTest, CleanInputCountsNothing) {
   (void)this->run_good(20000);
-  const ControllerStatus& s = this->c_.status();
+  const DamperControllerStatus& s = this->c_.status();
   EXPECT_EQ(s.ticks, 20000u);
   for (int k = 1; k < kInputFaultKinds; ++k) EXPECT_EQ(s.invalid_by_kind[k], 0u) << k;
   EXPECT_EQ(s.stale_inputs, 0u);
@@ -227,7 +227,7 @@ TYPED_TEST(BadInputTest, BadAccelerationIsCountedButDoesNotChangeTheOutput) {
     ASSERT_EQ(a.current_command_a, b.current_command_a);
     ASSERT_EQ(a.desired_force_n, b.desired_force_n);
   }
-  const ControllerStatus& s = this->c_.status();
+  const DamperControllerStatus& s = this->c_.status();
   EXPECT_EQ(s.invalid(InputSignal::kBaseAccel), 3000u);
   EXPECT_EQ(s.invalid(InputSignal::kGroundAccel), 3000u);
   EXPECT_EQ(s.invalid(InputFault::kNotANumber), 3000u);

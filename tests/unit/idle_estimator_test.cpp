@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "firmware/platform/sim/memory_state_store.hpp"
 #include "mrd/physics/mr_damper.hpp"
 #include "mrd/units.hpp"
 
@@ -153,7 +154,7 @@ TEST(IdleEstimator, IdlePeriodsAdd) {
   before.boot_with(0.0);
   before.sample(0.0);
   before.idle_for(0.3 * kYear);
-  InMemoryStateStore store;
+  sim::MemoryStateStore store;
   ASSERT_EQ(before.est.save(store), SaveOutcome::kSaved);
   IdleEstimator after;
   ASSERT_TRUE(after.init({}));
@@ -351,7 +352,7 @@ TEST(IdleEstimator, SavesAtTheIntervalAndOnStateChanges) {
   EXPECT_FALSE(rig.est.save_due());
   rig.idle_for(1.0);
   EXPECT_TRUE(rig.est.save_due());
-  InMemoryStateStore store;
+  sim::MemoryStateStore store;
   ASSERT_EQ(rig.est.save(store), SaveOutcome::kSaved);
   EXPECT_FALSE(rig.est.save_due());
 
@@ -383,7 +384,7 @@ TEST(IdleEstimator, SaveAndBootRoundTrip) {
   shake(rig, 10.0);
   rig.idle_for(100.0);
   rig.est.note_mixing_confirmed();
-  InMemoryStateStore store;
+  sim::MemoryStateStore store;
   ASSERT_EQ(rig.est.save(store), SaveOutcome::kSaved);
   PersistedIdleState s;
   ASSERT_EQ(decode_state(store.bytes(), s), DecodeStatus::kOk);
@@ -401,7 +402,7 @@ TEST(IdleEstimator, SaveAndBootRoundTrip) {
 TEST(IdleEstimator, NoClockNoSave) {
   IdleEstimator est;
   ASSERT_TRUE(est.init({}));
-  InMemoryStateStore store;
+  sim::MemoryStateStore store;
   est.boot(store, 0, 0.0, false);
   EXPECT_EQ(est.save(store), SaveOutcome::kSkippedNoClock);
   EXPECT_FALSE(store.has_record());

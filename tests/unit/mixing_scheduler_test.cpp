@@ -86,9 +86,9 @@ class Scheduler : public ::testing::Test {
   /// Brings the scheduler into `running` with a cycle planned.
   void start_running() {
     const auto& o = tick(0.79);
-    ASSERT_EQ(o.state, MixingState::kRequested);
+    ASSERT_EQ(o.state, SchedulerState::kRequested);
     tick(0.79, 0.0, 0.0, 0.0, true);
-    ASSERT_EQ(s_.output().state, MixingState::kRunning);
+    ASSERT_EQ(s_.output().state, SchedulerState::kRunning);
   }
   MixingSchedulerConfig c_;
   MixingScheduler s_;
@@ -99,7 +99,7 @@ class Scheduler : public ::testing::Test {
 TEST_F(Scheduler, StaysIdleWhileTheForecastMeetsTheThreshold) {
   for (double f : {1.0, 0.9, 0.8}) {
     const auto& o = tick(f);
-    EXPECT_EQ(o.state, MixingState::kIdle);
+    EXPECT_EQ(o.state, SchedulerState::kIdle);
     EXPECT_FALSE(o.request_active);
   }
 }
@@ -108,27 +108,27 @@ TEST_F(Scheduler, StaysIdleWhileTheForecastMeetsTheThreshold) {
 // and, at 90 % of the plan, to confirmed; after the hold back to idle.
 TEST_F(Scheduler, RequestsRunsAndConfirmsFromMeasuredVolume) {
   const auto& o = tick(0.79);
-  EXPECT_EQ(o.state, MixingState::kRequested);
+  EXPECT_EQ(o.state, SchedulerState::kRequested);
   EXPECT_TRUE(o.request_active);
   EXPECT_EQ(o.request_id, 1u);
   EXPECT_EQ(o.plan.cycles, 1u);
   const double planned = o.plan.volume_m3;
   tick(0.79, 0.04 * planned);
-  EXPECT_EQ(s_.output().state, MixingState::kRequested);  // below start_fraction (5 %)
+  EXPECT_EQ(s_.output().state, SchedulerState::kRequested);  // below start_fraction (5 %)
   tick(0.79, 0.06 * planned);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
   tick(0.85, 0.89 * planned);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
   tick(0.95, 0.91 * planned);
-  EXPECT_EQ(s_.output().state, MixingState::kConfirmed);
+  EXPECT_EQ(s_.output().state, SchedulerState::kConfirmed);
   EXPECT_FALSE(s_.output().request_active);
   EXPECT_FALSE(s_.output().abort);
   EXPECT_EQ(s_.output().reason, MixingEndReason::kConfirmed);
   EXPECT_EQ(s_.counters().confirmed, 1u);
   wait(c_.confirm_hold_s - 0.01, 0.95, planned);
-  EXPECT_EQ(s_.output().state, MixingState::kConfirmed);
+  EXPECT_EQ(s_.output().state, SchedulerState::kConfirmed);
   wait(0.02, 0.95, planned);
-  EXPECT_EQ(s_.output().state, MixingState::kIdle);
+  EXPECT_EQ(s_.output().state, SchedulerState::kIdle);
 }
 
 // The measured volume counts from the request on, not from commissioning.
@@ -136,9 +136,9 @@ TEST_F(Scheduler, VolumeCountsFromTheRequest) {
   const double before = 5.0;  // m³ displaced in earlier years
   tick(0.79, before);
   tick(0.79, before, 0.0, 0.0, true);
-  ASSERT_EQ(s_.output().state, MixingState::kRunning);
+  ASSERT_EQ(s_.output().state, SchedulerState::kRunning);
   tick(0.79, before + 0.5e-3);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
 }
 
 // Three samples above 0.05 m/s² abort at once: the request is withdrawn on
@@ -147,10 +147,10 @@ TEST_F(Scheduler, ShakingAbortsAtOnce) {
   start_running();
   tick(0.79, 0.0, 0.06);
   tick(0.79, 0.0, -0.06);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
   EXPECT_TRUE(s_.output().request_active);
   tick(0.79, 0.0, 0.06);
-  EXPECT_EQ(s_.output().state, MixingState::kAborted);
+  EXPECT_EQ(s_.output().state, SchedulerState::kAborted);
   EXPECT_FALSE(s_.output().request_active);
   EXPECT_TRUE(s_.output().abort);
   EXPECT_TRUE(s_.output().shaking);
@@ -164,7 +164,7 @@ TEST_F(Scheduler, ShakingAbortsAtOnce) {
 TEST_F(Scheduler, BaseAccelerationAlsoTriggers) {
   start_running();
   for (int k = 0; k < 3; ++k) tick(0.79, 0.0, 0.0, 0.2);
-  EXPECT_EQ(s_.output().state, MixingState::kAborted);
+  EXPECT_EQ(s_.output().state, SchedulerState::kAborted);
 }
 
 // An interrupted run of samples restarts the count; invalid samples never count.
@@ -175,12 +175,12 @@ TEST_F(Scheduler, TriggerNeedsConsecutiveValidSamples) {
   tick(0.79, 0.0, 0.01);
   tick(0.79, 0.0, 0.06);
   tick(0.79, 0.0, 0.06);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
   in_.ground_accel_valid = false;
   tick(0.79, 0.0, 0.06);
   in_.ground_accel_valid = true;
   tick(0.79, 0.0, 0.06);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
 }
 
 // No request during shaking, and none until it has been quiet for holdoff_s.
@@ -188,19 +188,19 @@ TEST_F(Scheduler, WaitsForQuietAfterShaking) {
   for (int k = 0; k < 3; ++k) tick(0.9, 0.0, 0.3);
   ASSERT_TRUE(s_.output().shaking);
   for (int k = 0; k < 100; ++k) tick(0.79, 0.0, 0.3);
-  EXPECT_EQ(s_.output().state, MixingState::kIdle);
+  EXPECT_EQ(s_.output().state, SchedulerState::kIdle);
   wait(c_.holdoff_s - 1.0, 0.79);
-  EXPECT_EQ(s_.output().state, MixingState::kIdle);
+  EXPECT_EQ(s_.output().state, SchedulerState::kIdle);
   wait(1.1, 0.79);
-  EXPECT_EQ(s_.output().state, MixingState::kRequested);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRequested);
 }
 
 TEST_F(Scheduler, AbortedCycleIsRetriedAfterTheHoldoff) {
   start_running();
   for (int k = 0; k < 3; ++k) tick(0.79, 0.0, 0.3);
-  ASSERT_EQ(s_.output().state, MixingState::kAborted);
+  ASSERT_EQ(s_.output().state, SchedulerState::kAborted);
   wait(c_.holdoff_s + 0.01, 0.79);
-  EXPECT_EQ(s_.output().state, MixingState::kRequested);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRequested);
   EXPECT_EQ(s_.output().request_id, 2u);
 }
 
@@ -209,7 +209,7 @@ TEST_F(Scheduler, NoRetryWhenShakingMixedTheFluid) {
   start_running();
   for (int k = 0; k < 3; ++k) tick(0.79, 0.0, 0.3);
   wait(c_.holdoff_s + 0.01, 0.97);
-  EXPECT_EQ(s_.output().state, MixingState::kIdle);
+  EXPECT_EQ(s_.output().state, SchedulerState::kIdle);
 }
 
 TEST_F(Scheduler, LostAccelerometersAbortTheCycle) {
@@ -217,7 +217,7 @@ TEST_F(Scheduler, LostAccelerometersAbortTheCycle) {
   in_.ground_accel_valid = false;
   in_.base_accel_valid = false;
   tick(0.79);
-  EXPECT_EQ(s_.output().state, MixingState::kAborted);
+  EXPECT_EQ(s_.output().state, SchedulerState::kAborted);
   EXPECT_EQ(s_.output().reason, MixingEndReason::kSensorFault);
   EXPECT_TRUE(s_.output().abort);
 }
@@ -230,14 +230,14 @@ TEST_F(Scheduler, MixingThatMovesTheBaseRaisesOnlyTheBaseThreshold) {
   reinit();
   start_running();
   for (int k = 0; k < 10; ++k) tick(0.79, 0.0, 0.0, 0.15);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
   for (int k = 0; k < 3; ++k) tick(0.79, 0.0, 0.0, 0.18);
-  EXPECT_EQ(s_.output().state, MixingState::kAborted);
+  EXPECT_EQ(s_.output().state, SchedulerState::kAborted);
 
   reinit();
   start_running();
   for (int k = 0; k < 3; ++k) tick(0.79, 0.0, 0.06, 0.0);
-  EXPECT_EQ(s_.output().state, MixingState::kAborted);
+  EXPECT_EQ(s_.output().state, SchedulerState::kAborted);
 }
 
 TEST_F(Scheduler, NoActuatorRaisesMaintenanceUntilTheFluidIsMixed) {
@@ -245,7 +245,7 @@ TEST_F(Scheduler, NoActuatorRaisesMaintenanceUntilTheFluidIsMixed) {
   reinit();
   EXPECT_DOUBLE_EQ(s_.forecast_horizon_s(), c_.maintenance_lead_time_s);
   const auto& o = tick(0.79);
-  EXPECT_EQ(o.state, MixingState::kMaintenanceRequired);
+  EXPECT_EQ(o.state, SchedulerState::kMaintenanceRequired);
   EXPECT_TRUE(o.maintenance_required);
   EXPECT_FALSE(o.request_active);
   EXPECT_EQ(o.reason, MixingEndReason::kNoActuator);
@@ -253,7 +253,7 @@ TEST_F(Scheduler, NoActuatorRaisesMaintenanceUntilTheFluidIsMixed) {
   EXPECT_TRUE(s_.output().maintenance_required);
   EXPECT_EQ(s_.counters().maintenance_raised, 1u);
   tick(0.95);  // a technician cycled the damper
-  EXPECT_EQ(s_.output().state, MixingState::kIdle);
+  EXPECT_EQ(s_.output().state, SchedulerState::kIdle);
   EXPECT_FALSE(s_.output().maintenance_required);
 }
 
@@ -262,15 +262,15 @@ TEST_F(Scheduler, NoActuatorRaisesMaintenanceUntilTheFluidIsMixed) {
 TEST_F(Scheduler, ActuatorThatNeverStartsEndsInMaintenance) {
   tick(0.79);
   for (std::uint32_t attempt = 1; attempt <= c_.max_attempts; ++attempt) {
-    ASSERT_EQ(s_.output().state, MixingState::kRequested) << attempt;
+    ASSERT_EQ(s_.output().state, SchedulerState::kRequested) << attempt;
     wait(c_.start_timeout_s + 0.01, 0.79);
     if (attempt < c_.max_attempts) {
       ASSERT_EQ(s_.output().reason, MixingEndReason::kStartTimeout);
-      ASSERT_EQ(s_.output().state, MixingState::kAborted);
+      ASSERT_EQ(s_.output().state, SchedulerState::kAborted);
       wait(c_.holdoff_s, 0.79);
     }
   }
-  EXPECT_EQ(s_.output().state, MixingState::kMaintenanceRequired);
+  EXPECT_EQ(s_.output().state, SchedulerState::kMaintenanceRequired);
   EXPECT_EQ(s_.output().reason, MixingEndReason::kAttemptsExhausted);
   EXPECT_EQ(s_.counters().failed, 3u);
 }
@@ -280,19 +280,19 @@ TEST_F(Scheduler, IncompleteRunFails) {
   start_running();
   const double limit_s = s_.output().plan.duration_s * c_.run_timeout_factor + c_.run_margin_s;
   wait(limit_s - 0.01, 0.79, 0.5 * s_.output().plan.volume_m3);
-  EXPECT_EQ(s_.output().state, MixingState::kRunning);
+  EXPECT_EQ(s_.output().state, SchedulerState::kRunning);
   wait(0.02, 0.79, 0.5 * s_.output().plan.volume_m3);
-  EXPECT_EQ(s_.output().state, MixingState::kAborted);
+  EXPECT_EQ(s_.output().state, SchedulerState::kAborted);
   EXPECT_EQ(s_.output().reason, MixingEndReason::kIncomplete);
 }
 
 TEST_F(Scheduler, ActuatorNotReadyCountsAsAFailedAttempt) {
   in_.actuator_ready = false;
   tick(0.79);
-  EXPECT_EQ(s_.output().state, MixingState::kDue);
+  EXPECT_EQ(s_.output().state, SchedulerState::kDue);
   EXPECT_FALSE(s_.output().request_active);
   wait(c_.start_timeout_s + 0.01, 0.79);
-  EXPECT_EQ(s_.output().state, MixingState::kAborted);
+  EXPECT_EQ(s_.output().state, SchedulerState::kAborted);
   EXPECT_EQ(s_.counters().failed, 1u);
 }
 
@@ -416,14 +416,14 @@ struct Loop {
       si.volume_needed_m3 = est.volume_to_ceiling_m3(sc.ceiling_gap_fraction);
       si.measured_volume_m3 = est.estimate().lifetime_volume_m3;
       const auto& o = sch.step(si);
-      if (o.request_active && !moving && o.state == MixingState::kRequested) {
+      if (o.request_active && !moving && o.state == SchedulerState::kRequested) {
         moving = true;
         start_tick = tick + 1;
         last_plan = o.plan;
         if (plans++ == 0) first_plan = o.plan;
         stroke_ticks = static_cast<std::uint64_t>(std::llround(last_plan.duration_s / kDt));
       }
-      if (o.state == MixingState::kConfirmed && confirmed_id != o.request_id) {
+      if (o.state == SchedulerState::kConfirmed && confirmed_id != o.request_id) {
         confirmed_id = o.request_id;
         est.note_mixing_confirmed();
       }
@@ -444,7 +444,7 @@ TEST(MixingLoop, EstimatorConfirmsTheRequestedCycle) {
   EXPECT_EQ(sch.counters().requested, 1u);
   EXPECT_EQ(sch.counters().confirmed, 1u);
   EXPECT_EQ(est.estimate().mixing_cycles, 1u);
-  EXPECT_EQ(sch.output().state, MixingState::kIdle);
+  EXPECT_EQ(sch.output().state, SchedulerState::kIdle);
   EXPECT_FALSE(est.estimate().episode_open);
   // One cycle from x = 0 through the 0.1 mm dead band d counts
   // (A − d) + (2A − 2d) + (A − 2d) = 4A − 5d of stroke.
@@ -476,7 +476,7 @@ TEST(MixingLoop, AfterLostStateTwoRequestsRestoreTheThreshold) {
   EXPECT_EQ(loop.first_plan.cycles, 10u);
   EXPECT_EQ(loop.last_plan.cycles, 1u);
   EXPECT_EQ(loop.plans, 2u);
-  EXPECT_EQ(loop.sch.output().state, MixingState::kIdle);
+  EXPECT_EQ(loop.sch.output().state, SchedulerState::kIdle);
   EXPECT_NEAR(loop.est.estimate().capacity_fraction, 0.88, 0.01);
 }
 

@@ -73,7 +73,7 @@ TEST(StateRecord, RoundTrip) {
 // "MRDI", version 1, size 64, 1.0 = 0x3FF0000000000000 little-endian,
 // and the CRC of bytes 0..59 (computed by zlib) in the last four bytes.
 TEST(StateRecord, LayoutAsDocumented) {
-  const StateRecord r = encode_state(sample_state());
+  const hal::StateRecord r = encode_state(sample_state());
   EXPECT_EQ(r[0], 'M');
   EXPECT_EQ(r[1], 'R');
   EXPECT_EQ(r[2], 'D');
@@ -98,16 +98,16 @@ TEST(StateRecord, LayoutAsDocumented) {
 // CRC-32 detects every single-bit error; magic and size bits are caught
 // even before the CRC is looked at.
 TEST(StateRecord, EverySingleBitFlipIsRefused) {
-  const StateRecord good = encode_state(sample_state());
-  for (std::size_t bit = 0; bit < 8 * kStateRecordSize; ++bit) {
-    StateRecord r = good;
+  const hal::StateRecord good = encode_state(sample_state());
+  for (std::size_t bit = 0; bit < 8 * hal::kStateRecordSize; ++bit) {
+    hal::StateRecord r = good;
     r[bit / 8] = static_cast<std::uint8_t>(r[bit / 8] ^ (1u << (bit % 8)));
     PersistedIdleState out;
     EXPECT_NE(decode_state(r, out), DecodeStatus::kOk) << "bit " << bit;
   }
 }
 
-StateRecord with_fixed_crc(StateRecord r) {
+hal::StateRecord with_fixed_crc(hal::StateRecord r) {
   const std::uint32_t c = crc32(r.data(), 60);
   for (int k = 0; k < 4; ++k) r[60 + k] = static_cast<std::uint8_t>(c >> (8 * k));
   return r;
@@ -115,7 +115,7 @@ StateRecord with_fixed_crc(StateRecord r) {
 
 TEST(StateRecord, RefusalReasons) {
   PersistedIdleState out;
-  StateRecord r = encode_state(sample_state());
+  hal::StateRecord r = encode_state(sample_state());
   r[0] = 'X';
   EXPECT_EQ(decode_state(with_fixed_crc(r), out), DecodeStatus::kBadMagic);
 
@@ -171,24 +171,24 @@ class FileStore : public ::testing::Test {
 
 TEST_F(FileStore, MissingFileIsMissing) {
   posix::FileStateStore store(path_.string());
-  StateRecord r{};
-  EXPECT_EQ(store.load(r), StoreStatus::kMissing);
+  hal::StateRecord r{};
+  EXPECT_EQ(store.load(r), hal::StoreStatus::kMissing);
 }
 
 TEST_F(FileStore, SaveThenLoadGivesTheSameBytesAndLeavesNoTemporary) {
   posix::FileStateStore store(path_.string());
-  const StateRecord rec = encode_state(sample_state());
-  ASSERT_EQ(store.save(rec), StoreStatus::kOk);
-  EXPECT_EQ(fs::file_size(path_), kStateRecordSize);
+  const hal::StateRecord rec = encode_state(sample_state());
+  ASSERT_EQ(store.save(rec), hal::StoreStatus::kOk);
+  EXPECT_EQ(fs::file_size(path_), hal::kStateRecordSize);
   EXPECT_FALSE(fs::exists(store.temp_path()));
-  StateRecord back{};
-  ASSERT_EQ(store.load(back), StoreStatus::kOk);
+  hal::StateRecord back{};
+  ASSERT_EQ(store.load(back), hal::StoreStatus::kOk);
   EXPECT_EQ(back, rec);
 
   PersistedIdleState s = sample_state();
   s.save_sequence = 43;
-  ASSERT_EQ(store.save(encode_state(s)), StoreStatus::kOk);
-  ASSERT_EQ(store.load(back), StoreStatus::kOk);
+  ASSERT_EQ(store.save(encode_state(s)), hal::StoreStatus::kOk);
+  ASSERT_EQ(store.load(back), hal::StoreStatus::kOk);
   PersistedIdleState out;
   ASSERT_EQ(decode_state(back, out), DecodeStatus::kOk);
   EXPECT_EQ(out.save_sequence, 43u);
@@ -196,65 +196,65 @@ TEST_F(FileStore, SaveThenLoadGivesTheSameBytesAndLeavesNoTemporary) {
 
 TEST_F(FileStore, TruncatedOrOverlongFileHasTheWrongSize) {
   posix::FileStateStore store(path_.string());
-  const StateRecord rec = encode_state(sample_state());
-  StateRecord back{};
+  const hal::StateRecord rec = encode_state(sample_state());
+  hal::StateRecord back{};
   write_bytes(std::vector<std::uint8_t>(rec.begin(), rec.begin() + 40));
-  EXPECT_EQ(store.load(back), StoreStatus::kWrongSize);
+  EXPECT_EQ(store.load(back), hal::StoreStatus::kWrongSize);
   write_bytes({});
-  EXPECT_EQ(store.load(back), StoreStatus::kWrongSize);
+  EXPECT_EQ(store.load(back), hal::StoreStatus::kWrongSize);
   std::vector<std::uint8_t> longer(rec.begin(), rec.end());
   longer.push_back(0);
   write_bytes(longer);
-  EXPECT_EQ(store.load(back), StoreStatus::kWrongSize);
+  EXPECT_EQ(store.load(back), hal::StoreStatus::kWrongSize);
 }
 
 // A crash after writing `<path>.new` but before the rename: load() still
 // sees the old record, and the next save replaces both.
 TEST_F(FileStore, StaleTemporaryFromACrashIsIgnoredAndReplaced) {
   posix::FileStateStore store(path_.string());
-  const StateRecord old_rec = encode_state(sample_state());
-  ASSERT_EQ(store.save(old_rec), StoreStatus::kOk);
+  const hal::StateRecord old_rec = encode_state(sample_state());
+  ASSERT_EQ(store.save(old_rec), hal::StoreStatus::kOk);
   { std::ofstream(store.temp_path(), std::ios::binary) << "half a rec"; }
-  StateRecord back{};
-  ASSERT_EQ(store.load(back), StoreStatus::kOk);
+  hal::StateRecord back{};
+  ASSERT_EQ(store.load(back), hal::StoreStatus::kOk);
   EXPECT_EQ(back, old_rec);
   PersistedIdleState s = sample_state();
   s.save_sequence = 99;
-  ASSERT_EQ(store.save(encode_state(s)), StoreStatus::kOk);
+  ASSERT_EQ(store.save(encode_state(s)), hal::StoreStatus::kOk);
   EXPECT_FALSE(fs::exists(store.temp_path()));
-  ASSERT_EQ(store.load(back), StoreStatus::kOk);
+  ASSERT_EQ(store.load(back), hal::StoreStatus::kOk);
   EXPECT_EQ(back, encode_state(s));
 }
 
 // When the temporary cannot be written the old record stays untouched.
 TEST_F(FileStore, FailedSaveKeepsTheOldRecord) {
   posix::FileStateStore store(path_.string());
-  const StateRecord old_rec = encode_state(sample_state());
-  ASSERT_EQ(store.save(old_rec), StoreStatus::kOk);
+  const hal::StateRecord old_rec = encode_state(sample_state());
+  ASSERT_EQ(store.save(old_rec), hal::StoreStatus::kOk);
   fs::create_directory(store.temp_path());  // open(O_WRONLY) on a folder fails
   PersistedIdleState s = sample_state();
   s.save_sequence = 1000;
-  EXPECT_EQ(store.save(encode_state(s)), StoreStatus::kIoError);
+  EXPECT_EQ(store.save(encode_state(s)), hal::StoreStatus::kIoError);
   EXPECT_NE(store.last_errno(), 0);
-  StateRecord back{};
-  ASSERT_EQ(store.load(back), StoreStatus::kOk);
+  hal::StateRecord back{};
+  ASSERT_EQ(store.load(back), hal::StoreStatus::kOk);
   EXPECT_EQ(back, old_rec);
 }
 
 TEST_F(FileStore, UnreadableRecordIsAnIoError) {
   fs::create_directory(path_);  // read() on a folder fails with EISDIR
   posix::FileStateStore store(path_.string());
-  StateRecord back{};
-  EXPECT_EQ(store.load(back), StoreStatus::kIoError);
+  hal::StateRecord back{};
+  EXPECT_EQ(store.load(back), hal::StoreStatus::kIoError);
 }
 
 TEST_F(FileStore, BareFileNameUsesTheCurrentFolder) {
   const auto cwd = fs::current_path();
   fs::current_path(dir_);
   posix::FileStateStore store("state.bin");
-  const StoreStatus st = store.save(encode_state(sample_state()));
+  const hal::StoreStatus st = store.save(encode_state(sample_state()));
   fs::current_path(cwd);
-  EXPECT_EQ(st, StoreStatus::kOk);
+  EXPECT_EQ(st, hal::StoreStatus::kOk);
   EXPECT_TRUE(fs::exists(dir_ / "state.bin"));
 }
 
@@ -273,7 +273,7 @@ class EstimatorBoot : public FileStore {
     s.rtc_s = kRtc0;
     s.lifetime_volume_m3 = 0.5;
     posix::FileStateStore store(path_.string());
-    ASSERT_EQ(store.save(encode_state(s)), StoreStatus::kOk);
+    ASSERT_EQ(store.save(encode_state(s)), hal::StoreStatus::kOk);
   }
   IdleBootReport boot(double rtc_s, bool rtc_valid = true) {
     posix::FileStateStore store(path_.string());
@@ -303,7 +303,7 @@ TEST_F(EstimatorBoot, HealthyRecordAddsTheTimeOff) {
 
 TEST_F(EstimatorBoot, MissingFileMeansFullySettled) {
   const auto rep = boot(kRtc0);
-  EXPECT_EQ(rep.load, StoreStatus::kMissing);
+  EXPECT_EQ(rep.load, hal::StoreStatus::kMissing);
   expect_worst(kIdleNoSavedState);
 }
 
@@ -311,7 +311,7 @@ TEST_F(EstimatorBoot, TruncatedFileMeansFullySettled) {
   save_healthy();
   fs::resize_file(path_, 33);
   const auto rep = boot(kRtc0 + 10.0);
-  EXPECT_EQ(rep.load, StoreStatus::kWrongSize);
+  EXPECT_EQ(rep.load, hal::StoreStatus::kWrongSize);
   expect_worst(kIdleCorruptState);
 }
 
@@ -329,7 +329,7 @@ TEST_F(EstimatorBoot, WrongVersionMeansFullySettled) {
   save_healthy();
   auto bytes = read_bytes();
   bytes[4] = 9;
-  StateRecord r{};
+  hal::StateRecord r{};
   std::copy(bytes.begin(), bytes.end(), r.begin());
   r = with_fixed_crc(r);
   write_bytes({r.begin(), r.end()});

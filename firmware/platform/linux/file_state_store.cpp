@@ -36,14 +36,14 @@ bool write_all(int fd, const std::uint8_t* data, std::size_t size) noexcept {
 FileStateStore::FileStateStore(std::string path)
     : path_(std::move(path)), temp_path_(path_ + ".new"), dir_(parent_dir(path_)) {}
 
-fw::StoreStatus FileStateStore::load(fw::StateRecord& out) noexcept {
+hal::StoreStatus FileStateStore::load(hal::StateRecord& out) noexcept {
   const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     last_errno_ = errno;
-    return errno == ENOENT ? fw::StoreStatus::kMissing : fw::StoreStatus::kIoError;
+    return errno == ENOENT ? hal::StoreStatus::kMissing : hal::StoreStatus::kIoError;
   }
   // Read one byte more than a record to tell "too long" from "exact".
-  std::uint8_t buf[fw::kStateRecordSize + 1];
+  std::uint8_t buf[hal::kStateRecordSize + 1];
   std::size_t got = 0;
   while (got < sizeof buf) {
     const ssize_t n = ::read(fd, buf + got, sizeof buf - got);
@@ -51,46 +51,46 @@ fw::StoreStatus FileStateStore::load(fw::StateRecord& out) noexcept {
       if (errno == EINTR) continue;
       last_errno_ = errno;
       ::close(fd);
-      return fw::StoreStatus::kIoError;
+      return hal::StoreStatus::kIoError;
     }
     if (n == 0) break;
     got += static_cast<std::size_t>(n);
   }
   ::close(fd);
   last_errno_ = 0;
-  if (got != fw::kStateRecordSize) return fw::StoreStatus::kWrongSize;
-  for (std::size_t i = 0; i < fw::kStateRecordSize; ++i) out[i] = buf[i];
-  return fw::StoreStatus::kOk;
+  if (got != hal::kStateRecordSize) return hal::StoreStatus::kWrongSize;
+  for (std::size_t i = 0; i < hal::kStateRecordSize; ++i) out[i] = buf[i];
+  return hal::StoreStatus::kOk;
 }
 
-fw::StoreStatus FileStateStore::save(const fw::StateRecord& record) noexcept {
+hal::StoreStatus FileStateStore::save(const hal::StateRecord& record) noexcept {
   const int fd = ::open(temp_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
     last_errno_ = errno;
-    return fw::StoreStatus::kIoError;
+    return hal::StoreStatus::kIoError;
   }
   const bool written = write_all(fd, record.data(), record.size()) && ::fsync(fd) == 0;
   const int write_errno = errno;
   if (::close(fd) != 0 || !written) {
     last_errno_ = written ? errno : write_errno;
     ::unlink(temp_path_.c_str());
-    return fw::StoreStatus::kIoError;
+    return hal::StoreStatus::kIoError;
   }
   if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
     last_errno_ = errno;
     ::unlink(temp_path_.c_str());
-    return fw::StoreStatus::kIoError;
+    return hal::StoreStatus::kIoError;
   }
   // Make the rename durable: sync the folder that holds the entry.
   const int dfd = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd < 0) {
     last_errno_ = errno;
-    return fw::StoreStatus::kIoError;
+    return hal::StoreStatus::kIoError;
   }
   const bool synced = ::fsync(dfd) == 0;
   last_errno_ = synced ? 0 : errno;
   ::close(dfd);
-  return synced ? fw::StoreStatus::kOk : fw::StoreStatus::kIoError;
+  return synced ? hal::StoreStatus::kOk : hal::StoreStatus::kIoError;
 }
 
 }  // namespace mrd::posix

@@ -5,6 +5,9 @@
 /// structs travel through the in-process simulator and, encoded, over CAN.
 
 #include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <string_view>
 
 namespace mrd::control {
 
@@ -47,6 +50,15 @@ constexpr const char* mode_name(ControlMode m) noexcept {
     case ControlMode::kSemiActive: return "semi-active";
   }
   return "unknown";
+}
+
+/// The mode named `text` ("passive-off" | "passive-on" | "semi-active", as
+/// mode_name() spells them), or nothing.
+constexpr std::optional<ControlMode> parse_mode_name(std::string_view text) noexcept {
+  for (ControlMode m : {ControlMode::kPassiveOff, ControlMode::kPassiveOn, ControlMode::kSemiActive}) {
+    if (text == mode_name(m)) return m;
+  }
+  return std::nullopt;
 }
 
 }  // namespace mrd::control

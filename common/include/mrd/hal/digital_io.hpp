@@ -2,8 +2,9 @@
 /// The board's discrete lines as the control task sees them. Values are
 /// logical ("active" = enable the drive, fault present, maintenance due);
 /// the adapter applies each line's electrical polarity from the board file.
-/// Implementations: libgpiod 1.6 (firmware/platform/linux/gpiod_io) and an
-/// in-memory fake (firmware/platform/sim/memory_io).
+/// Implementations: libgpiod 1.6 (firmware/platform/linux/gpiod_io), none
+/// fitted (firmware/app/no_lines_fitted) and an in-memory fake
+/// (firmware/platform/sim/memory_io).
 
 #include <cstdint>
 

@@ -1,0 +1,208 @@
+#pragma once
+/// The board runtime: the loop around the control task, on the HAL only.
+///
+/// <pre>
+///   fixed period:  run_tick() → serve the state store → deadline = schedule.after_tick(now)
+///                  → sleep until the deadline → summary line when one is due
+///   lockstep:      poll the bus; a complete input set (one plant tick) → step; nothing for a
+///                  while → the plant has finished
+///   every tick:    control task (rx → core → command, lines, heartbeat) → drive-enable log
+///                  → mixing task, when attached: sample in, request and maintenance out
+/// </pre>
+///
+/// The same runtime runs `mrd-firmware` on a Linux board (SocketCAN, libgpiod,
+/// CLOCK_MONOTONIC) and the in-process `sim` board (in-memory bus and lines,
+/// a manual clock): only the adapters behind the HAL differ. Nothing in a
+/// tick allocates or throws; the state store, which may block on its medium,
+/// is served after the tick's command has gone out, never inside the tick.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+
+#include "firmware/app/control_task.hpp"
+#include "firmware/app/mixing_link.hpp"
+#include "firmware/app/mixing_task.hpp"
+#include "firmware/app/periodic_schedule.hpp"
+#include "firmware/app/runtime_log.hpp"
+#include "mrd/hal/can_bus.hpp"
+#include "mrd/hal/clock.hpp"
+#include "mrd/hal/digital_io.hpp"
+#include "mrd/hal/state_store.hpp"
+
+namespace mrd::app {
+
+/// The hardware a runtime runs on.
+struct RuntimePorts {
+  hal::Clock& clock;
+  hal::CanBus& bus;
+  hal::DigitalIo& io;
+  hal::StateStore* store = nullptr;     ///< where the mixing task's state is saved; none: never saved
+  const hal::WallClock* rtc = nullptr;  ///< the mixing task's wall clock; none: never valid
+  RuntimeLog* log = nullptr;            ///< none: the runtime writes nothing
+};
+
+struct RuntimeConfig {
+  std::int64_t period_ns = 1'000'000;  ///< control period, ns
+  std::uint64_t max_ticks = 0;         ///< stop after this many ticks; 0: until stopped
+  std::int64_t report_every_ns = 0;    ///< fixed period: summary this often; 0: at the end only
+  /// Lockstep: stop when no tick completes for this long (before the first
+  /// tick, kFirstTickWaitFactor times as long: the plant may start late).
+  std::int64_t lockstep_idle_exit_ns = 2'000'000'000;
+  const char* name = "mrd-firmware";  ///< first word of every line
+};
+
+inline constexpr std::int64_t kFirstTickWaitFactor = 30;
+/// Lockstep: longest single wait for the bus.
+inline constexpr std::chrono::milliseconds kLockstepPoll{100};
+
+template <ControlCore Core>
+class BoardRuntime {
+ public:
+  /// Builds the control task on `ports.bus` and `ports.io` and resets it
+  /// (and the core).
+  BoardRuntime(Core& core, const RuntimePorts& ports, const ControlTaskConfig& task, const RuntimeConfig& config) noexcept
+      : ports_(ports), config_(config), task_(core, ports.bus, ports.io, task) {
+    reset();
+  }
+
+  /// Runs `mixing` with every tick from now on (null: none). It must be
+  /// initialised and booted; it stays the caller's.
+  void attach_mixing(MixingTask* mixing) noexcept {
+    mixing_ = mixing;
+    request_ = MixingRequestEdge{};
+  }
+
+  /// Back to the state after construction.
+  void reset() noexcept {
+    task_.reset();
+    timing_ = LoopTiming{};
+    enable_ = DriveEnableWatch{};
+    request_ = MixingRequestEdge{};
+  }
+
+  /// One tick on whatever has arrived: drain the bus, step, serve the store.
+  control::ControllerOutput run_tick() noexcept {
+    task_.poll_rx();
+    const control::ControllerOutput out = step();
+    serve_store();
+    return out;
+  }
+
+  /// Ticks on the clock at the configured period, with absolute deadlines
+  /// (no drift) and missed periods counted, until `stop` or max_ticks; then
+  /// the summary line.
+  void run_periodic(const std::atomic<bool>& stop) noexcept {
+    const std::int64_t report_ns = config_.report_every_ns;
+    std::int64_t next_report_ns = ports_.clock.now_ns() + report_ns;
+    PeriodicSchedule schedule(config_.period_ns, ports_.clock.now_ns());
+    while (more(stop)) {
+      run_tick();
+      const std::int64_t deadline_ns = schedule.after_tick(ports_.clock.now_ns());
+      timing_.overruns = schedule.overruns();
+      timing_.worst_late_ns = schedule.worst_late_ns();
+      task_.set_overruns(timing_.overruns);
+      ports_.clock.sleep_until_ns(deadline_ns);
+      if (report_ns > 0 && ports_.clock.now_ns() >= next_report_ns) {
+        log_summary();
+        next_report_ns += report_ns;
+      }
+    }
+    log_summary();
+  }
+
+  /// Ticks once per complete input set (a simulated plant's tick) until
+  /// `stop`, max_ticks, or no tick for lockstep_idle_exit_ns; then the
+  /// summary line.
+  void run_lockstep(const std::atomic<bool>& stop) noexcept {
+    std::int64_t last_tick_ns = ports_.clock.now_ns();
+    while (more(stop)) {
+      task_.poll_rx();
+      if (task_.lockstep_ready()) {
+        step();
+        serve_store();
+        last_tick_ns = ports_.clock.now_ns();
+        continue;
+      }
+      if (!ports_.bus.wait_readable(kLockstepPoll) && plant_finished(last_tick_ns)) break;
+    }
+    log_summary();
+  }
+
+  /// Writes the summary line.
+  void log_summary() const noexcept {
+    if (!ports_.log) return;
+    char text[kLogLineSize];
+    format_summary(text, config_.name, task_.status(), timing_, enable_.changes());
+    ports_.log->line(text);
+  }
+
+  const ControlTask<Core>& task() const noexcept { return task_; }
+  ControlTask<Core>& task() noexcept { return task_; }
+  const LoopTiming& timing() const noexcept { return timing_; }
+  std::uint64_t enable_changes() const noexcept { return enable_.changes(); }
+
+ private:
+  bool more(const std::atomic<bool>& stop) const noexcept {
+    return !stop.load() && (config_.max_ticks == 0 || task_.tick() < config_.max_ticks);
+  }
+
+  /// The control task's tick on the samples polled, then what follows it.
+  control::ControllerOutput step() noexcept {
+    const control::ControllerOutput out = task_.step_tick();
+    note_enable(out.drive_enable);
+    if (mixing_) step_mixing();
+    return out;
+  }
+
+  void note_enable(bool enable) noexcept {
+    const std::uint64_t tick = task_.tick() - 1;
+    if (!enable_.note(tick, enable) || !ports_.log) return;
+    char text[kLogLineSize];
+    std::snprintf(text, sizeof text, "%s: tick %llu: drive-enable line %s", config_.name,
+                  static_cast<unsigned long long>(tick), enable ? "active" : "inactive");
+    ports_.log->line(text);
+  }
+
+  /// The mixing task on this tick's sample; its request and maintenance
+  /// output go to the control task (sent and driven from the next tick on).
+  void step_mixing() noexcept {
+    double rtc_s = 0.0;
+    const bool rtc_valid = ports_.rtc != nullptr && ports_.rtc->now_s(rtc_s);
+    const fw::MixingSchedulerOutput& out = mixing_->step(mixing_input(task_.status(), rtc_s, rtc_valid));
+    protocol::MixingCommand cmd;
+    if (request_.changed(out, cmd)) task_.request_mixing(cmd);
+    task_.set_maintenance_due(out.maintenance_required);
+  }
+
+  /// Saves the mixing task's state when it asks (I/O: outside the tick).
+  void serve_store() noexcept {
+    if (mixing_ && ports_.store && mixing_->save_due()) (void)mixing_->save(*ports_.store);
+  }
+
+  /// Lockstep: nothing arrived for long enough (says so in the log).
+  bool plant_finished(std::int64_t last_tick_ns) const noexcept {
+    const std::int64_t quiet_ns = ports_.clock.now_ns() - last_tick_ns;
+    const std::int64_t limit_ns = config_.lockstep_idle_exit_ns * (task_.tick() > 0 ? 1 : kFirstTickWaitFactor);
+    if (quiet_ns <= limit_ns) return false;
+    if (ports_.log) {
+      char text[kLogLineSize];
+      std::snprintf(text, sizeof text,
+                    "%s: lockstep: no complete tick for %.1f s after tick %llu: the plant has finished",
+                    config_.name, static_cast<double>(quiet_ns) / 1e9, static_cast<unsigned long long>(task_.tick()));
+      ports_.log->line(text);
+    }
+    return true;
+  }
+
+  RuntimePorts ports_;
+  RuntimeConfig config_;
+  ControlTask<Core> task_;
+  MixingTask* mixing_ = nullptr;
+  MixingRequestEdge request_{};
+  LoopTiming timing_{};
+  DriveEnableWatch enable_{};
+};
+
+}  // namespace mrd::app
