@@ -9,18 +9,18 @@ namespace mrd::cli {
 
 void require_finite_at_least(const std::string& option, double value, double min_inclusive) {
   if (!std::isfinite(value)) {
-    throw report::UsageError(option + ": expected a finite number, got " + (std::isnan(value) ? "NaN" : "infinity"));
+    throw io::UsageError(option + ": expected a finite number, got " + (std::isnan(value) ? "NaN" : "infinity"));
   }
   if (value < min_inclusive) {
     std::ostringstream os;
     os << option << ": expected a number >= " << min_inclusive << ", got " << value;
-    throw report::UsageError(os.str());
+    throw io::UsageError(os.str());
   }
 }
 
 void require_positive(const std::string& option, double value, const std::string& what) {
   require_finite_at_least(option, value, 0.0);
-  if (!(value > 0.0)) throw report::UsageError(option + ": expected " + what + " > 0, got " + std::to_string(value));
+  if (!(value > 0.0)) throw io::UsageError(option + ": expected " + what + " > 0, got " + std::to_string(value));
 }
 
 }  // namespace mrd::cli

@@ -25,10 +25,10 @@ Command add_synth_command(CLI::App& parent);
 Command add_schedule_command(CLI::App& parent);
 
 /// Checks a parsed number: finite and, if `min_inclusive` is given, not below
-/// it. Throws report::UsageError naming the option.
+/// it. Throws io::UsageError naming the option.
 void require_finite_at_least(const std::string& option, double value, double min_inclusive);
 
-/// Checks a parsed number is finite and > 0; throws report::UsageError
+/// Checks a parsed number is finite and > 0; throws io::UsageError
 /// naming the option and `what` ("a PGA", "a duration", ...) otherwise.
 void require_positive(const std::string& option, double value, const std::string& what);
 

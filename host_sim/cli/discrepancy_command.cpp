@@ -83,11 +83,11 @@ Command add_discrepancy_command(CLI::App& parent) {
   return {app, [o] {
             require_finite_at_least("--min-delta-bic", o->min_delta_bic, 0.0);
             require_finite_at_least("--min-improvement", o->min_improvement, 0.0);
-            if (o->min_improvement >= 1.0) throw report::UsageError("--min-improvement: expected a fraction below 1");
+            if (o->min_improvement >= 1.0) throw io::UsageError("--min-improvement: expected a fraction below 1");
             discrepancy::DiscrepancyOptions opt;
             if (!o->effects.empty()) {
               opt.catalogue = discrepancy::parse_effect_list(o->effects, "--effects");
-              if (opt.catalogue.empty()) throw report::UsageError("--effects: expected at least one effect");
+              if (opt.catalogue.empty()) throw io::UsageError("--effects: expected at least one effect");
             }
             opt.max_effects = o->max_effects;
             opt.min_delta_bic = o->min_delta_bic;

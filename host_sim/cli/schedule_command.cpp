@@ -117,7 +117,7 @@ Command add_schedule_command(CLI::App& parent) {
   return {app, [o] {
             require_finite_at_least("--years", o->years, 0.0);
             if (!(o->years > 0.0) || o->years > 1000.0) {
-              throw report::UsageError("--years: expected a number of years > 0 and <= 1000");
+              throw io::UsageError("--years: expected a number of years > 0 and <= 1000");
             }
             require_finite_at_least("--threshold", o->threshold, 0.0);
             require_finite_at_least("--interval-days", o->interval_days, 0.0);
@@ -126,7 +126,7 @@ Command add_schedule_command(CLI::App& parent) {
             require_finite_at_least("--maintenance-days", o->maintenance_days, 0.0);
             require_finite_at_least("--lead-hours", o->lead_hours, 0.0);
             if (o->actuator != "yes" && o->actuator != "no") {
-              throw report::UsageError("--actuator: expected yes or no, got '" + o->actuator + "'");
+              throw io::UsageError("--actuator: expected yes or no, got '" + o->actuator + "'");
             }
             schedule::ScheduleOptions so;
             so.world.years = o->years;

@@ -65,7 +65,7 @@ Command add_sim_command(CLI::App& parent) {
             require_finite_at_least("--idle-years", o->idle_years, 0.0);
             require_finite_at_least("--duration-s", o->duration_s, 0.0);
             require_finite_at_least("--step-s", o->step_s, 1e-6);
-            if (o->step_s > 0.02) throw report::UsageError("--step-s: expected at most 0.02 s");
+            if (o->step_s > 0.02) throw io::UsageError("--step-s: expected at most 0.02 s");
             const control::ControlMode mode = run::parse_control_mode(o->control);
             const run::NumericKind numeric = run::parse_numeric_kind(o->numeric);
             auto controller = run::make_controller(mode, o->step_s, numeric);

@@ -183,12 +183,12 @@ Command add_sine_command(CLI::App& parent) {
             require_positive("--amplitude-mm", o->amplitude_mm, "an amplitude");
             require_positive("--freq-hz", o->freq_hz, "a frequency");
             require_finite_at_least("--current-a", o->current_a, -30.0);
-            if (o->current_a > 30.0) throw report::UsageError("--current-a: expected at most the drive's 30 A peak");
+            if (o->current_a > 30.0) throw io::UsageError("--current-a: expected at most the drive's 30 A peak");
             require_finite_at_least("--idle-years", o->idle_years, 0.0);
             require_positive("--duration-s", o->duration_s, "a duration");
-            if (o->duration_s > 1.0e5) throw report::UsageError("--duration-s: expected at most 100000 s");
+            if (o->duration_s > 1.0e5) throw io::UsageError("--duration-s: expected at most 100000 s");
             require_finite_at_least("--step-s", o->step_s, 1e-6);
-            if (o->step_s > 0.1 / o->freq_hz) throw report::UsageError("--step-s: expected at most a tenth of the period");
+            if (o->step_s > 0.1 / o->freq_hz) throw io::UsageError("--step-s: expected at most a tenth of the period");
             if (!o->out_dir.empty()) report::prepare_output_dir(o->out_dir);
             if (o->calibrate) run_calibration();
             if (o->thesis_cases) run_thesis_cases(*o);

@@ -61,7 +61,7 @@ Command add_sweep_command(CLI::App& parent) {
             require_finite_at_least("--idle-to", o->idle_to, o->idle_from);
             require_finite_at_least("--idle-step", o->idle_step, 1e-6);
             require_finite_at_least("--step-s", o->step_s, 1e-6);
-            if (o->step_s > 0.02) throw report::UsageError("--step-s: expected at most 0.02 s");
+            if (o->step_s > 0.02) throw io::UsageError("--step-s: expected at most 0.02 s");
 
             run::SweepSpec spec;
             spec.base.step_s = o->step_s;

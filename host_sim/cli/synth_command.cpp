@@ -55,7 +55,7 @@ std::vector<double> parse_params(const std::string& text) {
       used = 0;
     }
     if (used == 0 || used != item.size() || !std::isfinite(v)) {
-      throw report::UsageError("--params: not a number: '" + item + "'");
+      throw io::UsageError("--params: not a number: '" + item + "'");
     }
     out.push_back(v);
     if (p == std::string::npos) break;
@@ -87,10 +87,10 @@ Command add_synth_command(CLI::App& parent) {
             require_finite_at_least("--duration-s", o->duration_s, 2.0);
             require_finite_at_least("--rate-hz", o->rate_hz, 50.0);
             require_finite_at_least("--jitter", o->jitter, 0.0);
-            if (o->duration_s * o->rate_hz > 5.0e7) throw report::UsageError("--duration-s: more than 5e7 samples");
-            if (o->jitter >= 0.9) throw report::UsageError("--jitter: expected a fraction below 0.9");
+            if (o->duration_s * o->rate_hz > 5.0e7) throw io::UsageError("--duration-s: more than 5e7 samples");
+            if (o->jitter >= 0.9) throw io::UsageError("--jitter: expected a fraction below 0.9");
             if (o->format != "csv" && o->format != "mat") {
-              throw report::UsageError("--format: expected csv or mat, got '" + o->format + "'");
+              throw io::UsageError("--format: expected csv or mat, got '" + o->format + "'");
             }
             discrepancy::SynthSpec spec;
             spec.seed = o->seed;
@@ -100,10 +100,10 @@ Command add_synth_command(CLI::App& parent) {
             spec.velocity_column = o->velocity_column;
             if (o->input == "sine") spec.input = discrepancy::SynthInput::sine;
             else if (o->input == "broadband") spec.input = discrepancy::SynthInput::broadband;
-            else if (o->input != "random") throw report::UsageError("--input: expected sine, broadband or random");
+            else if (o->input != "random") throw io::UsageError("--input: expected sine, broadband or random");
             if (o->current == "constant") spec.current = discrepancy::SynthCurrent::constant;
             else if (o->current == "steps") spec.current = discrepancy::SynthCurrent::steps;
-            else if (o->current != "random") throw report::UsageError("--current: expected constant, steps or random");
+            else if (o->current != "random") throw io::UsageError("--current: expected constant, steps or random");
             if (o->effects == "random") {
               // 0, 1 or 2 distinct effects, drawn from the seed.
               std::uint64_t h = o->seed * 0x9E3779B97F4A7C15ull + 7u;
@@ -125,14 +125,14 @@ Command add_synth_command(CLI::App& parent) {
               spec.params = parse_params(o->params);
               const discrepancy::EffectSet set{spec.effects};
               if (spec.params.size() != set.param_count()) {
-                throw report::UsageError("--params: " + set.label() + " takes " + std::to_string(set.param_count()) +
+                throw io::UsageError("--params: " + set.label() + " takes " + std::to_string(set.param_count()) +
                                          " parameters, got " + std::to_string(spec.params.size()));
               }
               std::size_t i = 0;
               for (const auto e : spec.effects) {
                 for (const auto& p : discrepancy::effect_info(e).params) {
                   if (spec.params[i] < p.lower || spec.params[i] > p.upper) {
-                    throw report::UsageError("--params: " + std::string(p.name) + " of " +
+                    throw io::UsageError("--params: " + std::string(p.name) + " of " +
                                              std::string(discrepancy::effect_name(e)) + " outside its physical bounds [" +
                                              std::to_string(p.lower) + ", " + std::to_string(p.upper) + "]");
                   }

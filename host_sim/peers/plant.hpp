@@ -86,7 +86,7 @@ class PlantModel {
 
 /// The ground motion as `mrd sim` loads it (run::load_study_motion): read the
 /// record (CSV or PEER AT2), scale it to `pga_g`, resample it to `step_s`
-/// over `duration_s` (> 0) or the whole record. Throws report::UsageError
+/// over `duration_s` (> 0) or the whole record. Throws io::UsageError
 /// naming the file, line and field for a bad record.
 std::vector<double> load_ground_accel(const std::filesystem::path& record, double pga_g, double step_s,
                                       double duration_s);

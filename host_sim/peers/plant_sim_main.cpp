@@ -12,7 +12,7 @@
 #include "host_sim/peers/peer_nodes.hpp"
 #include "firmware/platform/linux/posix_clock.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 int main(int argc, char** argv) {
   using namespace mrd;
@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   try {
     board = peers::board_or_defaults(board_file);
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
-      throw report::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
+      throw io::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     spec.step_s = board.period_s();
     spec.idle_years = idle_years;
     ag = peers::load_ground_accel(record, pga_g, spec.step_s, duration_s);

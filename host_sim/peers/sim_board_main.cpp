@@ -8,7 +8,7 @@
 
 #include "host_sim/peers/in_process_board.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 int main(int argc, char** argv) {
   using namespace mrd;
@@ -26,9 +26,9 @@ int main(int argc, char** argv) {
   try {
     app::BoardConfig board = app::load_board_config(board_file);
     if (!mode.empty() && !app::parse_mode_name(mode, board.mode))
-      throw report::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");
+      throw io::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
-      throw report::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
+      throw io::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     peers::PlantSpec spec;
     spec.step_s = board.period_s();
     spec.idle_years = idle_years;

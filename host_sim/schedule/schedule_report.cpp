@@ -16,7 +16,7 @@ namespace {
 constexpr double kDay_s = 86400.0;
 
 void check(bool ok, const std::string& message) {
-  if (!ok) throw report::UsageError(message);
+  if (!ok) throw io::UsageError(message);
 }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }

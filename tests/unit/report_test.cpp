@@ -229,7 +229,7 @@ TEST(TimeSeries, WriteCsvReplacesFileAtomically) {
 TEST(TimeSeries, WriteCsvIntoMissingFolderIsUsageError) {
   ScratchDir dir;
   const TimeSeries ts({"time_s"});
-  EXPECT_THROW(write_csv(ts, dir.path() / "no-such-folder" / "a.csv"), UsageError);
+  EXPECT_THROW(write_csv(ts, dir.path() / "no-such-folder" / "a.csv"), io::UsageError);
 }
 
 // ---------------------------------------------------------------- plot helpers
