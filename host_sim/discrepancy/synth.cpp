@@ -168,6 +168,23 @@ std::pair<double, double> synth_range(Effect e, std::size_t i) {
   return {0.0, 0.0};
 }
 
+std::vector<Effect> random_effects(std::uint64_t seed) {
+  std::uint64_t h = seed * 0x9E3779B97F4A7C15ull + 7u;
+  const auto draw = [&h](std::size_t n) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    return static_cast<std::size_t>(h % n);
+  };
+  const std::size_t count = draw(3);
+  std::vector<Effect> effects;
+  while (effects.size() < count) {
+    const Effect e = kAllEffects[draw(kEffectCount)];
+    if (std::find(effects.begin(), effects.end(), e) == effects.end()) effects.push_back(e);
+  }
+  return effects;
+}
+
 SynthCase synthesize(const SynthSpec& spec) {
   if (!(spec.duration_s >= 2.0)) throw std::invalid_argument("synthesize: duration below 2 s");
   if (!(spec.rate_hz >= 50.0)) throw std::invalid_argument("synthesize: rate below 50 Hz");

@@ -1,0 +1,25 @@
+#include "host_sim/run/settle_outputs.hpp"
+
+#include "host_sim/report/summary_json.hpp"
+
+namespace mrd::run {
+
+nlohmann::json settle_summary_json(const SettleSummary& s) {
+  return nlohmann::json{
+      {"idle_years", s.idle_years},
+      {"settling_velocity_m_s", s.settling_velocity_m_s},
+      {"hindered_settling_velocity_m_s", s.hindered_settling_velocity_m_s},
+      {"settled_layer_height_m", s.settled_layer_height_m},
+      {"max_settling_time_years", s.max_settling_time_years},
+      {"sq", s.sq},
+      {"a_pr", s.pr.a_pr},
+      {"b_pr", s.pr.b_pr},
+      {"c_pr", s.pr.c_pr},
+  };
+}
+
+void write_settle_outputs(const std::filesystem::path& dir, const SettleSummary& s) {
+  report::write_summary_json(dir, settle_summary_json(s));
+}
+
+}  // namespace mrd::run
