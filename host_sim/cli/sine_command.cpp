@@ -82,7 +82,7 @@ void run_thesis_cases(const std::optional<std::filesystem::path>& out) {
 void print_single(const run::SineRun& r) {
   const run::SineMetrics& m = r.metrics;
   std::printf("sine %.4g mm, %.4g Hz, %.4g A, idle %.4g years (SQ %.3f), %.4g s\n", r.amplitude_mm,
-              r.spec.frequency_hz, r.spec.current_a, r.spec.idle_years, m.sq, r.spec.duration_s);
+              r.spec.frequency_hz, r.spec.current_a, r.idle_years, m.sq, r.spec.duration_s);
   std::printf("  fully mixed force   %9.2f kN\n  initial force       %9.2f kN (%.1f %% of fully mixed)\n",
               m.fully_mixed_force_n / 1e3, m.initial_force_n / 1e3, 100.0 * m.initial_force_n / m.fully_mixed_force_n);
   std::printf("  max force           %9.2f kN (%.1f %% of fully mixed)\n", m.max_force_n / 1e3,
@@ -90,8 +90,8 @@ void print_single(const run::SineRun& r) {
   std::printf("  rise time to 90 %%   %9.3f s\n  rise time to 95 %%   %9.3f s\n", m.rise_time_90_s, m.rise_time_95_s);
 }
 
-void run_single(const run::SineTestSpec& spec, double amplitude_mm, const std::optional<std::filesystem::path>& out) {
-  run::SineRun r{amplitude_mm, spec, {}, {}};
+void run_single(const SineOptions& o, const run::SineTestSpec& spec, const std::optional<std::filesystem::path>& out) {
+  run::SineRun r{o.amplitude_mm, o.idle_years, spec, {}, {}};
   r.metrics = run::run_sine_test(spec, {}, {}, out ? &r.record : nullptr);
   print_single(r);
   if (!out) return;
@@ -116,7 +116,7 @@ void execute(const SineOptions& o) {
   const auto out = open_optional_out_dir(o.out_dir);
   if (o.calibrate) run_calibration();
   if (o.thesis_cases) run_thesis_cases(out);
-  if (!o.calibrate && !o.thesis_cases) run_single(spec, o.amplitude_mm, out);
+  if (!o.calibrate && !o.thesis_cases) run_single(o, spec, out);
 }
 
 }  // namespace

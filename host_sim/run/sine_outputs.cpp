@@ -36,7 +36,7 @@ nlohmann::json sine_summary_json(const SineRun& run) {
   j["amplitude_mm"] = run.amplitude_mm;
   j["freq_hz"] = run.spec.frequency_hz;
   j["current_a"] = run.spec.current_a;
-  j["idle_years"] = run.spec.idle_years;
+  j["idle_years"] = run.idle_years;
   j["duration_s"] = run.spec.duration_s;
   return j;
 }
@@ -58,7 +58,7 @@ std::vector<std::string> write_sine_outputs(const std::filesystem::path& dir, co
   }
   char title[160];
   std::snprintf(title, sizeof title, "Sine %.3g mm, %.3g Hz, %.3g A after %.3g years idle", run.amplitude_mm,
-                run.spec.frequency_hz, run.spec.current_a, run.spec.idle_years);
+                run.spec.frequency_hz, run.spec.current_a, run.idle_years);
   report::PlotSpec ft{title, "time [s]", "damper force [kN]", {{"model", t, f_kn, "lines"}}};
   ft.key = false;
   report::PlotSpec fd{title, "displacement [mm]", "damper force [kN]", {{"model", x_mm, f_kn, "lines"}}};

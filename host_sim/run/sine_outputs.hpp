@@ -12,10 +12,11 @@
 
 namespace mrd::run {
 
-/// One sine test as run: the amplitude as the user gave it in mm (outputs
-/// quote it as given), the test, its metrics and its time series.
+/// One sine test as run: the amplitude and idle time as the user gave them
+/// (outputs quote them as given), the test, its metrics and its time series.
 struct SineRun {
   double amplitude_mm = 0.0;
+  double idle_years = 0.0;
   SineTestSpec spec;
   SineMetrics metrics;
   SineRecord record;
