@@ -125,7 +125,7 @@ class DamperController {
   DamperControllerStatus status_{};
 
   // The parts of step(), always inlined: step() stays one function, as
-  // measured (bench/) and cross-checked (firmware/cross_check.sh).
+  // measured (bench/) and cross-checked (tests/cross/core_cross_check.sh).
   /// Counts the guard's faults and judges the sample's age; true when stale.
   [[gnu::always_inline]] bool step_guard(const control::ControllerInput& in, std::uint64_t now,
                                          const InputGuard::Faults& faults) noexcept;

@@ -1,11 +1,19 @@
 #pragma once
 /// How `mrd` subcommands plug into the program: each registers its options on
 /// a CLI11 subcommand and returns the action to run once parsing succeeded.
+/// An action checks its options, calls one function that computes and one
+/// that writes the outputs, and prints a short summary.
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+#include <filesystem>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 namespace mrd::cli {
 
@@ -13,6 +21,26 @@ struct Command {
   CLI::App* app = nullptr;
   std::function<void()> run;
 };
+
+/// What --help says about a subcommand.
+struct CommandHelp {
+  const char* name;
+  const char* description;  ///< one line, listed by `mrd --help`
+  const char* footer;       ///< after the options in `mrd <name> --help`: fields, units, files
+};
+
+/// Subcommand `help.name` of `parent` with an Options object that its
+/// action keeps alive: `add_options` registers the options on it, and
+/// `execute` is the action, run once parsing succeeded.
+template <class Options>
+Command make_command(CLI::App& parent, const CommandHelp& help, void (*add_options)(CLI::App&, Options&),
+                     void (*execute)(const Options&)) {
+  auto options = std::make_shared<Options>();
+  CLI::App* app = parent.add_subcommand(help.name, help.description);
+  add_options(*app, *options);
+  app->footer(help.footer);
+  return {app, [options, execute] { execute(*options); }};
+}
 
 Command add_settle_command(CLI::App& parent);
 Command add_modal_command(CLI::App& parent);
@@ -24,12 +52,35 @@ Command add_discrepancy_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_schedule_command(CLI::App& parent);
 
-/// Checks a parsed number: finite and, if `min_inclusive` is given, not below
-/// it. Throws report::UsageError naming the option.
-void require_finite_at_least(const std::string& option, double value, double min_inclusive);
+/// The --out folder, created and checked writable (report::prepare_output_dir;
+/// io::UsageError naming the folder otherwise).
+std::filesystem::path open_out_dir(const std::string& out_dir);
 
-/// Checks a parsed number is finite and > 0; throws report::UsageError
-/// naming the option and `what` ("a PGA", "a duration", ...) otherwise.
-void require_positive(const std::string& option, double value, const std::string& what);
+/// open_out_dir when a folder was given; nullopt for an empty `out_dir`.
+std::optional<std::filesystem::path> open_optional_out_dir(const std::string& out_dir);
+
+/// Prints "mrd <command>: warning: plot not written: <problem>" on stderr
+/// for each problem a writer returned.
+void warn_plots_not_written(const char* command, const std::vector<std::string>& problems);
+
+/// The steps of a subcommand whose --out is optional, once its options are
+/// checked: opens the folder first (a bad folder fails before any work),
+/// computes, prints the result, and with a folder writes the outputs, warns
+/// about plots not drawn (when `write` returns their problems) and prints
+/// `wrote_format` with the path of summary.json.
+template <class Compute, class Print, class Write>
+void compute_print_write(const char* command, const std::string& out_dir, const Compute& compute, const Print& print,
+                         const Write& write, const char* wrote_format = "wrote %s\n") {
+  const auto out = open_optional_out_dir(out_dir);
+  const auto result = compute();
+  print(result);
+  if (!out) return;
+  if constexpr (std::is_void_v<decltype(write(*out, result))>) {
+    write(*out, result);
+  } else {
+    warn_plots_not_written(command, write(*out, result));
+  }
+  std::printf(wrote_format, (*out / "summary.json").c_str());
+}
 
 }  // namespace mrd::cli

@@ -1,18 +1,19 @@
 #include <cstdio>
-#include <filesystem>
-#include <memory>
 #include <string>
 
 #include "host_sim/cli/command.hpp"
+#include "host_sim/cli/options.hpp"
 #include "host_sim/discrepancy/discrepancy_report.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "host_sim/discrepancy/workflow.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::cli {
 namespace {
 
-constexpr const char* kDiscrepancyHelp = R"(Model-discrepancy workflow. Simulates the chapter-4 damper model (Bingham + transition,
+constexpr CommandHelp kDiscrepancyHelp{
+    "discrepancy", "Name the physical effect behind a model-measurement gap",
+    R"(Model-discrepancy workflow. Simulates the chapter-4 damper model (Bingham + transition,
 Eq. 4.1-4.4, Table 4.1; coil current by Eq. 4.5 from the commanded current) over the measured
 input, localizes where the force gap concentrates, then tests named effects added to the model:
   idle_settling  participant ratio from a fitted SQ (Eq. 5.6-5.12)   sq [0-1]
@@ -51,7 +52,7 @@ Fields of DIR/summary.json:
   time_windows       the record in ten windows: rms_before_n, rms_after_n
   settings           thresholds and fit sampling used
 Files: fit.csv (time series of input, coil current, measured/baseline/updated force, residuals),
-force_time.png, residual.png, loops.png (force-displacement and force-velocity), report.md.)";
+force_time.png, residual.png, loops.png (force-displacement and force-velocity), report.md.)"};
 
 struct DiscrepancyCliOptions {
   std::string measured;
@@ -64,62 +65,69 @@ struct DiscrepancyCliOptions {
   bool no_plots = false;
 };
 
+/// The workflow's options; throws io::UsageError for a bad option.
+discrepancy::DiscrepancyOptions discrepancy_options(const DiscrepancyCliOptions& o) {
+  require_finite_at_least("--min-delta-bic", o.min_delta_bic, 0.0);
+  require_finite_at_least("--min-improvement", o.min_improvement, 0.0);
+  if (o.min_improvement >= 1.0) throw io::UsageError("--min-improvement: expected a fraction below 1");
+  discrepancy::DiscrepancyOptions opt;
+  if (!o.effects.empty()) {
+    opt.catalogue = discrepancy::parse_effect_list(o.effects, "--effects");
+    if (opt.catalogue.empty()) throw io::UsageError("--effects: expected at least one effect");
+  }
+  opt.max_effects = o.max_effects;
+  opt.min_delta_bic = o.min_delta_bic;
+  opt.min_rss_reduction = o.min_improvement;
+  opt.threads = o.threads;
+  return opt;
+}
+
+void print_summary(const discrepancy::MeasuredData& data, const discrepancy::DiscrepancyResult& r) {
+  std::printf("%s: %zu samples, %.3f s, velocity %s\n", data.source.c_str(), data.size(), data.duration_s(),
+              r.velocity_derived ? "derived" : "measured");
+  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+    const auto& rd = r.rounds[i];
+    std::printf("round %zu (model: %s, gap %.2f %%):\n", i + 1, discrepancy::EffectSet{rd.model}.label().c_str(),
+                100.0 * rd.gap);
+    for (const auto& c : rd.candidates) {
+      const std::string name = c.alternative ? discrepancy::EffectSet{c.model}.label()
+                                             : std::string(discrepancy::effect_name(c.effect));
+      std::printf("  %-14s dBIC %10.1f  removes %6.2f %%  %s\n", name.c_str(), c.delta_bic, 100.0 * c.rss_reduction,
+                  c.verdict.c_str());
+    }
+  }
+  std::printf("effects: %s\n", discrepancy::EffectSet{r.effects}.label().c_str());
+  std::printf("gap: %.2f %% before, %.2f %% after\n", 100.0 * r.gap_before, 100.0 * r.gap_after);
+}
+
+void add_options(CLI::App& app, DiscrepancyCliOptions& o) {
+  app.add_option("--measured", o.measured, "Measured record: CSV or .mat (see below)")->required();
+  add_out_option(app, o.out_dir, "Folder for summary.json, fit.csv, plots and report.md");
+  app.add_option("--effects", o.effects, "Catalogue to test, comma-separated (default: all)");
+  app.add_option("--max-effects", o.max_effects, "Most effects to add")->capture_default_str();
+  app.add_option("--min-delta-bic", o.min_delta_bic, "Smallest delta BIC that earns an effect")->capture_default_str();
+  app.add_option("--min-improvement", o.min_improvement,
+                  "Smallest fraction of the residual power an effect must remove")
+      ->capture_default_str();
+  add_threads_option(app, o.threads, "Threads for the candidate fits (0: all cores)");
+  app.add_flag("--no-plots", o.no_plots, "Skip the PNG plots");
+}
+
+void execute(const DiscrepancyCliOptions& o) {
+  const discrepancy::DiscrepancyOptions opt = discrepancy_options(o);
+  const discrepancy::MeasuredData data = discrepancy::read_measured(o.measured);
+  compute_print_write(
+      "discrepancy", o.out_dir, [&] { return discrepancy::run_discrepancy(data, opt); },
+      [&](const discrepancy::DiscrepancyResult& r) { print_summary(data, r); },
+      [&](const std::filesystem::path& dir, const discrepancy::DiscrepancyResult& r) {
+        return discrepancy::write_discrepancy_outputs(dir, data, r, opt, !o.no_plots);
+      });
+}
+
 }  // namespace
 
 Command add_discrepancy_command(CLI::App& parent) {
-  auto o = std::make_shared<DiscrepancyCliOptions>();
-  CLI::App* app = parent.add_subcommand("discrepancy", "Name the physical effect behind a model-measurement gap");
-  app->add_option("--measured", o->measured, "Measured record: CSV or .mat (see below)")->required();
-  app->add_option("--out", o->out_dir, "Folder for summary.json, fit.csv, plots and report.md");
-  app->add_option("--effects", o->effects, "Catalogue to test, comma-separated (default: all)");
-  app->add_option("--max-effects", o->max_effects, "Most effects to add")->capture_default_str();
-  app->add_option("--min-delta-bic", o->min_delta_bic, "Smallest delta BIC that earns an effect")->capture_default_str();
-  app->add_option("--min-improvement", o->min_improvement,
-                  "Smallest fraction of the residual power an effect must remove")
-      ->capture_default_str();
-  app->add_option("--threads", o->threads, "Threads for the candidate fits (0: all cores)")->capture_default_str();
-  app->add_flag("--no-plots", o->no_plots, "Skip the PNG plots");
-  app->footer(kDiscrepancyHelp);
-  return {app, [o] {
-            require_finite_at_least("--min-delta-bic", o->min_delta_bic, 0.0);
-            require_finite_at_least("--min-improvement", o->min_improvement, 0.0);
-            if (o->min_improvement >= 1.0) throw report::UsageError("--min-improvement: expected a fraction below 1");
-            discrepancy::DiscrepancyOptions opt;
-            if (!o->effects.empty()) {
-              opt.catalogue = discrepancy::parse_effect_list(o->effects, "--effects");
-              if (opt.catalogue.empty()) throw report::UsageError("--effects: expected at least one effect");
-            }
-            opt.max_effects = o->max_effects;
-            opt.min_delta_bic = o->min_delta_bic;
-            opt.min_rss_reduction = o->min_improvement;
-            opt.threads = o->threads;
-            const discrepancy::MeasuredData data = discrepancy::read_measured(o->measured);
-            if (!o->out_dir.empty()) report::prepare_output_dir(o->out_dir);
-
-            const discrepancy::DiscrepancyResult r = discrepancy::run_discrepancy(data, opt);
-            std::printf("%s: %zu samples, %.3f s, velocity %s\n", data.source.c_str(), data.size(), data.duration_s(),
-                        r.velocity_derived ? "derived" : "measured");
-            for (std::size_t i = 0; i < r.rounds.size(); ++i) {
-              const auto& rd = r.rounds[i];
-              std::printf("round %zu (model: %s, gap %.2f %%):\n", i + 1,
-                          discrepancy::EffectSet{rd.model}.label().c_str(), 100.0 * rd.gap);
-              for (const auto& c : rd.candidates) {
-                const std::string name = c.alternative ? discrepancy::EffectSet{c.model}.label()
-                                                       : std::string(discrepancy::effect_name(c.effect));
-                std::printf("  %-14s dBIC %10.1f  removes %6.2f %%  %s\n", name.c_str(), c.delta_bic,
-                            100.0 * c.rss_reduction, c.verdict.c_str());
-              }
-            }
-            std::printf("effects: %s\n", discrepancy::EffectSet{r.effects}.label().c_str());
-            std::printf("gap: %.2f %% before, %.2f %% after\n", 100.0 * r.gap_before, 100.0 * r.gap_after);
-            if (o->out_dir.empty()) return;
-            const std::filesystem::path dir(o->out_dir);
-            const auto problems = discrepancy::write_discrepancy_outputs(dir, data, r, opt, !o->no_plots);
-            for (const auto& p : problems) {
-              std::fprintf(stderr, "mrd discrepancy: warning: plot not written: %s\n", p.c_str());
-            }
-            std::printf("wrote %s\n", (dir / "summary.json").c_str());
-          }};
+  return make_command(parent, kDiscrepancyHelp, add_options, execute);
 }
 
 }  // namespace mrd::cli

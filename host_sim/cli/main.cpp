@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     for (const auto& c : commands) {
       if (c.app->parsed()) c.run();
     }
-  } catch (const mrd::report::UsageError& e) {
+  } catch (const mrd::io::UsageError& e) {
     print_error(e.what());
     return kExitUsage;
   } catch (const std::exception& e) {

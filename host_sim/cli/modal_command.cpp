@@ -1,18 +1,18 @@
 #include <cstdio>
-#include <filesystem>
-#include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "host_sim/cli/command.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/cli/options.hpp"
+#include "host_sim/run/modal_outputs.hpp"
 #include "host_sim/structure/building.hpp"
 #include "host_sim/structure/modal.hpp"
 
 namespace mrd::cli {
 namespace {
 
-constexpr const char* kModalHelp = R"(Fields (printed and written to DIR/summary.json); modes in ascending frequency:
+constexpr CommandHelp kModalHelp{
+    "modal", "Natural frequencies, damping ratios and mode shapes of the building (Table 6.1, Fig. 6.2)",
+    R"(Fields (printed and written to DIR/summary.json); modes in ascending frequency:
   frequencies_hz            natural frequencies |λ|/2π of the 6 damped modes, Hz, from the
                             eigenvalues λ of the 12x12 state matrix (thesis §6.1: f1 = 0.25 Hz)
   damping_ratios            modal damping ratios -Re(λ)/|λ|, fraction (0.0497 = 4.97 %;
@@ -24,7 +24,7 @@ constexpr const char* kModalHelp = R"(Fields (printed and written to DIR/summary
                             scaled so the largest-magnitude entry is +1
   dofs                      names of the 6 degrees of freedom in mode_shapes order
 Building without the MR damper: Table 6.1 and Fig. 6.2 of the thesis (masses 244,800 kg base and
-212,292 kg per floor; isolation layer 3,287.3 kN/m and 209.8 kN·s/m).)";
+212,292 kg per floor; isolation layer 3,287.3 kN/m and 209.8 kN·s/m).)"};
 
 struct ModalOptions {
   std::string out_dir;
@@ -39,41 +39,20 @@ void print_table(const structure::ModalResult& r) {
   }
 }
 
-nlohmann::json to_json(const structure::ModalResult& r) {
-  nlohmann::json shapes = nlohmann::json::array();
-  for (int k = 0; k < structure::kDofs; ++k) {
-    nlohmann::json col = nlohmann::json::array();
-    for (int i = 0; i < structure::kDofs; ++i) col.push_back(r.mode_shapes(i, k));
-    shapes.push_back(col);
-  }
-  return nlohmann::json{
-      {"frequencies_hz", r.frequencies_hz},
-      {"damping_ratios", r.damping_ratios},
-      {"periods_s", r.periods_s},
-      {"undamped_frequencies_hz", r.undamped_frequencies_hz},
-      {"mode_shapes", shapes},
-      {"dofs", nlohmann::json::array({"base", "floor_1", "floor_2", "floor_3", "floor_4", "floor_5"})},
-  };
+void add_options(CLI::App& app, ModalOptions& o) {
+  add_out_option(app, o.out_dir, "Folder for summary.json (created if missing)");
+}
+
+void execute(const ModalOptions& o) {
+  compute_print_write(
+      "modal", o.out_dir, [] { return structure::modal_analysis(structure::BuildingParams{}); }, print_table,
+      run::write_modal_outputs, "\nwrote %s\n");
 }
 
 }  // namespace
 
 Command add_modal_command(CLI::App& parent) {
-  auto opts = std::make_shared<ModalOptions>();
-  CLI::App* app = parent.add_subcommand(
-      "modal", "Natural frequencies, damping ratios and mode shapes of the building (Table 6.1, Fig. 6.2)");
-  app->add_option("--out", opts->out_dir, "Folder for summary.json (created if missing)");
-  app->footer(kModalHelp);
-  return {app, [opts] {
-            if (!opts->out_dir.empty()) report::prepare_output_dir(opts->out_dir);
-            const structure::ModalResult r = structure::modal_analysis(structure::BuildingParams{});
-            print_table(r);
-            if (!opts->out_dir.empty()) {
-              const auto path = std::filesystem::path(opts->out_dir) / "summary.json";
-              report::write_file_atomically(path, to_json(r).dump(2) + "\n");
-              std::printf("\nwrote %s\n", path.c_str());
-            }
-          }};
+  return make_command(parent, kModalHelp, add_options, execute);
 }
 
 }  // namespace mrd::cli

@@ -1,18 +1,18 @@
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <memory>
 #include <string>
 
 #include "host_sim/cli/command.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/cli/options.hpp"
+#include "host_sim/io/usage_error.hpp"
 #include "host_sim/schedule/schedule_report.hpp"
 
 namespace mrd::cli {
 namespace {
 
-constexpr const char* kScheduleHelp = R"(Years of service of the MR damper under three mixing policies, in one simulated world:
+constexpr CommandHelp kScheduleHelp{
+    "schedule", "Preventive mixing over years of service: capacity met by earthquakes under three policies",
+    R"(Years of service of the MR damper under three mixing policies, in one simulated world:
 idle time settles the fluid (Eq. 5.1-5.5), motion mixes it (Eq. 5.6-5.9, with the onboard
 estimator's state model for repeated episodes), earthquakes arrive at random (Poisson) and meet
 the fluid as it is. Policies:
@@ -50,7 +50,7 @@ Fields of DIR/summary.json:
   estimator_meets_threshold        the estimator policy kept the threshold at every moment
   estimator_fewer_cycles_than_fixed  it did so with fewer cycles per year than the fixed interval
 Files: DIR/capacity.csv (daily minimum capacity per policy), DIR/earthquakes.csv (capacity each
-earthquake met per policy), DIR/capacity.png (capacity over time).)";
+earthquake met per policy), DIR/capacity.png (capacity over time).)"};
 
 struct ScheduleCliOptions {
   double years = 50.0;
@@ -65,7 +65,21 @@ struct ScheduleCliOptions {
   std::string out_dir;
 };
 
-void print_summary(const schedule::ScheduleResult& r, double seconds) {
+/// A run and the wall-clock time it took.
+struct TimedSchedule {
+  schedule::ScheduleResult result;
+  double seconds = 0.0;
+};
+
+TimedSchedule timed_schedule(const schedule::ScheduleOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TimedSchedule t{schedule::run_schedule(options), 0.0};
+  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return t;
+}
+
+void print_summary(const TimedSchedule& t) {
+  const schedule::ScheduleResult& r = t.result;
   std::printf("mrd schedule: %.4g years, %zu earthquakes (%.3g per year), threshold %.3g, actuator %s\n",
               r.options.world.years, r.world.quake_times_s.size(), r.options.world.earthquakes_per_year,
               r.options.threshold, r.options.actuator ? "yes" : "no");
@@ -81,20 +95,40 @@ void print_summary(const schedule::ScheduleResult& r, double seconds) {
     std::printf("  %-15s %12.2f %14.4f %14.4f %12.4f %10u\n", p.name.c_str(), p.mixing_cycles_per_year,
                 p.min_capacity_at_quakes, p.min_capacity_any_time, p.mean_capacity, p.aborted_cycles);
   }
-  std::printf("\n  (%.2f s of computing)\n", seconds);
+  std::printf("\n  (%.2f s of computing)\n", t.seconds);
 }
 
-}  // namespace
+/// The run the options ask for; throws io::UsageError for a bad option
+/// (schedule::run_schedule checks the threshold, interval and horizons).
+schedule::ScheduleOptions schedule_options(const ScheduleCliOptions& o) {
+  require_finite_at_least("--years", o.years, 0.0);
+  if (!(o.years > 0.0) || o.years > 1000.0) throw io::UsageError("--years: expected a number of years > 0 and <= 1000");
+  require_finite_at_least("--threshold", o.threshold, 0.0);
+  require_finite_at_least("--interval-days", o.interval_days, 0.0);
+  require_finite_at_least("--earthquakes-per-year", o.earthquakes_per_year, 0.0);
+  require_finite_at_least("--ambient-litres-per-day", o.ambient_litres_per_day, 0.0);
+  require_finite_at_least("--maintenance-days", o.maintenance_days, 0.0);
+  require_finite_at_least("--lead-hours", o.lead_hours, 0.0);
+  require_choice("--actuator", o.actuator, {"yes", "no"});
+  schedule::ScheduleOptions so;
+  so.world.years = o.years;
+  so.world.seed = o.seed;
+  so.world.earthquakes_per_year = o.earthquakes_per_year;
+  so.world.ambient_median_m3_per_day = o.ambient_litres_per_day * 1e-3;
+  so.threshold = o.threshold;
+  so.interval_days = o.interval_days;
+  so.actuator = o.actuator == "yes";
+  so.maintenance_days = o.maintenance_days;
+  so.lead_hours = o.lead_hours;
+  return so;
+}
 
-Command add_schedule_command(CLI::App& parent) {
-  auto o = std::make_shared<ScheduleCliOptions>();
-  CLI::App* app = parent.add_subcommand(
-      "schedule", "Preventive mixing over years of service: capacity met by earthquakes under three policies");
-  app->add_option("--years", o->years, "Simulated service life, years (> 0, <= 1000)")->capture_default_str();
-  app->add_option("--threshold", o->threshold, "Capacity fraction to keep, > 0 and <= 0.99")->capture_default_str();
-  app->add_option("--interval-days", o->interval_days,
+void add_options(CLI::App& app, ScheduleCliOptions& o) {
+  app.add_option("--years", o.years, "Simulated service life, years (> 0, <= 1000)")->capture_default_str();
+  app.add_option("--threshold", o.threshold, "Capacity fraction to keep, > 0 and <= 0.99")->capture_default_str();
+  app.add_option("--interval-days", o.interval_days,
                   "Fixed policy's interval, days (default: the longest that keeps the threshold)");
-  app->add_option("--seed", o->seed, "Seed of the random world (earthquakes, ambient motion), >= 0")
+  app.add_option("--seed", o.seed, "Seed of the random world (earthquakes, ambient motion), >= 0")
       ->check(CLI::Validator(
           [](std::string& s) {
             const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
@@ -102,55 +136,32 @@ Command add_schedule_command(CLI::App& parent) {
           },
           "UINT"))
       ->capture_default_str();
-  app->add_option("--earthquakes-per-year", o->earthquakes_per_year, "Mean earthquake rate (Poisson), 1/year")
+  app.add_option("--earthquakes-per-year", o.earthquakes_per_year, "Mean earthquake rate (Poisson), 1/year")
       ->capture_default_str();
-  app->add_option("--actuator", o->actuator, "Mixing actuator fitted: yes | no")->capture_default_str();
-  app->add_option("--ambient-litres-per-day", o->ambient_litres_per_day,
+  app.add_option("--actuator", o.actuator, "Mixing actuator fitted: yes | no")->capture_default_str();
+  app.add_option("--ambient-litres-per-day", o.ambient_litres_per_day,
                   "Median displaced volume of ambient motion credited per day, L (log-normal, sigma 1)")
       ->capture_default_str();
-  app->add_option("--maintenance-days", o->maintenance_days, "Maintenance request to visit, days (no actuator)")
+  app.add_option("--maintenance-days", o.maintenance_days, "Maintenance request to visit, days (no actuator)")
       ->capture_default_str();
-  app->add_option("--lead-hours", o->lead_hours, "Scheduler's forecast horizon with an actuator, h")
+  app.add_option("--lead-hours", o.lead_hours, "Scheduler's forecast horizon with an actuator, h")
       ->capture_default_str();
-  app->add_option("--out", o->out_dir, "Folder for summary.json, capacity.csv, earthquakes.csv, capacity.png");
-  app->footer(kScheduleHelp);
-  return {app, [o] {
-            require_finite_at_least("--years", o->years, 0.0);
-            if (!(o->years > 0.0) || o->years > 1000.0) {
-              throw report::UsageError("--years: expected a number of years > 0 and <= 1000");
-            }
-            require_finite_at_least("--threshold", o->threshold, 0.0);
-            require_finite_at_least("--interval-days", o->interval_days, 0.0);
-            require_finite_at_least("--earthquakes-per-year", o->earthquakes_per_year, 0.0);
-            require_finite_at_least("--ambient-litres-per-day", o->ambient_litres_per_day, 0.0);
-            require_finite_at_least("--maintenance-days", o->maintenance_days, 0.0);
-            require_finite_at_least("--lead-hours", o->lead_hours, 0.0);
-            if (o->actuator != "yes" && o->actuator != "no") {
-              throw report::UsageError("--actuator: expected yes or no, got '" + o->actuator + "'");
-            }
-            schedule::ScheduleOptions so;
-            so.world.years = o->years;
-            so.world.seed = o->seed;
-            so.world.earthquakes_per_year = o->earthquakes_per_year;
-            so.world.ambient_median_m3_per_day = o->ambient_litres_per_day * 1e-3;
-            so.threshold = o->threshold;
-            so.interval_days = o->interval_days;
-            so.actuator = o->actuator == "yes";
-            so.maintenance_days = o->maintenance_days;
-            so.lead_hours = o->lead_hours;
-            if (!o->out_dir.empty()) report::prepare_output_dir(o->out_dir);
+  add_out_option(app, o.out_dir, "Folder for summary.json, capacity.csv, earthquakes.csv, capacity.png");
+}
 
-            const auto t0 = std::chrono::steady_clock::now();
-            const schedule::ScheduleResult r = schedule::run_schedule(so);
-            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            print_summary(r, seconds);
-            if (o->out_dir.empty()) return;
-            const std::filesystem::path dir(o->out_dir);
-            for (const auto& p : schedule::write_schedule_outputs(dir, r)) {
-              std::fprintf(stderr, "mrd schedule: warning: plot not written: %s\n", p.c_str());
-            }
-            std::printf("wrote %s\n", (dir / "summary.json").c_str());
-          }};
+void execute(const ScheduleCliOptions& o) {
+  const schedule::ScheduleOptions so = schedule_options(o);
+  compute_print_write(
+      "schedule", o.out_dir, [&] { return timed_schedule(so); }, print_summary,
+      [](const std::filesystem::path& dir, const TimedSchedule& t) {
+        return schedule::write_schedule_outputs(dir, t.result);
+      });
+}
+
+}  // namespace
+
+Command add_schedule_command(CLI::App& parent) {
+  return make_command(parent, kScheduleHelp, add_options, execute);
 }
 
 }  // namespace mrd::cli

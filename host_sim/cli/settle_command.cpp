@@ -1,18 +1,18 @@
 #include <cstdio>
-#include <filesystem>
-#include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "host_sim/cli/command.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/cli/options.hpp"
+#include "host_sim/run/settle_outputs.hpp"
 #include "host_sim/run/settle_study.hpp"
 #include "mrd/units.hpp"
 
 namespace mrd::cli {
 namespace {
 
-constexpr const char* kSettleHelp = R"(Fields (printed and written to DIR/summary.json):
+constexpr CommandHelp kSettleHelp{
+    "settle", "Settling state of the MR fluid after an idle time (Eq. 5.1-5.8)",
+    R"(Fields (printed and written to DIR/summary.json):
   idle_years                       idle time you gave, years (1 year = 365.25 days)
   settling_velocity_m_s            Stokes settling velocity V_t of one particle, m/s (Eq. 5.1)
   hindered_settling_velocity_m_s   hindered settling velocity V_ts = V_t (1 - chi)^n, m/s (Eq. 5.2)
@@ -23,7 +23,7 @@ constexpr const char* kSettleHelp = R"(Fields (printed and written to DIR/summar
   a_pr                             participant ratio before mixing, fraction (Eq. 5.6, Table 5.6)
   b_pr                             participant ratio after unlimited mixing, fraction (Eq. 5.7)
   c_pr                             recovery rate per unit of displaced volume, 1/L (Eq. 5.8, 5.9)
-Fluid and damper: Tables 3.1, 5.3 and 5.4 of the thesis.)";
+Fluid and damper: Tables 3.1, 5.3 and 5.4 of the thesis.)"};
 
 struct SettleOptions {
   double idle_years = 0.0;
@@ -46,40 +46,26 @@ void print_table(double idle_years, const run::SettleSummary& s) {
   row("participant-ratio rate c_PR", s.pr.c_pr, "1/L", "Eq. 5.8");
 }
 
-nlohmann::json to_json(double idle_years, const run::SettleSummary& s) {
-  return nlohmann::json{
-      {"idle_years", idle_years},
-      {"settling_velocity_m_s", s.settling_velocity_m_s},
-      {"hindered_settling_velocity_m_s", s.hindered_settling_velocity_m_s},
-      {"settled_layer_height_m", s.settled_layer_height_m},
-      {"max_settling_time_years", units::s_to_years(s.max_settling_time_s)},
-      {"sq", s.sq},
-      {"a_pr", s.pr.a_pr},
-      {"b_pr", s.pr.b_pr},
-      {"c_pr", s.pr.c_pr},
-  };
+void add_options(CLI::App& app, SettleOptions& o) {
+  app.add_option("--idle-years", o.idle_years, "Idle time in years (>= 0)")->required();
+  add_out_option(app, o.out_dir, "Folder for summary.json (created if missing)");
+}
+
+void execute(const SettleOptions& o) {
+  check_idle_years(o.idle_years);
+  compute_print_write(
+      "settle", o.out_dir, [&] { return run::settle_study(units::years_to_s(o.idle_years)); },
+      [&](const run::SettleSummary& s) { print_table(o.idle_years, s); },
+      [&](const std::filesystem::path& dir, const run::SettleSummary& s) {
+        run::write_settle_outputs(dir, o.idle_years, s);
+      },
+      "\nwrote %s\n");
 }
 
 }  // namespace
 
 Command add_settle_command(CLI::App& parent) {
-  auto opts = std::make_shared<SettleOptions>();
-  CLI::App* app = parent.add_subcommand(
-      "settle", "Settling state of the MR fluid after an idle time (Eq. 5.1-5.8)");
-  app->add_option("--idle-years", opts->idle_years, "Idle time in years (>= 0)")->required();
-  app->add_option("--out", opts->out_dir, "Folder for summary.json (created if missing)");
-  app->footer(kSettleHelp);
-  return {app, [opts] {
-            require_finite_at_least("--idle-years", opts->idle_years, 0.0);
-            if (!opts->out_dir.empty()) report::prepare_output_dir(opts->out_dir);
-            const run::SettleSummary s = run::settle_study(units::years_to_s(opts->idle_years));
-            print_table(opts->idle_years, s);
-            if (!opts->out_dir.empty()) {
-              const auto path = std::filesystem::path(opts->out_dir) / "summary.json";
-              report::write_file_atomically(path, to_json(opts->idle_years, s).dump(2) + "\n");
-              std::printf("\nwrote %s\n", path.c_str());
-            }
-          }};
+  return make_command(parent, kSettleHelp, add_options, execute);
 }
 
 }  // namespace mrd::cli

@@ -1,21 +1,19 @@
 #include <cstdio>
-#include <filesystem>
-#include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "host_sim/cli/command.hpp"
+#include "host_sim/cli/options.hpp"
 #include "mrd/units.hpp"
-#include "host_sim/report/output_dir.hpp"
-#include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/controller.hpp"
-#include "host_sim/run/motions.hpp"
 #include "host_sim/run/run_outputs.hpp"
+#include "host_sim/run/sim_run.hpp"
 
 namespace mrd::cli {
 namespace {
 
-constexpr const char* kSimHelp = R"(The closed loop: the 6-DOF base-isolated building of Table 6.1 (exact zero-order hold at
+constexpr CommandHelp kSimHelp{
+    "sim", "Closed-loop earthquake run of the base-isolated building",
+    R"(The closed loop: the 6-DOF base-isolated building of Table 6.1 (exact zero-order hold at
 --step-s), the MR damper between ground and base (Bingham + transition, Eq. 4.1-4.4; idle-time
 participant ratio, Eq. 5.5-5.12; coil dynamics Eq. 4.5), and the controller.
 Without --record the run uses a synthetic Kanai-Tajimi motion and says so.
@@ -30,7 +28,7 @@ Fields of DIR/summary.json:
   record, pga_m_s2, scale_factor, control, numeric, idle_years, duration_s, step_s: the run's inputs
 Files: DIR/timeseries.csv (every step; columns name their units), DIR/timeseries_response.png
 (displacement, force, floor acceleration, current over time, like Fig. 6.9-6.11) and
-DIR/timeseries_loop.png (force against stroke).)";
+DIR/timeseries_loop.png (force against stroke).)"};
 
 struct SimOptions {
   std::string record;
@@ -44,84 +42,63 @@ struct SimOptions {
   std::string out_dir;
 };
 
+/// The run the options ask for; throws io::UsageError for a bad option.
+run::SimSpec sim_spec(const SimOptions& o) {
+  check_pga_g(o.pga_g);
+  check_idle_years(o.idle_years);
+  require_finite_at_least("--duration-s", o.duration_s, 0.0);
+  require_step_s(o.step_s, 0.02, "0.02 s");
+  run::SimSpec spec;
+  spec.record = o.record;
+  spec.pga_g = o.pga_g;
+  spec.mode = run::parse_control_mode(o.control);
+  spec.numeric = run::parse_numeric_kind(o.numeric);
+  spec.idle_years = o.idle_years;
+  spec.duration_s = o.duration_s;
+  spec.step_s = o.step_s;
+  spec.seed = o.seed;
+  spec.keep_record = !o.out_dir.empty();
+  return spec;
+}
+
+void print_summary(const run::SimRun& r) {
+  if (r.spec.record.empty()) std::printf("no --record given: using %s\n", r.motion.source.c_str());
+  const plant::PlantSummary& s = r.summary;
+  std::printf("%s, PGA %.4g g (x%.4f), %s (%s core), idle %.4g years (SQ %.3f), %.2f s\n", r.motion.name.c_str(),
+              r.motion.pga_m_s2 / units::kStandardGravity_m_s2, r.motion.scale_factor,
+              control::mode_name(r.spec.mode), run::numeric_name(r.spec.numeric), r.spec.idle_years, s.sq,
+              s.duration_s);
+  std::printf("  peak base displacement       %10.4f mm\n", s.peak_base_displacement_m * 1e3);
+  std::printf("  peak damper force            %10.3f kN\n", s.peak_damper_force_n / 1e3);
+  std::printf("  peak superstructure accel    %10.4f m/s^2\n", s.peak_superstructure_accel_m_s2);
+  std::printf("  peak base accel              %10.4f m/s^2\n", s.peak_base_accel_m_s2);
+  std::printf("  peak coil current            %10.3f A\n", s.peak_current_a);
+}
+
+void add_options(CLI::App& app, SimOptions& o) {
+  app.add_option("--record", o.record, "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2");
+  add_pga_g_option(app, o.pga_g, "Scale the record to this PGA, g (Table 6.3: 0.1127)");
+  app.add_option("--control", o.control, "passive-off | passive-on | semi-active")->capture_default_str();
+  app.add_option("--numeric", o.numeric, "Numeric build of the firmware control core: float | fixed")
+      ->capture_default_str();
+  add_idle_years_option(app, o.idle_years, "Idle time before the earthquake, years");
+  app.add_option("--duration-s", o.duration_s, "Simulated time, s (default: the record's length; 40 s synthetic)");
+  add_step_s_option(app, o.step_s, "Simulation and control step, s");
+  app.add_option("--seed", o.seed, "Seed of the synthetic motion (without --record)")->capture_default_str();
+  add_out_option(app, o.out_dir, "Folder for summary.json, timeseries.csv and plots");
+}
+
+void execute(const SimOptions& o) {
+  const run::SimSpec spec = sim_spec(o);
+  const auto controller = run::make_controller(spec.mode, spec.step_s, spec.numeric);
+  compute_print_write(
+      "sim", o.out_dir, [&] { return run::run_sim(spec, *controller); }, print_summary, run::write_sim_outputs);
+}
+
 }  // namespace
 
 Command add_sim_command(CLI::App& parent) {
-  auto o = std::make_shared<SimOptions>();
-  CLI::App* app = parent.add_subcommand("sim", "Closed-loop earthquake run of the base-isolated building");
-  app->add_option("--record", o->record, "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2");
-  app->add_option("--pga-g", o->pga_g, "Scale the record to this PGA, g (Table 6.3: 0.1127)")->capture_default_str();
-  app->add_option("--control", o->control, "passive-off | passive-on | semi-active")->capture_default_str();
-  app->add_option("--numeric", o->numeric, "Numeric build of the firmware control core: float | fixed")
-      ->capture_default_str();
-  app->add_option("--idle-years", o->idle_years, "Idle time before the earthquake, years")->capture_default_str();
-  app->add_option("--duration-s", o->duration_s, "Simulated time, s (default: the record's length; 40 s synthetic)");
-  app->add_option("--step-s", o->step_s, "Simulation and control step, s")->capture_default_str();
-  app->add_option("--seed", o->seed, "Seed of the synthetic motion (without --record)")->capture_default_str();
-  app->add_option("--out", o->out_dir, "Folder for summary.json, timeseries.csv and plots");
-  app->footer(kSimHelp);
-  return {app, [o] {
-            require_positive("--pga-g", o->pga_g, "a PGA");
-            require_finite_at_least("--idle-years", o->idle_years, 0.0);
-            require_finite_at_least("--duration-s", o->duration_s, 0.0);
-            require_finite_at_least("--step-s", o->step_s, 1e-6);
-            if (o->step_s > 0.02) throw report::UsageError("--step-s: expected at most 0.02 s");
-            const control::ControlMode mode = run::parse_control_mode(o->control);
-            const run::NumericKind numeric = run::parse_numeric_kind(o->numeric);
-            auto controller = run::make_controller(mode, o->step_s, numeric);
-            if (!o->out_dir.empty()) report::prepare_output_dir(o->out_dir);
-
-            run::StudyMotion motion;
-            if (o->record.empty()) {
-              motion = run::synthetic_study_motion(o->seed, o->pga_g, o->step_s,
-                                                   o->duration_s > 0.0 ? o->duration_s : 40.0);
-              std::printf("no --record given: using %s\n", motion.source.c_str());
-            } else {
-              motion = run::load_study_motion(o->record, o->pga_g, o->step_s, o->duration_s);
-            }
-
-            plant::PlantSpec spec;
-            spec.step_s = o->step_s;
-            spec.idle_time_s = units::years_to_s(o->idle_years);
-            run::ClosedLoopRecord rec;
-            const bool keep = !o->out_dir.empty();
-            const plant::PlantSummary s = run::run_closed_loop(spec, motion.accel_m_s2, *controller, keep ? &rec : nullptr);
-
-            std::printf("%s, PGA %.4g g (x%.4f), %s (%s core), idle %.4g years (SQ %.3f), %.2f s\n",
-                        motion.name.c_str(), motion.pga_m_s2 / units::kStandardGravity_m_s2, motion.scale_factor,
-                        o->control.c_str(), run::numeric_name(numeric), o->idle_years, s.sq, s.duration_s);
-            std::printf("  peak base displacement       %10.4f mm\n", s.peak_base_displacement_m * 1e3);
-            std::printf("  peak damper force            %10.3f kN\n", s.peak_damper_force_n / 1e3);
-            std::printf("  peak superstructure accel    %10.4f m/s^2\n", s.peak_superstructure_accel_m_s2);
-            std::printf("  peak base accel              %10.4f m/s^2\n", s.peak_base_accel_m_s2);
-            std::printf("  peak coil current            %10.3f A\n", s.peak_current_a);
-            if (!keep) return;
-            const std::filesystem::path dir(o->out_dir);
-            const auto problems = run::write_closed_loop_outputs(
-                dir, "timeseries", motion.name + ", " + o->control + ", idle " + std::to_string(o->idle_years) + " years",
-                rec);
-            for (const auto& p : problems) std::fprintf(stderr, "mrd sim: warning: plot not written: %s\n", p.c_str());
-            const nlohmann::json j{
-                {"peak_base_displacement_m", s.peak_base_displacement_m},
-                {"peak_damper_force_kn", units::n_to_kn(s.peak_damper_force_n)},
-                {"peak_superstructure_accel_m_s2", s.peak_superstructure_accel_m_s2},
-                {"peak_base_accel_m_s2", s.peak_base_accel_m_s2},
-                {"peak_current_a", s.peak_current_a},
-                {"sq", s.sq},
-                {"final_participant_ratio", s.final_participant_ratio},
-                {"record", motion.source},
-                {"synthetic_motion", motion.synthetic},
-                {"pga_m_s2", motion.pga_m_s2},
-                {"scale_factor", motion.scale_factor},
-                {"control", o->control},
-                {"numeric", run::numeric_name(numeric)},
-                {"idle_years", o->idle_years},
-                {"duration_s", s.duration_s},
-                {"step_s", o->step_s},
-            };
-            report::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
-            std::printf("wrote %s\n", (dir / "summary.json").c_str());
-          }};
+  return make_command(parent, kSimHelp, add_options, execute);
 }
 
 }  // namespace mrd::cli

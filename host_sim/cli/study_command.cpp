@@ -1,21 +1,22 @@
 #include <cstdio>
-#include <memory>
 #include <string>
 
 #include "host_sim/cli/command.hpp"
+#include "host_sim/cli/options.hpp"
 #include "mrd/control/io.hpp"
-#include "host_sim/report/output_dir.hpp"
 #include "host_sim/run/study.hpp"
 
 namespace mrd::cli {
 namespace {
 
-constexpr const char* kStudyHelp = R"(The headline study of thesis chapter 6: the four records of Table 6.2 scaled to 0.1127 g
+constexpr CommandHelp kStudyHelp{
+    "study", "Chapter-6 study: records x modes, fully mixed vs idle, with report",
+    R"(The headline study of thesis chapter 6: the four records of Table 6.2 scaled to 0.1127 g
 (Table 6.3) in every control mode this build has, fully mixed against 2.5 years idle
 (Fig. 6.9-6.11), plus the idle-time sweep of Fig. 6.12-6.20 and the chapter-5 checks it rests on.
 Writes DIR/report.md (Markdown with the tables and plots), DIR/summary.json (per record and mode:
 peak_base_displacement_m, peak_damper_force_kn, peak_superstructure_accel_m_s2 and sq, fully mixed
-and idle), one comparison PNG per record and mode, and DIR/sweep/.)";
+and idle), one comparison PNG per record and mode, and DIR/sweep/.)"};
 
 struct StudyCliOptions {
   run::StudyOptions study;
@@ -23,32 +24,45 @@ struct StudyCliOptions {
   std::string out_dir = "out/study";
 };
 
+void print_motion_notice(const run::StudyResult& r) {
+  if (r.synthetic_motions) std::printf("shared ground motions not found: the study used synthetic motions\n");
+}
+
+void print_table(const run::StudyResult& r) {
+  std::printf("%-22s %-12s %28s %26s\n", "record", "control", "peak base disp [mm]", "peak force [kN]");
+  for (const auto& row : r.rows) {
+    std::printf("%-22s %-12s %12.1f -> %8.1f %14.1f -> %8.1f\n", row.motion.c_str(), control::mode_name(row.mode),
+                row.fully_mixed.peak_base_displacement_m * 1e3, row.idle.peak_base_displacement_m * 1e3,
+                row.fully_mixed.peak_damper_force_n / 1e3, row.idle.peak_damper_force_n / 1e3);
+  }
+}
+
+void add_options(CLI::App& app, StudyCliOptions& o) {
+  add_pga_g_option(app, o.study.pga_g, "PGA of every record, g");
+  add_idle_years_option(app, o.study.idle_years, "Idle time compared with fully mixed, years");
+  app.add_flag("--no-sweep", o.no_sweep, "Skip the idle-time sweep");
+  add_threads_option(app, o.study.threads, "Worker threads for the sweep (0: all cores)");
+  add_out_option(app, o.out_dir, "Output folder")->capture_default_str();
+}
+
+void execute(const StudyCliOptions& o) {
+  check_pga_g(o.study.pga_g);
+  check_idle_years(o.study.idle_years);
+  run::StudyOptions study = o.study;
+  study.with_sweep = !o.no_sweep;
+  const auto out = open_out_dir(o.out_dir);
+  const run::StudyResult r = run::run_study(study);
+  const auto problems = run::write_study_outputs(out, r);
+  print_motion_notice(r);
+  warn_plots_not_written("study", problems);
+  print_table(r);
+  std::printf("wrote %s/report.md\n", o.out_dir.c_str());
+}
+
 }  // namespace
 
 Command add_study_command(CLI::App& parent) {
-  auto o = std::make_shared<StudyCliOptions>();
-  CLI::App* app = parent.add_subcommand("study", "Chapter-6 study: records x modes, fully mixed vs idle, with report");
-  app->add_option("--pga-g", o->study.pga_g, "PGA of every record, g")->capture_default_str();
-  app->add_option("--idle-years", o->study.idle_years, "Idle time compared with fully mixed, years")->capture_default_str();
-  app->add_flag("--no-sweep", o->no_sweep, "Skip the idle-time sweep");
-  app->add_option("--threads", o->study.threads, "Worker threads for the sweep (0: all cores)")->capture_default_str();
-  app->add_option("--out", o->out_dir, "Output folder")->capture_default_str();
-  app->footer(kStudyHelp);
-  return {app, [o] {
-            require_positive("--pga-g", o->study.pga_g, "a PGA");
-            require_finite_at_least("--idle-years", o->study.idle_years, 0.0);
-            o->study.with_sweep = !o->no_sweep;
-            const auto r = run::run_study(o->study, o->out_dir);
-            if (r.synthetic_motions) std::printf("shared ground motions not found: the study used synthetic motions\n");
-            for (const auto& p : r.plot_problems) std::fprintf(stderr, "mrd study: warning: plot not written: %s\n", p.c_str());
-            std::printf("%-22s %-12s %28s %26s\n", "record", "control", "peak base disp [mm]", "peak force [kN]");
-            for (const auto& row : r.rows) {
-              std::printf("%-22s %-12s %12.1f -> %8.1f %14.1f -> %8.1f\n", row.motion.c_str(), control::mode_name(row.mode),
-                          row.fully_mixed.peak_base_displacement_m * 1e3, row.idle.peak_base_displacement_m * 1e3,
-                          row.fully_mixed.peak_damper_force_n / 1e3, row.idle.peak_damper_force_n / 1e3);
-            }
-            std::printf("wrote %s/report.md\n", o->out_dir.c_str());
-          }};
+  return make_command(parent, kStudyHelp, add_options, execute);
 }
 
 }  // namespace mrd::cli

@@ -1,20 +1,21 @@
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <memory>
 #include <string>
+#include <vector>
 
 #include "host_sim/cli/command.hpp"
+#include "host_sim/cli/options.hpp"
 #include "host_sim/discrepancy/discrepancy_report.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "host_sim/discrepancy/synth.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::cli {
 namespace {
 
-constexpr const char* kSynthHelp = R"(Makes a measured-like damper record: the chapter-4 model plus hidden effects (see
+constexpr CommandHelp kSynthHelp{
+    "synth", "Generate a measured-like damper record with hidden effects",
+    R"(Makes a measured-like damper record: the chapter-4 model plus hidden effects (see
 'mrd discrepancy --help' for the catalogue) with parameters drawn from physical ranges (or
 --params), a random sine or broadband (0.1-2.5 Hz) displacement below the damper's 0.249 m/s
 (Table 3.1), a constant or stepped coil-current command, load-cell noise (white 0.2-1 kN plus a
@@ -25,7 +26,7 @@ Files: DIR/measured.csv (time_s, displacement_m, current_cmd_A, force_N; velocit
 --velocity-column) or DIR/measured.mat with --format mat, and DIR/summary.json, the truth:
   effects, parameters (per effect, with effect_rms_n), input, current, force_noise_rms_n,
   displacement_noise_m, true_gap (normalized RMS gap of the noise-free truth to the baseline),
-  draws, seed, duration_s, rate_hz, jitter, samples.)";
+  draws, seed, duration_s, rate_hz, jitter, samples.)"};
 
 struct SynthCliOptions {
   std::string effects = "random";
@@ -55,7 +56,7 @@ std::vector<double> parse_params(const std::string& text) {
       used = 0;
     }
     if (used == 0 || used != item.size() || !std::isfinite(v)) {
-      throw report::UsageError("--params: not a number: '" + item + "'");
+      throw io::UsageError("--params: not a number: '" + item + "'");
     }
     out.push_back(v);
     if (p == std::string::npos) break;
@@ -64,96 +65,86 @@ std::vector<double> parse_params(const std::string& text) {
   return out;
 }
 
+/// --params: each within the physical bounds of its effect, as many as the effects take.
+void check_params(const discrepancy::SynthSpec& spec) {
+  const discrepancy::EffectSet set{spec.effects};
+  if (spec.params.size() != set.param_count()) {
+    throw io::UsageError("--params: " + set.label() + " takes " + std::to_string(set.param_count()) +
+                         " parameters, got " + std::to_string(spec.params.size()));
+  }
+  std::size_t i = 0;
+  for (const auto e : spec.effects) {
+    for (const auto& p : discrepancy::effect_info(e).params) {
+      if (spec.params[i] < p.lower || spec.params[i] > p.upper) {
+        throw io::UsageError("--params: " + std::string(p.name) + " of " + std::string(discrepancy::effect_name(e)) +
+                             " outside its physical bounds [" + std::to_string(p.lower) + ", " +
+                             std::to_string(p.upper) + "]");
+      }
+      ++i;
+    }
+  }
+}
+
+/// The record the options ask for; throws io::UsageError for a bad option.
+discrepancy::SynthSpec synth_spec(const SynthCliOptions& o) {
+  require_finite_at_least("--duration-s", o.duration_s, 2.0);
+  require_finite_at_least("--rate-hz", o.rate_hz, 50.0);
+  require_finite_at_least("--jitter", o.jitter, 0.0);
+  if (o.duration_s * o.rate_hz > 5.0e7) throw io::UsageError("--duration-s: more than 5e7 samples");
+  if (o.jitter >= 0.9) throw io::UsageError("--jitter: expected a fraction below 0.9");
+  require_choice("--format", o.format, {"csv", "mat"});
+  discrepancy::SynthSpec spec;
+  spec.seed = o.seed;
+  spec.duration_s = o.duration_s;
+  spec.rate_hz = o.rate_hz;
+  spec.jitter = o.jitter;
+  spec.velocity_column = o.velocity_column;
+  if (o.input == "sine") spec.input = discrepancy::SynthInput::sine;
+  else if (o.input == "broadband") spec.input = discrepancy::SynthInput::broadband;
+  else if (o.input != "random") throw io::UsageError("--input: expected sine, broadband or random");
+  if (o.current == "constant") spec.current = discrepancy::SynthCurrent::constant;
+  else if (o.current == "steps") spec.current = discrepancy::SynthCurrent::steps;
+  else if (o.current != "random") throw io::UsageError("--current: expected constant, steps or random");
+  spec.effects = o.effects == "random" ? discrepancy::random_effects(o.seed)
+                                       : discrepancy::parse_effect_list(o.effects, "--effects");
+  if (!o.params.empty()) {
+    spec.params = parse_params(o.params);
+    check_params(spec);
+  }
+  return spec;
+}
+
+void add_options(CLI::App& app, SynthCliOptions& o) {
+  app.add_option("--effects", o.effects, "Comma-separated effects, none, or random (0-2 drawn by --seed)")
+      ->capture_default_str();
+  app.add_option("--params", o.params, "Parameters of the effects, comma-separated in their order (SI)");
+  app.add_option("--input", o.input, "sine | broadband | random")->capture_default_str();
+  app.add_option("--current", o.current, "constant | steps | random")->capture_default_str();
+  app.add_option("--duration-s", o.duration_s, "Record length, s")->capture_default_str();
+  app.add_option("--rate-hz", o.rate_hz, "Sampling rate, Hz")->capture_default_str();
+  app.add_option("--jitter", o.jitter, "Sampling-time jitter as a fraction of the step (non-uniform time)")
+      ->capture_default_str();
+  app.add_option("--seed", o.seed, "Seed of every random draw")->capture_default_str();
+  app.add_flag("--velocity-column", o.velocity_column, "Also write a measured velocity column");
+  app.add_option("--format", o.format, "csv | mat")->capture_default_str();
+  add_out_option(app, o.out_dir, "Folder for measured.csv/.mat and summary.json")->required();
+}
+
+void execute(const SynthCliOptions& o) {
+  const discrepancy::SynthSpec spec = synth_spec(o);
+  const auto out = open_out_dir(o.out_dir);
+  const discrepancy::SynthCase c = discrepancy::synthesize(spec);
+  const auto format = o.format == "mat" ? discrepancy::RecordFormat::mat : discrepancy::RecordFormat::csv;
+  const auto data_path = discrepancy::write_synth_outputs(out, c, spec, format);
+  std::printf("effects: %s; %s; %s; %zu samples\n", discrepancy::EffectSet{c.effects}.label().c_str(),
+              c.input_description.c_str(), c.current_description.c_str(), c.data.size());
+  std::printf("wrote %s and %s\n", data_path.c_str(), (out / "summary.json").c_str());
+}
+
 }  // namespace
 
 Command add_synth_command(CLI::App& parent) {
-  auto o = std::make_shared<SynthCliOptions>();
-  CLI::App* app = parent.add_subcommand("synth", "Generate a measured-like damper record with hidden effects");
-  app->add_option("--effects", o->effects, "Comma-separated effects, none, or random (0-2 drawn by --seed)")
-      ->capture_default_str();
-  app->add_option("--params", o->params, "Parameters of the effects, comma-separated in their order (SI)");
-  app->add_option("--input", o->input, "sine | broadband | random")->capture_default_str();
-  app->add_option("--current", o->current, "constant | steps | random")->capture_default_str();
-  app->add_option("--duration-s", o->duration_s, "Record length, s")->capture_default_str();
-  app->add_option("--rate-hz", o->rate_hz, "Sampling rate, Hz")->capture_default_str();
-  app->add_option("--jitter", o->jitter, "Sampling-time jitter as a fraction of the step (non-uniform time)")
-      ->capture_default_str();
-  app->add_option("--seed", o->seed, "Seed of every random draw")->capture_default_str();
-  app->add_flag("--velocity-column", o->velocity_column, "Also write a measured velocity column");
-  app->add_option("--format", o->format, "csv | mat")->capture_default_str();
-  app->add_option("--out", o->out_dir, "Folder for measured.csv/.mat and summary.json")->required();
-  app->footer(kSynthHelp);
-  return {app, [o] {
-            require_finite_at_least("--duration-s", o->duration_s, 2.0);
-            require_finite_at_least("--rate-hz", o->rate_hz, 50.0);
-            require_finite_at_least("--jitter", o->jitter, 0.0);
-            if (o->duration_s * o->rate_hz > 5.0e7) throw report::UsageError("--duration-s: more than 5e7 samples");
-            if (o->jitter >= 0.9) throw report::UsageError("--jitter: expected a fraction below 0.9");
-            if (o->format != "csv" && o->format != "mat") {
-              throw report::UsageError("--format: expected csv or mat, got '" + o->format + "'");
-            }
-            discrepancy::SynthSpec spec;
-            spec.seed = o->seed;
-            spec.duration_s = o->duration_s;
-            spec.rate_hz = o->rate_hz;
-            spec.jitter = o->jitter;
-            spec.velocity_column = o->velocity_column;
-            if (o->input == "sine") spec.input = discrepancy::SynthInput::sine;
-            else if (o->input == "broadband") spec.input = discrepancy::SynthInput::broadband;
-            else if (o->input != "random") throw report::UsageError("--input: expected sine, broadband or random");
-            if (o->current == "constant") spec.current = discrepancy::SynthCurrent::constant;
-            else if (o->current == "steps") spec.current = discrepancy::SynthCurrent::steps;
-            else if (o->current != "random") throw report::UsageError("--current: expected constant, steps or random");
-            if (o->effects == "random") {
-              // 0, 1 or 2 distinct effects, drawn from the seed.
-              std::uint64_t h = o->seed * 0x9E3779B97F4A7C15ull + 7u;
-              const auto draw = [&h](std::size_t n) {
-                h ^= h >> 33;
-                h *= 0xff51afd7ed558ccdull;
-                h ^= h >> 33;
-                return static_cast<std::size_t>(h % n);
-              };
-              const std::size_t count = draw(3);
-              while (spec.effects.size() < count) {
-                const auto e = discrepancy::kAllEffects[draw(discrepancy::kEffectCount)];
-                if (std::find(spec.effects.begin(), spec.effects.end(), e) == spec.effects.end()) spec.effects.push_back(e);
-              }
-            } else {
-              spec.effects = discrepancy::parse_effect_list(o->effects, "--effects");
-            }
-            if (!o->params.empty()) {
-              spec.params = parse_params(o->params);
-              const discrepancy::EffectSet set{spec.effects};
-              if (spec.params.size() != set.param_count()) {
-                throw report::UsageError("--params: " + set.label() + " takes " + std::to_string(set.param_count()) +
-                                         " parameters, got " + std::to_string(spec.params.size()));
-              }
-              std::size_t i = 0;
-              for (const auto e : spec.effects) {
-                for (const auto& p : discrepancy::effect_info(e).params) {
-                  if (spec.params[i] < p.lower || spec.params[i] > p.upper) {
-                    throw report::UsageError("--params: " + std::string(p.name) + " of " +
-                                             std::string(discrepancy::effect_name(e)) + " outside its physical bounds [" +
-                                             std::to_string(p.lower) + ", " + std::to_string(p.upper) + "]");
-                  }
-                  ++i;
-                }
-              }
-            }
-            report::prepare_output_dir(o->out_dir);
-            const discrepancy::SynthCase c = discrepancy::synthesize(spec);
-            const std::filesystem::path dir(o->out_dir);
-            const auto data_path = dir / (o->format == "mat" ? "measured.mat" : "measured.csv");
-            if (o->format == "mat") {
-              discrepancy::write_measured_mat(c.data, data_path);
-            } else {
-              report::write_file_atomically(data_path, discrepancy::measured_to_csv(c.data));
-            }
-            report::write_file_atomically(dir / "summary.json", discrepancy::synth_json(c, spec).dump(2) + "\n");
-            std::printf("effects: %s; %s; %s; %zu samples\n", discrepancy::EffectSet{c.effects}.label().c_str(),
-                        c.input_description.c_str(), c.current_description.c_str(), c.data.size());
-            std::printf("wrote %s and %s\n", data_path.c_str(), (dir / "summary.json").c_str());
-          }};
+  return make_command(parent, kSynthHelp, add_options, execute);
 }
 
 }  // namespace mrd::cli

@@ -84,6 +84,51 @@ void DamperModel::coefficients(const std::vector<double>& current_a, std::vector
   }
 }
 
+void DamperModel::backlash_motion(double half_gap_m, ModelWorkspace& ws) const {
+  const std::size_t n = size();
+  ws.disp_m.resize(n);
+  ws.vel_m_s.resize(n);
+  // Play operator: the rod stays put until the actuator reaches a side of the gap.
+  double rod = in_.disp_m[0];
+  for (std::size_t k = 0; k < n; ++k) {
+    const double x = in_.disp_m[k];
+    if (x - rod > half_gap_m) {
+      rod = x - half_gap_m;
+    } else if (rod - x > half_gap_m) {
+      rod = x + half_gap_m;
+    }
+    ws.disp_m[k] = rod;
+  }
+  // Engaged fraction: the rod's share of the actuator's central difference,
+  // continuous in the gap.
+  ws.engaged.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t a = k > 0 ? k - 1 : 0;
+    const std::size_t b = k + 1 < n ? k + 1 : n - 1;
+    const double dx = in_.disp_m[b] - in_.disp_m[a];
+    const double dr = ws.disp_m[b] - ws.disp_m[a];
+    double engaged = 1.0;
+    if (std::fabs(dx) > 1e-15) engaged = std::clamp(dr / dx, 0.0, 1.0);
+    else if (dr == 0.0 && half_gap_m > 0.0) engaged = 0.0;
+    ws.engaged[k] = engaged;
+  }
+  // Contact is not instantaneous: the engagement is averaged over
+  // ±kContactHalfWindow_s (at least one sample each side), so the rod takes
+  // up the actuator's velocity over a few milliseconds. This also keeps the
+  // force smooth in the gap and the delay between samples, which the fit
+  // needs (a one-sample jump leaves sample-spaced local minima).
+  ws.vel_m_s.assign(n, 0.0);
+  std::size_t lo = 0;
+  std::size_t hi = 0;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = in_.time_s[k];
+    while (hi < n && (in_.time_s[hi] - t <= kContactHalfWindow_s || hi <= k + 1)) sum += ws.engaged[hi++];
+    while (lo < k && (t - in_.time_s[lo] > kContactHalfWindow_s && lo + 1 < k)) sum -= ws.engaged[lo++];
+    ws.vel_m_s[k] = in_.vel_m_s[k] * sum / static_cast<double>(hi - lo);
+  }
+}
+
 void DamperModel::raw_force(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws) const {
   const std::size_t n = size();
   const auto param = [&](Effect e, std::size_t i, double fallback) {
@@ -108,48 +153,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double* xd = in_.disp_m.data();
   const double* vd = in_.vel_m_s.data();
   if (set.contains(Effect::backlash)) {
-    const double half_gap_m = 0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0);
-    ws.disp_m.resize(n);
-    ws.vel_m_s.resize(n);
-    // Play operator: the rod stays put until the actuator reaches a side of the gap.
-    double rod = in_.disp_m[0];
-    for (std::size_t k = 0; k < n; ++k) {
-      const double x = in_.disp_m[k];
-      if (x - rod > half_gap_m) {
-        rod = x - half_gap_m;
-      } else if (rod - x > half_gap_m) {
-        rod = x + half_gap_m;
-      }
-      ws.disp_m[k] = rod;
-    }
-    // Engaged fraction: the rod's share of the actuator's central difference,
-    // continuous in the gap.
-    ws.engaged.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t a = k > 0 ? k - 1 : 0;
-      const std::size_t b = k + 1 < n ? k + 1 : n - 1;
-      const double dx = in_.disp_m[b] - in_.disp_m[a];
-      const double dr = ws.disp_m[b] - ws.disp_m[a];
-      double engaged = 1.0;
-      if (std::fabs(dx) > 1e-15) engaged = std::clamp(dr / dx, 0.0, 1.0);
-      else if (dr == 0.0 && half_gap_m > 0.0) engaged = 0.0;
-      ws.engaged[k] = engaged;
-    }
-    // Contact is not instantaneous: the engagement is averaged over
-    // ±kContactHalfWindow_s (at least one sample each side), so the rod takes
-    // up the actuator's velocity over a few milliseconds. This also keeps the
-    // force smooth in the gap and the delay between samples, which the fit
-    // needs (a one-sample jump leaves sample-spaced local minima).
-    ws.vel_m_s.assign(n, 0.0);
-    std::size_t lo = 0;
-    std::size_t hi = 0;
-    double sum = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double t = in_.time_s[k];
-      while (hi < n && (in_.time_s[hi] - t <= kContactHalfWindow_s || hi <= k + 1)) sum += ws.engaged[hi++];
-      while (lo < k && (t - in_.time_s[lo] > kContactHalfWindow_s && lo + 1 < k)) sum -= ws.engaged[lo++];
-      ws.vel_m_s[k] = in_.vel_m_s[k] * sum / static_cast<double>(hi - lo);
-    }
+    backlash_motion(0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0), ws);
     xd = ws.disp_m.data();
     vd = ws.vel_m_s.data();
   }

@@ -78,6 +78,9 @@ class DamperModel {
  private:
   /// Fills ws.force_n with F[k] before any delay.
   void raw_force(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws) const;
+  /// Fills ws.disp_m and ws.vel_m_s with the rod's motion when the mounting
+  /// has a free play of ±half_gap_m (backlash); uses ws.engaged.
+  void backlash_motion(double half_gap_m, ModelWorkspace& ws) const;
   void coefficients(const std::vector<double>& current_a, std::vector<double>& a_fc, std::vector<double>& b_fc,
                     std::vector<double>& a_c0, std::vector<double>& b_c0) const;
 

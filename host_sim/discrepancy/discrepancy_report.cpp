@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
+#include "host_sim/io/text.hpp"
 #include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/summary_json.hpp"
 #include "host_sim/report/plot.hpp"
 #include "host_sim/report/time_series.hpp"
 
@@ -47,20 +48,135 @@ json effects_json(const std::vector<Effect>& effects) {
   return a;
 }
 
-std::string pct(double f) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f %%", 100.0 * f);
-  return buf;
+json round_json(const RoundResult& rd) {
+  json jr{{"model", effects_json(rd.model)},
+          {"gap", rd.gap},
+          {"chosen", rd.chosen ? json(effect_name(*rd.chosen)) : json("none")},
+          {"model_after", rd.chosen ? effects_json(rd.model_after) : effects_json(rd.model)},
+          {"candidates", json::array()}};
+  for (const auto& c : rd.candidates) jr["candidates"].push_back(candidate_json(c));
+  return jr;
 }
 
-std::string g4(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
+json region_json(const RegionStat& s) {
+  return json{{"name", s.name},
+              {"description", s.description},
+              {"fraction_of_time", s.fraction_of_time},
+              {"share_of_gap_before", s.share_of_gap_before},
+              {"share_of_gap_after", s.share_of_gap_after},
+              {"concentration_before", s.concentration_before},
+              {"concentrated", s.concentrated},
+              {"rms_before_n", s.rms_before_n},
+              {"rms_after_n", s.rms_after_n},
+              {"magnitude_bias_before_n", s.magnitude_bias_before_n}};
 }
+
+json window_json(const TimeWindowStat& w) {
+  return json{{"start_s", w.start_s},
+              {"end_s", w.end_s},
+              {"rms_before_n", w.rms_before_n},
+              {"rms_after_n", w.rms_after_n},
+              {"share_of_gap_before", w.share_of_gap_before}};
+}
+
+json settings_json(const DiscrepancyResult& r, const DiscrepancyOptions& o) {
+  json cat = json::array();
+  for (const Effect e : o.catalogue) cat.push_back(effect_name(e));
+  return json{{"catalogue", cat},
+              {"min_delta_bic", o.min_delta_bic},
+              {"min_rss_reduction", o.min_rss_reduction},
+              {"max_effects", o.max_effects},
+              {"fit_samples", r.fit_samples},
+              {"fit_stride", r.fit_stride},
+              {"smoothing_half_window_s", o.smoothing_half_window_s},
+              {"baseline_effective_samples", r.n_eff_baseline}};
+}
+
+/// {effect: params_json} for `effects`, whose parameters `params` holds packed in that order.
+json effect_params_json(const std::vector<Effect>& effects, std::span<const double> params) {
+  json out = json::object();
+  const EffectSet set{effects};
+  for (const Effect e : effects) {
+    const auto off = *set.offset(e);
+    out[std::string(effect_name(e))] = params_json(e, params.subspan(off, effect_info(e).params.size()));
+  }
+  return out;
+}
+
+std::string pct(double f) { return io::format_number("%.2f %%", 100.0 * f); }
+
+std::string g4(double v) { return io::format_number("%.4g", v); }
 
 void note(std::vector<std::string>& problems, const report::PlotResult& r, const std::filesystem::path& png) {
   if (!r.ok) problems.push_back(png.filename().string() + ": " + r.reason);
+}
+
+/// fit.csv: input, coil current, measured/baseline/updated force and residuals at every sample.
+void write_fit_csv(const std::filesystem::path& dir, const MeasuredData& data, const DiscrepancyResult& r) {
+  const std::size_t n = data.size();
+  report::TimeSeries ts({"time_s", "displacement_m", "velocity_m_s", "current_cmd_A", "coil_current_A",
+                         "force_measured_N", "force_baseline_N", "force_updated_N", "residual_before_N",
+                         "residual_after_N"});
+  ts.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    ts.add_row({data.time_s[k], r.disp_m[k], r.vel_m_s[k], data.current_cmd_a[k], r.coil_current_a[k],
+                data.force_n[k], r.baseline_force_n[k], r.updated_force_n[k], data.force_n[k] - r.baseline_force_n[k],
+                data.force_n[k] - r.updated_force_n[k]});
+  }
+  report::write_csv(ts, dir / "fit.csv");
+}
+
+std::string model_label(const DiscrepancyResult& r) {
+  return r.effects.empty() ? "updated (= baseline)" : "updated: " + EffectSet{r.effects}.label();
+}
+
+/// force_time.png and residual.png, thinned to about 20000 points.
+void plot_force_and_residual(const std::filesystem::path& dir, const MeasuredData& data, const DiscrepancyResult& r,
+                             std::vector<std::string>& problems) {
+  const std::size_t n = data.size();
+  const std::size_t stride = std::max<std::size_t>(1, n / 20000);
+  const auto t = thin(data.time_s, stride);
+  const std::string label = model_label(r);
+  std::vector<double> res_b(n), res_a(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    res_b[k] = data.force_n[k] - r.baseline_force_n[k];
+    res_a[k] = data.force_n[k] - r.updated_force_n[k];
+  }
+  report::PlotSpec ft{data.source + ": force", "time [s]", "force [kN]",
+                      {{"measured", t, thin(data.force_n, stride, 1e-3)},
+                       {"baseline (chapter 4)", t, thin(r.baseline_force_n, stride, 1e-3)},
+                       {label, t, thin(r.updated_force_n, stride, 1e-3)}}};
+  note(problems, report::plot_png(ft, dir / "force_time.png"), dir / "force_time.png");
+  report::PlotSpec rs{data.source + ": residual (measured - model)", "time [s]", "force residual [kN]",
+                      {{"before (baseline)", t, thin(res_b, stride, 1e-3)},
+                       {"after (" + label + ")", t, thin(res_a, stride, 1e-3)}}};
+  note(problems, report::plot_png(rs, dir / "residual.png"), dir / "residual.png");
+}
+
+/// loops.png: force against displacement and velocity, thinned to about 8000 points.
+void plot_loops(const std::filesystem::path& dir, const MeasuredData& data, const DiscrepancyResult& r,
+                std::vector<std::string>& problems) {
+  const std::size_t ls = std::max<std::size_t>(1, data.size() / 8000);
+  const std::string label = model_label(r);
+  const auto x_mm = thin(r.disp_m, ls, 1e3);
+  const auto v_mm_s = thin(r.vel_m_s, ls, 1e3);
+  const auto fm = thin(data.force_n, ls, 1e-3);
+  const auto fb = thin(r.baseline_force_n, ls, 1e-3);
+  const auto fu = thin(r.updated_force_n, ls, 1e-3);
+  report::MultiPlot mp;
+  mp.title = data.source + ": force-displacement and force-velocity loops";
+  mp.columns = 2;
+  mp.width_px = 1400;
+  mp.height_px = 650;
+  mp.panels.push_back({"force - displacement",
+                       "displacement [mm]",
+                       "force [kN]",
+                       {{"measured", x_mm, fm}, {"baseline", x_mm, fb}, {label, x_mm, fu}}});
+  mp.panels.push_back({"force - velocity",
+                       "velocity [mm/s]",
+                       "force [kN]",
+                       {{"measured", v_mm_s, fm}, {"baseline", v_mm_s, fb}, {label, v_mm_s, fu}}});
+  note(problems, report::plot_png(mp, dir / "loops.png"), dir / "loops.png");
 }
 
 std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
@@ -143,132 +259,40 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
   j["gap_before"] = r.gap_before;
   j["gap_after"] = r.gap_after;
   j["gap_reduction"] = r.gap_before > 0.0 ? 1.0 - r.gap_after / r.gap_before : 0.0;
-  json params = json::object();
-  const EffectSet set{r.effects};
-  for (const Effect e : r.effects) {
-    const auto off = *set.offset(e);
-    params[std::string(effect_name(e))] =
-        params_json(e, std::span<const double>(r.params).subspan(off, effect_info(e).params.size()));
-  }
-  j["parameters"] = params;
+  j["parameters"] = effect_params_json(r.effects, r.params);
   j["candidates"] = json::array();
   if (!r.rounds.empty()) {
     for (const auto& c : r.rounds.front().candidates) j["candidates"].push_back(candidate_json(c));
   }
   j["rounds"] = json::array();
-  for (const auto& rd : r.rounds) {
-    json jr{{"model", effects_json(rd.model)},
-            {"gap", rd.gap},
-            {"chosen", rd.chosen ? json(effect_name(*rd.chosen)) : json("none")},
-            {"model_after", rd.chosen ? effects_json(rd.model_after) : effects_json(rd.model)},
-            {"candidates", json::array()}};
-    for (const auto& c : rd.candidates) jr["candidates"].push_back(candidate_json(c));
-    j["rounds"].push_back(jr);
-  }
+  for (const auto& rd : r.rounds) j["rounds"].push_back(round_json(rd));
   j["dropped"] = effects_json(r.dropped);
   j["regions"] = json::array();
-  for (const auto& s : r.regions) {
-    j["regions"].push_back(json{{"name", s.name},
-                                {"description", s.description},
-                                {"fraction_of_time", s.fraction_of_time},
-                                {"share_of_gap_before", s.share_of_gap_before},
-                                {"share_of_gap_after", s.share_of_gap_after},
-                                {"concentration_before", s.concentration_before},
-                                {"concentrated", s.concentrated},
-                                {"rms_before_n", s.rms_before_n},
-                                {"rms_after_n", s.rms_after_n},
-                                {"magnitude_bias_before_n", s.magnitude_bias_before_n}});
-  }
+  for (const auto& s : r.regions) j["regions"].push_back(region_json(s));
   j["time_windows"] = json::array();
-  for (const auto& w : r.windows) {
-    j["time_windows"].push_back(json{{"start_s", w.start_s},
-                                     {"end_s", w.end_s},
-                                     {"rms_before_n", w.rms_before_n},
-                                     {"rms_after_n", w.rms_after_n},
-                                     {"share_of_gap_before", w.share_of_gap_before}});
-  }
-  json cat = json::array();
-  for (const Effect e : o.catalogue) cat.push_back(effect_name(e));
-  j["settings"] = json{{"catalogue", cat},
-                       {"min_delta_bic", o.min_delta_bic},
-                       {"min_rss_reduction", o.min_rss_reduction},
-                       {"max_effects", o.max_effects},
-                       {"fit_samples", r.fit_samples},
-                       {"fit_stride", r.fit_stride},
-                       {"smoothing_half_window_s", o.smoothing_half_window_s},
-                       {"baseline_effective_samples", r.n_eff_baseline}};
+  for (const auto& w : r.windows) j["time_windows"].push_back(window_json(w));
+  j["settings"] = settings_json(r, o);
   return j;
 }
 
 std::vector<std::string> write_discrepancy_outputs(const std::filesystem::path& dir, const MeasuredData& data,
                                                    const DiscrepancyResult& r, const DiscrepancyOptions& options,
                                                    bool plots) {
-  const std::size_t n = data.size();
-  report::TimeSeries ts({"time_s", "displacement_m", "velocity_m_s", "current_cmd_A", "coil_current_A",
-                         "force_measured_N", "force_baseline_N", "force_updated_N", "residual_before_N",
-                         "residual_after_N"});
-  ts.reserve(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    ts.add_row({data.time_s[k], r.disp_m[k], r.vel_m_s[k], data.current_cmd_a[k], r.coil_current_a[k],
-                data.force_n[k], r.baseline_force_n[k], r.updated_force_n[k], data.force_n[k] - r.baseline_force_n[k],
-                data.force_n[k] - r.updated_force_n[k]});
-  }
-  report::write_csv(ts, dir / "fit.csv");
-
+  write_fit_csv(dir, data, r);
   std::vector<std::string> problems;
   if (plots) {
-    const std::size_t stride = std::max<std::size_t>(1, n / 20000);
-    const auto t = thin(data.time_s, stride);
-    const std::string model_label = r.effects.empty() ? "updated (= baseline)" : "updated: " + EffectSet{r.effects}.label();
-    std::vector<double> res_b(n), res_a(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      res_b[k] = data.force_n[k] - r.baseline_force_n[k];
-      res_a[k] = data.force_n[k] - r.updated_force_n[k];
-    }
-    report::PlotSpec ft{data.source + ": force", "time [s]", "force [kN]",
-                        {{"measured", t, thin(data.force_n, stride, 1e-3)},
-                         {"baseline (chapter 4)", t, thin(r.baseline_force_n, stride, 1e-3)},
-                         {model_label, t, thin(r.updated_force_n, stride, 1e-3)}}};
-    note(problems, report::plot_png(ft, dir / "force_time.png"), dir / "force_time.png");
-    report::PlotSpec rs{data.source + ": residual (measured - model)", "time [s]", "force residual [kN]",
-                        {{"before (baseline)", t, thin(res_b, stride, 1e-3)},
-                         {"after (" + model_label + ")", t, thin(res_a, stride, 1e-3)}}};
-    note(problems, report::plot_png(rs, dir / "residual.png"), dir / "residual.png");
-    const std::size_t ls = std::max<std::size_t>(1, n / 8000);
-    const auto x_mm = thin(r.disp_m, ls, 1e3);
-    const auto v_mm_s = thin(r.vel_m_s, ls, 1e3);
-    const auto fm = thin(data.force_n, ls, 1e-3);
-    const auto fb = thin(r.baseline_force_n, ls, 1e-3);
-    const auto fu = thin(r.updated_force_n, ls, 1e-3);
-    report::MultiPlot mp;
-    mp.title = data.source + ": force-displacement and force-velocity loops";
-    mp.columns = 2;
-    mp.width_px = 1400;
-    mp.height_px = 650;
-    mp.panels.push_back({"force - displacement",
-                         "displacement [mm]",
-                         "force [kN]",
-                         {{"measured", x_mm, fm}, {"baseline", x_mm, fb}, {model_label, x_mm, fu}}});
-    mp.panels.push_back({"force - velocity",
-                         "velocity [mm/s]",
-                         "force [kN]",
-                         {{"measured", v_mm_s, fm}, {"baseline", v_mm_s, fb}, {model_label, v_mm_s, fu}}});
-    note(problems, report::plot_png(mp, dir / "loops.png"), dir / "loops.png");
+    plot_force_and_residual(dir, data, r, problems);
+    plot_loops(dir, data, r, problems);
   }
   report::write_file_atomically(dir / "report.md", markdown(data, r));
-  report::write_file_atomically(dir / "summary.json", summary_json(data, r, options).dump(2) + "\n");
+  report::write_summary_json(dir, summary_json(data, r, options));
   return problems;
 }
 
 json synth_json(const SynthCase& c, const SynthSpec& spec) {
-  json params = json::object();
-  const EffectSet set{c.effects};
+  json params = effect_params_json(c.effects, c.params);
   for (std::size_t i = 0; i < c.effects.size(); ++i) {
-    const Effect e = c.effects[i];
-    const auto off = *set.offset(e);
-    json pj = params_json(e, std::span<const double>(c.params).subspan(off, effect_info(e).params.size()));
-    pj["effect_rms_n"] = c.effect_rms_n[i];
-    params[std::string(effect_name(e))] = pj;
+    params[std::string(effect_name(c.effects[i]))]["effect_rms_n"] = c.effect_rms_n[i];
   }
   return json{{"effects", effects_json(c.effects)},
               {"parameters", params},
@@ -283,6 +307,18 @@ json synth_json(const SynthCase& c, const SynthSpec& spec) {
               {"rate_hz", spec.rate_hz},
               {"jitter", spec.jitter},
               {"samples", c.data.size()}};
+}
+
+std::filesystem::path write_synth_outputs(const std::filesystem::path& dir, const SynthCase& c, const SynthSpec& spec,
+                                          RecordFormat format) {
+  const auto data_path = dir / (format == RecordFormat::mat ? "measured.mat" : "measured.csv");
+  if (format == RecordFormat::mat) {
+    write_measured_mat(c.data, data_path);
+  } else {
+    report::write_file_atomically(data_path, measured_to_csv(c.data));
+  }
+  report::write_summary_json(dir, synth_json(c, spec));
+  return data_path;
 }
 
 }  // namespace mrd::discrepancy

@@ -31,4 +31,12 @@ std::vector<std::string> write_discrepancy_outputs(const std::filesystem::path& 
 /// The truth of a generated record: effects, parameters, input and noise.
 [[nodiscard]] nlohmann::json synth_json(const SynthCase& c, const SynthSpec& spec);
 
+/// File format of a generated record.
+enum class RecordFormat { csv, mat };
+
+/// Writes the record as `dir/measured.csv` or `dir/measured.mat`, then the
+/// truth as `dir/summary.json`. Returns the record's path.
+std::filesystem::path write_synth_outputs(const std::filesystem::path& dir, const SynthCase& c, const SynthSpec& spec,
+                                          RecordFormat format);
+
 }  // namespace mrd::discrepancy

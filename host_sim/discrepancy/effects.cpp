@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::discrepancy {
 namespace {
@@ -123,11 +123,11 @@ std::vector<Effect> parse_effect_list(std::string_view text, std::string_view op
     if (!e) {
       std::string known;
       for (const Effect x : kAllEffects) known += (known.empty() ? "" : ", ") + std::string(effect_name(x));
-      throw report::UsageError(std::string(option) + ": unknown effect '" + std::string(item) + "' (known: " + known +
+      throw io::UsageError(std::string(option) + ": unknown effect '" + std::string(item) + "' (known: " + known +
                                ", or none)");
     }
     if (std::find(out.begin(), out.end(), *e) != out.end()) {
-      throw report::UsageError(std::string(option) + ": effect '" + std::string(item) + "' given twice");
+      throw io::UsageError(std::string(option) + ": effect '" + std::string(item) + "' given twice");
     }
     out.push_back(*e);
     if (p == std::string_view::npos) break;

@@ -73,7 +73,7 @@ struct EffectSet {
 };
 
 /// Parses "none", "" or a comma-separated list of effect names. Throws
-/// report::UsageError naming the unknown entry.
+/// io::UsageError naming the unknown entry.
 [[nodiscard]] std::vector<Effect> parse_effect_list(std::string_view text, std::string_view option);
 
 }  // namespace mrd::discrepancy

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -14,11 +13,12 @@
 #include <optional>
 #include <sstream>
 
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/text.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::discrepancy {
 namespace fs = std::filesystem;
-using report::UsageError;
+using io::UsageError;
 
 namespace {
 
@@ -69,29 +69,10 @@ const std::array<QuantityDef, 6>& quantity_defs() {
   return defs;
 }
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 /// Up to 40 characters of user text on one printable line.
-std::string excerpt(std::string_view text) {
-  constexpr std::size_t kMax = 40;
-  std::string out;
-  for (const char c : text.substr(0, kMax)) {
-    const auto u = static_cast<unsigned char>(c);
-    out += (u < 0x20 || u >= 0x7f) ? '?' : c;
-  }
-  if (text.size() > kMax) out += "...";
-  return out;
-}
+std::string excerpt(std::string_view text) { return io::excerpt(text, 40); }
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+std::string num(double v) { return io::format_number("%.6g", v); }
 
 std::string unit_list(const QuantityDef& d) {
   std::string s;
@@ -117,7 +98,7 @@ struct ColumnRole {
 
 /// Classifies a column name; throws naming `where` and the column otherwise.
 ColumnRole classify(std::string_view name, const std::string& where, std::size_t col_no) {
-  const std::string lname = lower(name);
+  const std::string lname = io::to_lower(name);
   const std::string col = "column " + std::to_string(col_no) + " '" + excerpt(name) + "'";
   if (lname.empty()) throw UsageError(where + col + ": empty column name");
   for (const auto& d : quantity_defs()) {
@@ -266,26 +247,6 @@ MeasuredData build(RawTable&& raw, const std::string& label) {
   return m;
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split_commas(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t p = line.find(',', start);
-    out.push_back(trim(line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start)));
-    if (p == std::string_view::npos) break;
-    start = p + 1;
-  }
-  return out;
-}
-
 /// Parses a whole field as a double (a leading '+' allowed); nullopt if it is not one.
 std::optional<double> parse_double(std::string_view s) {
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
@@ -371,8 +332,7 @@ MeasuredData read_mat(const fs::path& path) {
 }  // namespace
 
 MeasuredData parse_measured_csv(std::string_view text, const std::string& label) {
-  constexpr std::string_view kBom = "\xEF\xBB\xBF";
-  if (text.substr(0, kBom.size()) == kBom) text.remove_prefix(kBom.size());
+  text = io::strip_bom(text);
   RawTable raw;
   std::vector<std::size_t> line_of_row;
   std::size_t line_no = 0;
@@ -381,12 +341,12 @@ MeasuredData parse_measured_csv(std::string_view text, const std::string& label)
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = trim(text.substr(pos, end - pos));
+    const std::string_view line = io::trim(text.substr(pos, end - pos));
     pos = end + 1;
     ++line_no;
     if (line.empty() || line.front() == '#') continue;
-    const std::string where = label + ":" + std::to_string(line_no) + ": ";
-    const auto fields = split_commas(line);
+    const std::string where = io::line_prefix(label, line_no);
+    const auto fields = io::split_commas(line);
     if (raw.names.empty()) {
       header_line = line_no;
       raw.file_where = where;
@@ -428,17 +388,16 @@ MeasuredData parse_measured_csv(std::string_view text, const std::string& label)
   }
   const auto names = raw.names;
   raw.where = [label, names, line_of_row](std::size_t row, std::size_t col) {
-    return label + ":" + std::to_string(line_of_row[row]) + ": column '" + excerpt(names[col]) + "'";
+    return io::line_prefix(label, line_of_row[row]) + "column '" + excerpt(names[col]) + "'";
   };
   raw.where_column = [label, names, header_line](std::size_t col) {
-    return label + ":" + std::to_string(header_line) + ": column " + std::to_string(col + 1) + " '" +
-           excerpt(names[col]) + "'";
+    return io::line_prefix(label, header_line) + "column " + std::to_string(col + 1) + " '" + excerpt(names[col]) + "'";
   };
   return build(std::move(raw), label);
 }
 
 MeasuredData read_measured(const fs::path& path) {
-  std::string ext = lower(path.extension().string());
+  std::string ext = io::to_lower(path.extension().string());
   if (ext == ".mat") return read_mat(path);
   return parse_measured_csv(read_text(path), path.string());
 }

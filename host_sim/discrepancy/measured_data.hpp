@@ -54,7 +54,7 @@ inline constexpr double kMaxStep_s = 0.1;
 /// Parses CSV text. `label` names the source in errors, which read
 /// `label:LINE: column 'NAME': what is wrong` (line 1 is the header; `#`
 /// comment lines and blank lines count as lines and are skipped). Throws
-/// report::UsageError for a missing or repeated column, an unknown unit, a
+/// io::UsageError for a missing or repeated column, an unknown unit, a
 /// field that is not a finite number, a wrong field count, time that does not
 /// increase, and a record that is too short or too coarsely sampled.
 [[nodiscard]] MeasuredData parse_measured_csv(std::string_view text, const std::string& label);
@@ -62,12 +62,12 @@ inline constexpr double kMaxStep_s = 0.1;
 /// Reads a CSV file, or a MATLAB .mat file (by extension, `.mat`) whose
 /// variables are vectors named like the CSV columns (`time_s`, `force_kN`, …).
 /// Errors for .mat name the variable and, for a bad value, its 1-based index.
-/// Throws report::UsageError.
+/// Throws io::UsageError.
 [[nodiscard]] MeasuredData read_measured(const std::filesystem::path& path);
 
 /// Writes `data` to a MATLAB v5 .mat file with one double vector per column
 /// (`time_s`, `displacement_m`, [`velocity_m_s`,] `current_cmd_A`, `force_N`,
-/// extras). Throws report::UsageError when the file cannot be written.
+/// extras). Throws io::UsageError when the file cannot be written.
 void write_measured_mat(const MeasuredData& data, const std::filesystem::path& path);
 
 /// CSV text of `data` with SI column names: time_s, displacement_m,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 
 namespace mrd::discrepancy {
 namespace {
@@ -48,6 +49,57 @@ std::vector<char> reversal_mask(std::span<const double> t, std::span<const doubl
   return mask;
 }
 
+/// Weighted sums over the whole record: time and the squared residuals
+/// before and after.
+struct GapTotals {
+  double weight = 0.0;
+  double before = 0.0;
+  double after = 0.0;
+};
+
+GapTotals gap_totals(const ResidualTraces& tr, const std::vector<double>& w) {
+  GapTotals t;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const double rb = tr.measured_force_n[k] - tr.baseline_force_n[k];
+    const double ra = tr.measured_force_n[k] - tr.updated_force_n[k];
+    t.weight += w[k];
+    t.before += w[k] * rb * rb;
+    t.after += w[k] * ra * ra;
+  }
+  return t;
+}
+
+/// The statistics of the samples where `in` holds; nullopt when they carry
+/// no weight.
+std::optional<RegionStat> region_stat(const char* name, const std::string& description,
+                                      const std::function<bool(std::size_t)>& in, const ResidualTraces& tr,
+                                      const std::vector<double>& w, const GapTotals& totals) {
+  double rw = 0.0, sb = 0.0, sa = 0.0, bias = 0.0;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    if (!in(k)) continue;
+    const double rb = tr.measured_force_n[k] - tr.baseline_force_n[k];
+    const double ra = tr.measured_force_n[k] - tr.updated_force_n[k];
+    const double fb = tr.baseline_force_n[k];
+    rw += w[k];
+    sb += w[k] * rb * rb;
+    sa += w[k] * ra * ra;
+    bias += w[k] * rb * (fb > 0.0 ? 1.0 : (fb < 0.0 ? -1.0 : 0.0));
+  }
+  if (!(rw > 0.0)) return std::nullopt;
+  RegionStat s;
+  s.name = name;
+  s.description = description;
+  s.fraction_of_time = rw / totals.weight;
+  s.share_of_gap_before = totals.before > 0.0 ? sb / totals.before : 0.0;
+  s.share_of_gap_after = totals.after > 0.0 ? sa / totals.after : 0.0;
+  s.concentration_before = s.fraction_of_time > 0.0 ? s.share_of_gap_before / s.fraction_of_time : 0.0;
+  s.rms_before_n = std::sqrt(sb / rw);
+  s.rms_after_n = std::sqrt(sa / rw);
+  s.magnitude_bias_before_n = bias / rw;
+  s.concentrated = s.concentration_before >= 1.5 && s.share_of_gap_before >= 0.1;
+  return s;
+}
+
 }  // namespace
 
 std::vector<RegionStat> localize_regions(const ResidualTraces& tr, double v_tf_m_s) {
@@ -55,14 +107,7 @@ std::vector<RegionStat> localize_regions(const ResidualTraces& tr, double v_tf_m
   std::vector<RegionStat> out;
   if (n == 0) return out;
   const std::vector<double> w = sample_weights(tr.time_s);
-  double total_w = 0.0, total_b = 0.0, total_a = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double rb = tr.measured_force_n[k] - tr.baseline_force_n[k];
-    const double ra = tr.measured_force_n[k] - tr.updated_force_n[k];
-    total_w += w[k];
-    total_b += w[k] * rb * rb;
-    total_a += w[k] * ra * ra;
-  }
+  const GapTotals totals = gap_totals(tr, w);
   double vmax = 0.0;
   double xmin = tr.disp_m[0], xmax = tr.disp_m[0];
   for (std::size_t k = 0; k < n; ++k) {
@@ -106,30 +151,7 @@ std::vector<RegionStat> localize_regions(const ResidualTraces& tr, double v_tf_m
        [&](std::size_t k) { return xhalf > 0.0 && std::fabs(tr.disp_m[k] - xmid) >= 0.8 * xhalf; }},
   };
   for (const auto& d : defs) {
-    double rw = 0.0, sb = 0.0, sa = 0.0, bias = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      if (!d.in(k)) continue;
-      const double rb = tr.measured_force_n[k] - tr.baseline_force_n[k];
-      const double ra = tr.measured_force_n[k] - tr.updated_force_n[k];
-      const double fb = tr.baseline_force_n[k];
-      rw += w[k];
-      sb += w[k] * rb * rb;
-      sa += w[k] * ra * ra;
-      bias += w[k] * rb * (fb > 0.0 ? 1.0 : (fb < 0.0 ? -1.0 : 0.0));
-    }
-    if (!(rw > 0.0)) continue;
-    RegionStat s;
-    s.name = d.name;
-    s.description = d.description;
-    s.fraction_of_time = rw / total_w;
-    s.share_of_gap_before = total_b > 0.0 ? sb / total_b : 0.0;
-    s.share_of_gap_after = total_a > 0.0 ? sa / total_a : 0.0;
-    s.concentration_before = s.fraction_of_time > 0.0 ? s.share_of_gap_before / s.fraction_of_time : 0.0;
-    s.rms_before_n = std::sqrt(sb / rw);
-    s.rms_after_n = std::sqrt(sa / rw);
-    s.magnitude_bias_before_n = bias / rw;
-    s.concentrated = s.concentration_before >= 1.5 && s.share_of_gap_before >= 0.1;
-    out.push_back(std::move(s));
+    if (auto s = region_stat(d.name, d.description, d.in, tr, w, totals)) out.push_back(std::move(*s));
   }
   std::stable_sort(out.begin(), out.end(),
                    [](const RegionStat& a, const RegionStat& b) { return a.concentration_before > b.concentration_before; });

@@ -153,6 +153,93 @@ std::vector<double> make_current(SynthCurrent kind, const std::vector<double>& t
 
 double quantize(double v, double lsb) { return lsb * std::round(v / lsb); }
 
+/// Sample times k / rate, each after the first moved by up to ±jitter/2 of a step.
+std::vector<double> sample_times(const SynthSpec& spec, Rng& rng) {
+  const double dt = 1.0 / spec.rate_hz;
+  const auto n = static_cast<std::size_t>(std::floor(spec.duration_s * spec.rate_hz)) + 1;
+  std::vector<double> t(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double j = spec.jitter > 0.0 ? (rng.uniform() - 0.5) * spec.jitter : 0.0;
+    t[k] = (static_cast<double>(k) + (k == 0 ? 0.0 : j)) * dt;
+  }
+  return t;
+}
+
+/// Parameters of every effect of `set` drawn from synth_range (and the sign
+/// of a force offset), packed in its order.
+std::vector<double> draw_params(const EffectSet& set, Rng& rng) {
+  std::vector<double> params;
+  for (const Effect e : set.effects) {
+    for (std::size_t p = 0; p < effect_info(e).params.size(); ++p) {
+      const auto [lo, hi] = synth_range(e, p);
+      double v = rng.uniform(lo, hi);
+      if (e == Effect::force_offset && rng.uniform() < 0.5) v = -v;
+      params.push_back(v);
+    }
+  }
+  return params;
+}
+
+/// RMS change of the force each effect of `set` causes: `f_true` against the
+/// same model without the effect, the other effects' parameters kept, N.
+std::vector<double> effect_rms_n(const DamperModel& truth, const EffectSet& set, const std::vector<double>& params,
+                                 const std::vector<double>& f_true, ModelWorkspace& ws) {
+  const std::size_t n = f_true.size();
+  std::vector<double> f_without;
+  std::vector<double> effect_rms;
+  for (const Effect e : set.effects) {
+    EffectSet without;
+    std::vector<double> p_without;
+    for (const Effect x : set.effects) {
+      if (x == e) continue;
+      without.effects.push_back(x);
+      const auto off = *set.offset(x);
+      for (std::size_t p = 0; p < effect_info(x).params.size(); ++p) p_without.push_back(params[off + p]);
+    }
+    truth.simulate(without, p_without, ws, f_without);
+    double ss = 0.0;
+    for (std::size_t k = 0; k < n; ++k) ss += (f_true[k] - f_without[k]) * (f_true[k] - f_without[k]);
+    effect_rms.push_back(std::sqrt(ss / static_cast<double>(n)));
+  }
+  return effect_rms;
+}
+
+/// Sensor noise of one draw.
+struct Noise {
+  double white_n = 0.0;    ///< white load-cell noise, RMS, N
+  double colored_n = 0.0;  ///< correlated (kNoiseCorrelation_s) load-cell noise, RMS, N
+  double disp_m = 0.0;     ///< LVDT noise, RMS, m
+};
+
+/// The record as the sensors give it: the true force and motion with
+/// `noise`, quantized to 16 bits, and a velocity column when asked for.
+MeasuredData measure(const SynthSpec& spec, const std::vector<double>& t, const Motion& m,
+                     const std::vector<double>& i_cmd, const std::vector<double>& f_true, const Noise& noise,
+                     Rng& rng) {
+  const std::size_t n = t.size();
+  MeasuredData d;
+  char label[64];
+  std::snprintf(label, sizeof label, "synth-seed-%llu", static_cast<unsigned long long>(spec.seed));
+  d.source = label;
+  d.time_s = t;
+  d.current_cmd_a = i_cmd;
+  d.displacement_m.resize(n);
+  d.force_n.resize(n);
+  const double a_c = std::exp(-(1.0 / spec.rate_hz) / kNoiseCorrelation_s);
+  const double innov = noise.colored_n * std::sqrt(1.0 - a_c * a_c);
+  double colored = noise.colored_n * rng.normal();
+  for (std::size_t k = 0; k < n; ++k) {
+    colored = a_c * colored + innov * rng.normal();
+    d.force_n[k] = quantize(f_true[k] + noise.white_n * rng.normal() + colored, kForceLsb_n);
+    d.displacement_m[k] = quantize(m.x[k] + noise.disp_m * rng.normal(), kDispLsb_m);
+  }
+  if (spec.velocity_column) {
+    d.velocity_m_s.resize(n);
+    for (std::size_t k = 0; k < n; ++k) d.velocity_m_s[k] = m.v[k] + 0.5e-3 * rng.normal();
+  }
+  return d;
+}
+
 }  // namespace
 
 std::pair<double, double> synth_range(Effect e, std::size_t i) {
@@ -168,6 +255,23 @@ std::pair<double, double> synth_range(Effect e, std::size_t i) {
   return {0.0, 0.0};
 }
 
+std::vector<Effect> random_effects(std::uint64_t seed) {
+  std::uint64_t h = seed * 0x9E3779B97F4A7C15ull + 7u;
+  const auto draw = [&h](std::size_t n) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    return static_cast<std::size_t>(h % n);
+  };
+  const std::size_t count = draw(3);
+  std::vector<Effect> effects;
+  while (effects.size() < count) {
+    const Effect e = kAllEffects[draw(kEffectCount)];
+    if (std::find(effects.begin(), effects.end(), e) == effects.end()) effects.push_back(e);
+  }
+  return effects;
+}
+
 SynthCase synthesize(const SynthSpec& spec) {
   if (!(spec.duration_s >= 2.0)) throw std::invalid_argument("synthesize: duration below 2 s");
   if (!(spec.rate_hz >= 50.0)) throw std::invalid_argument("synthesize: rate below 50 Hz");
@@ -177,13 +281,7 @@ SynthCase synthesize(const SynthSpec& spec) {
     throw std::invalid_argument("synthesize: params do not match the effects");
   }
   Rng rng(spec.seed * 0x2545F4914F6CDD1Dull + 12345u);
-  const double dt = 1.0 / spec.rate_hz;
-  const auto n = static_cast<std::size_t>(std::floor(spec.duration_s * spec.rate_hz)) + 1;
-  std::vector<double> t(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double j = spec.jitter > 0.0 ? (rng.uniform() - 0.5) * spec.jitter : 0.0;
-    t[k] = (static_cast<double>(k) + (k == 0 ? 0.0 : j)) * dt;
-  }
+  const std::vector<double> t = sample_times(spec, rng);
 
   SynthCase out;
   for (int draw = 1; draw <= kMaxDraws; ++draw) {
@@ -197,47 +295,21 @@ SynthCase synthesize(const SynthSpec& spec) {
     Motion m = make_motion(input, t, rng);
     std::string cur_desc;
     std::vector<double> i_cmd = make_current(cur, t, rng, cur_desc);
-
-    std::vector<double> params = spec.params;
-    if (params.empty()) {
-      for (const Effect e : set.effects) {
-        for (std::size_t p = 0; p < effect_info(e).params.size(); ++p) {
-          const auto [lo, hi] = synth_range(e, p);
-          double v = rng.uniform(lo, hi);
-          if (e == Effect::force_offset && rng.uniform() < 0.5) v = -v;
-          params.push_back(v);
-        }
-      }
-    }
-    const double white_n = spec.force_noise_n >= 0.0 ? spec.force_noise_n : rng.uniform(200.0, 1000.0);
-    const double colored_n = spec.force_noise_n >= 0.0 ? 0.0 : rng.uniform(100.0, 500.0);
-    const double disp_noise = spec.disp_noise_m >= 0.0 ? spec.disp_noise_m : rng.uniform(5e-6, 20e-6);
-    const double noise_rms = std::hypot(white_n, colored_n);
+    const std::vector<double> params = spec.params.empty() ? draw_params(set, rng) : spec.params;
+    Noise noise;
+    noise.white_n = spec.force_noise_n >= 0.0 ? spec.force_noise_n : rng.uniform(200.0, 1000.0);
+    noise.colored_n = spec.force_noise_n >= 0.0 ? 0.0 : rng.uniform(100.0, 500.0);
+    noise.disp_m = spec.disp_noise_m >= 0.0 ? spec.disp_noise_m : rng.uniform(5e-6, 20e-6);
+    const double noise_rms = std::hypot(noise.white_n, noise.colored_n);
 
     const DamperModel truth(ModelInput{t, m.x, m.v, i_cmd, false});
     ModelWorkspace ws;
-    std::vector<double> f_true, f_base, f_without;
+    std::vector<double> f_true, f_base;
     truth.simulate(set, params, ws, f_true);
     truth.simulate(EffectSet{}, {}, ws, f_base);
-    std::vector<double> effect_rms;
-    bool visible = true;
-    for (const Effect e : set.effects) {
-      // The same model without e, the other effects' parameters kept.
-      EffectSet without;
-      std::vector<double> p_without;
-      for (const Effect x : set.effects) {
-        if (x == e) continue;
-        without.effects.push_back(x);
-        const auto off = *set.offset(x);
-        for (std::size_t p = 0; p < effect_info(x).params.size(); ++p) p_without.push_back(params[off + p]);
-      }
-      truth.simulate(without, p_without, ws, f_without);
-      double ss = 0.0;
-      for (std::size_t k = 0; k < n; ++k) ss += (f_true[k] - f_without[k]) * (f_true[k] - f_without[k]);
-      const double rms = std::sqrt(ss / static_cast<double>(n));
-      effect_rms.push_back(rms);
-      if (rms < spec.min_effect_to_noise * noise_rms) visible = false;
-    }
+    const std::vector<double> effect_rms = effect_rms_n(truth, set, params, f_true, ws);
+    const bool visible = std::all_of(effect_rms.begin(), effect_rms.end(),
+                                     [&](double rms) { return !(rms < spec.min_effect_to_noise * noise_rms); });
     const bool last = draw == kMaxDraws;
     if (!visible && spec.params.empty() && !last) continue;
 
@@ -246,31 +318,11 @@ SynthCase synthesize(const SynthSpec& spec) {
     out.input_description = m.description;
     out.current_description = cur_desc;
     out.force_noise_rms_n = noise_rms;
-    out.disp_noise_m = disp_noise;
+    out.disp_noise_m = noise.disp_m;
     out.effect_rms_n = effect_rms;
     out.true_gap = normalized_rms_gap(f_true, f_base);
     out.draws = draw;
-
-    MeasuredData& d = out.data;
-    char label[64];
-    std::snprintf(label, sizeof label, "synth-seed-%llu", static_cast<unsigned long long>(spec.seed));
-    d.source = label;
-    d.time_s = t;
-    d.current_cmd_a = i_cmd;
-    d.displacement_m.resize(n);
-    d.force_n.resize(n);
-    const double a_c = std::exp(-dt / kNoiseCorrelation_s);
-    const double innov = colored_n * std::sqrt(1.0 - a_c * a_c);
-    double colored = colored_n * rng.normal();
-    for (std::size_t k = 0; k < n; ++k) {
-      colored = a_c * colored + innov * rng.normal();
-      d.force_n[k] = quantize(f_true[k] + white_n * rng.normal() + colored, kForceLsb_n);
-      d.displacement_m[k] = quantize(m.x[k] + disp_noise * rng.normal(), kDispLsb_m);
-    }
-    if (spec.velocity_column) {
-      d.velocity_m_s.resize(n);
-      for (std::size_t k = 0; k < n; ++k) d.velocity_m_s[k] = m.v[k] + 0.5e-3 * rng.normal();
-    }
+    out.data = measure(spec, t, m, i_cmd, f_true, noise, rng);
     break;
   }
   return out;

@@ -57,6 +57,10 @@ struct SynthCase {
 /// bounds, large enough to be seen in a 20 s record).
 [[nodiscard]] std::pair<double, double> synth_range(Effect e, std::size_t i);
 
+/// 0, 1 or 2 distinct effects drawn from `seed` (by a hash of its own, so
+/// the record drawn for the same seed does not change).
+[[nodiscard]] std::vector<Effect> random_effects(std::uint64_t seed);
+
 /// Deterministic for a given spec (own PRNG: SplitMix64 + Box–Muller).
 /// Throws std::invalid_argument for a spec out of range (duration < 2 s,
 /// rate < 50 Hz, jitter ≥ 1, a params vector of the wrong size).

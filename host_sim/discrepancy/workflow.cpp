@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <thread>
 
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/io/text.hpp"
 
 namespace mrd::discrepancy {
 namespace {
@@ -21,11 +21,7 @@ constexpr std::size_t kStarts = 3;
 /// pairs round 2 weighs as alternative models.
 constexpr std::size_t kAlternativeSources = 3;
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
+using io::format_number;
 
 /// Parameters of effect `e` inside a packed vector for `set`.
 std::vector<double> own_params(const EffectSet& set, std::span<const double> all, Effect e) {
@@ -94,158 +90,204 @@ std::string implausibility(Effect e, std::span<const double> params) {
     const bool at_lower = v - p.lower <= kAtBoundFraction * range;
     const bool at_upper = p.upper - v <= kAtBoundFraction * range;
     if (at_lower && p.lower != p.null_value) {
-      return std::string(p.name) + " pinned at its lower physical bound " + fmt("%g", p.lower);
+      return std::string(p.name) + " pinned at its lower physical bound " + format_number("%g", p.lower);
     }
     if (at_upper && !p.upper_bound_physical && p.upper != p.null_value) {
-      return std::string(p.name) + " pinned at its upper physical bound " + fmt("%g", p.upper);
+      return std::string(p.name) + " pinned at its upper physical bound " + format_number("%g", p.upper);
     }
   }
   if (all_null) return "not identified: the fit returns the effect's null value";
   return {};
 }
 
-DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOptions& opt) {
-  DiscrepancyResult res;
-  const DamperModel model(model_input(data, opt.smoothing_half_window_s));
-  res.velocity_derived = model.input().velocity_derived;
-  const FitData fd = make_fit_data(model, data.force_n, opt.fit_samples);
-  res.fit_samples = fd.index.size();
-  res.fit_stride = fd.index.size() > 1 ? fd.index[1] - fd.index[0] : 1;
+namespace {
 
-  EffectSet current;
-  std::vector<double> current_params;
-  ModelWorkspace ws;
-  std::vector<double> base_residual;
-  double current_rss = fit_rss(fd, current, current_params, ws, &base_residual);
-  std::vector<double> fit_times(fd.index.size());
-  for (std::size_t r = 0; r < fit_times.size(); ++r) fit_times[r] = data.time_s[fd.index[r]];
-  res.n_eff_baseline = noise_effective_samples(fit_times, base_residual);
+/// The model the selection has reached: its effects, their fitted
+/// parameters (packed) and its RSS on the fit samples.
+struct Selection {
+  EffectSet set;
+  std::vector<double> params;
+  double rss = 0.0;
+};
 
-  // Forward selection.
+/// What every step of the selection reads.
+struct SelectionContext {
+  const FitData& fd;
+  std::span<const double> fit_times_s;  ///< times of the fit samples
+  const DiscrepancyOptions& opt;
+  double n_eff_baseline = 0.0;
+};
+
+/// Fits the model plus each effect of `todo`. In rounds after the first,
+/// next to effects already in the model, whose values may have absorbed
+/// part of the new one, the valleys of two effects that act alike (such as
+/// backlash and delay) hold local minima: the two best candidates are
+/// fitted again from their three best starting points.
+std::vector<Trial> forward_trials(const SelectionContext& ctx, const Selection& current,
+                                  const std::vector<Effect>& todo) {
+  std::vector<FitOutcome> fits(todo.size());
+  parallel_for(todo.size(), ctx.opt.threads, [&](std::size_t i) {
+    EffectSet s = current.set;
+    s.effects.push_back(todo[i]);
+    fits[i] = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params), &todo[i]);
+  });
+  if (!current.set.effects.empty()) {
+    std::vector<std::size_t> order(todo.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return fits[a].rss_n2 < fits[b].rss_n2; });
+    order.resize(std::min<std::size_t>(order.size(), kRefitted));
+    parallel_for(order.size(), ctx.opt.threads, [&](std::size_t j) {
+      const std::size_t i = order[j];
+      EffectSet s = current.set;
+      s.effects.push_back(todo[i]);
+      FitOutcome f = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params), &todo[i], kStarts);
+      if (f.rss_n2 < fits[i].rss_n2) fits[i] = std::move(f);
+    });
+  }
+  std::vector<Trial> trials;
+  for (std::size_t i = 0; i < todo.size(); ++i) trials.push_back({todo[i], std::move(fits[i]), false});
+  return trials;
+}
+
+/// Round 2's alternatives: pairs of the effects other than the round-1
+/// winner that round 1 found earned (up to kAlternativeSources, best
+/// first). One effect can mimic two others better than either alone (a
+/// delay looks like free play plus a spring on a sine), and greedy addition
+/// would then never reach the pair.
+std::vector<Trial> alternative_trials(const SelectionContext& ctx, const Selection& current,
+                                      const std::vector<Trial>& first_round) {
+  std::vector<const Trial*> sources;
+  for (const Trial& t : first_round) {
+    if (t.earned && t.effect != current.set.effects[0] && sources.size() < kAlternativeSources) sources.push_back(&t);
+  }
+  std::vector<Trial> alts;
+  for (std::size_t a = 0; a < sources.size(); ++a) {
+    for (std::size_t b = a + 1; b < sources.size(); ++b) {
+      EffectSet pair{{sources[a]->effect, sources[b]->effect}};
+      std::vector<double> start = sources[a]->fit.params;
+      start.insert(start.end(), sources[b]->fit.params.begin(), sources[b]->fit.params.end());
+      alts.push_back({sources[b]->effect, FitOutcome{pair, start, 0.0, 0.0, 0, false}, true});
+    }
+  }
+  parallel_for(alts.size(), ctx.opt.threads, [&](std::size_t i) {
+    alts[i].fit = fit_effects(ctx.fd, alts[i].fit.set, alts[i].fit.params, nullptr);
+  });
+  return alts;
+}
+
+/// Why each trial is implausible (empty when it is plausible): the first
+/// effect of its model whose fitted parameters are.
+std::vector<std::string> implausibility_reasons(const std::vector<Trial>& trials) {
+  std::vector<std::string> why(trials.size());
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    const FitOutcome& f = trials[i].fit;
+    for (const Effect e : f.set.effects) {
+      const std::string w = implausibility(e, own_params(f.set, f.params, e));
+      if (w.empty()) continue;
+      if (trials[i].alternative) {
+        why[i] = std::string(effect_name(e)) + ": " + w;
+      } else if (e == trials[i].effect) {
+        why[i] = w;
+      } else {
+        why[i] = "makes " + std::string(effect_name(e)) + " implausible: " + w;
+      }
+      break;
+    }
+  }
+  return why;
+}
+
+/// One effective sample count for the whole round, so that the scores
+/// compare like with like: that of the best-fitting plausible trial, whose
+/// residual is the best available estimate of the noise (the baseline's
+/// when no trial is plausible).
+double round_n_eff(const std::vector<Trial>& trials, const std::vector<std::string>& why, double n_eff_baseline) {
+  std::optional<std::size_t> lowest;
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    if (why[i].empty() && (!lowest || trials[i].fit.rss_n2 < trials[*lowest].fit.rss_n2)) lowest = i;
+  }
+  return lowest ? trials[*lowest].fit.n_eff : n_eff_baseline;
+}
+
+/// Scores a trial against the model so far (ΔBIC, share of the residual
+/// power removed) and gives the verdict; marks the trial earned.
+CandidateResult score_trial(const SelectionContext& ctx, const Selection& current, Trial& t, const std::string& why,
+                            double n_eff) {
+  const FitOutcome& f = t.fit;
+  CandidateResult c;
+  c.effect = t.effect;
+  c.model = f.set.effects;
+  c.alternative = t.alternative;
+  c.all_params = f.params;
+  c.params = own_params(f.set, f.params, t.effect);
+  c.n_eff = n_eff;
+  c.rss_reduction = current.rss > 0.0 ? 1.0 - f.rss_n2 / current.rss : 0.0;
+  const double added_k = static_cast<double>(f.set.param_count()) - static_cast<double>(current.set.param_count());
+  c.delta_bic = n_eff * std::log(std::max(current.rss, 1e-300) / std::max(f.rss_n2, 1e-300)) -
+                added_k * std::log(std::max(n_eff, 1.0));
+  c.gap = gap_on_fit(ctx.fd, f.rss_n2);
+  c.plausible = why.empty();
+  const std::string prefix = t.alternative ? "alternative model " + f.set.label() + ": " : "";
+  const double min_bic = ctx.opt.min_delta_bic;
+  const double min_reduction = ctx.opt.min_rss_reduction;
+  if (!c.plausible) {
+    c.verdict = prefix + "implausible: " + why;
+  } else if (c.delta_bic < min_bic) {
+    c.verdict = prefix + "not earned: delta BIC " + format_number("%.1f", c.delta_bic) + " < " +
+                format_number("%g", min_bic);
+  } else if (c.rss_reduction < min_reduction) {
+    c.verdict = prefix + "not earned: removes " + format_number("%.1f", 100.0 * c.rss_reduction) +
+                " % of the residual power, < " + format_number("%g", 100.0 * min_reduction) + " %";
+  } else {
+    c.verdict = prefix + "earned";
+    t.earned = true;
+  }
+  return c;
+}
+
+/// Scores every trial into `round.candidates`; the index of the earned
+/// candidate with the highest ΔBIC, if any.
+std::optional<std::size_t> score_round(const SelectionContext& ctx, const Selection& current,
+                                       std::vector<Trial>& trials, RoundResult& round) {
+  const std::vector<std::string> why = implausibility_reasons(trials);
+  const double n_eff = round_n_eff(trials, why, ctx.n_eff_baseline);
+  std::optional<std::size_t> best;
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    CandidateResult c = score_trial(ctx, current, trials[i], why[i], n_eff);
+    if (trials[i].earned && (!best || c.delta_bic > round.candidates[*best].delta_bic)) best = round.candidates.size();
+    round.candidates.push_back(std::move(c));
+  }
+  return best;
+}
+
+/// Greedy forward selection: one round per added effect, until no
+/// candidate earns its parameters or max_effects is reached.
+void forward_selection(const SelectionContext& ctx, Selection& current, ModelWorkspace& ws,
+                       std::vector<RoundResult>& rounds) {
   std::vector<Trial> first_round;
-  while (current.effects.size() < opt.max_effects) {
+  while (current.set.effects.size() < ctx.opt.max_effects) {
     RoundResult round;
-    round.model = current.effects;
-    round.gap = gap_on_fit(fd, current_rss);
+    round.model = current.set.effects;
+    round.gap = gap_on_fit(ctx.fd, current.rss);
     std::vector<Effect> todo;
-    for (const Effect e : opt.catalogue) {
-      if (!current.contains(e)) todo.push_back(e);
+    for (const Effect e : ctx.opt.catalogue) {
+      if (!current.set.contains(e)) todo.push_back(e);
     }
     if (todo.empty()) break;
-    std::vector<FitOutcome> fits(todo.size());
-    parallel_for(todo.size(), opt.threads, [&](std::size_t i) {
-      EffectSet s = current;
-      s.effects.push_back(todo[i]);
-      fits[i] = fit_effects(fd, s, carry_params(s, current, current_params), &todo[i]);
-    });
-    // Next to effects already in the model, whose values may have absorbed
-    // part of the new one, the valleys of two effects that act alike (such
-    // as backlash and delay) hold local minima: the two best candidates are
-    // fitted again from their three best starting points.
-    if (!current.effects.empty()) {
-      std::vector<std::size_t> order(todo.size());
-      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-      std::stable_sort(order.begin(), order.end(),
-                       [&](std::size_t a, std::size_t b) { return fits[a].rss_n2 < fits[b].rss_n2; });
-      order.resize(std::min<std::size_t>(order.size(), kRefitted));
-      parallel_for(order.size(), opt.threads, [&](std::size_t j) {
-        const std::size_t i = order[j];
-        EffectSet s = current;
-        s.effects.push_back(todo[i]);
-        FitOutcome f = fit_effects(fd, s, carry_params(s, current, current_params), &todo[i], kStarts);
-        if (f.rss_n2 < fits[i].rss_n2) fits[i] = std::move(f);
-      });
+    std::vector<Trial> trials = forward_trials(ctx, current, todo);
+    if (current.set.effects.size() == 1 && !first_round.empty()) {
+      for (auto& t : alternative_trials(ctx, current, first_round)) trials.push_back(std::move(t));
     }
-    std::vector<Trial> trials;
-    for (std::size_t i = 0; i < todo.size(); ++i) trials.push_back({todo[i], std::move(fits[i]), false});
-
-    // Round 2 also weighs pairs of the other effects earned in round 1: one
-    // effect can mimic two others better than either alone (a delay looks
-    // like free play plus a spring on a sine), and greedy addition would
-    // then never reach the pair.
-    if (current.effects.size() == 1 && !first_round.empty()) {
-      std::vector<const Trial*> sources;
-      for (const Trial& t : first_round) {
-        if (t.earned && t.effect != current.effects[0] && sources.size() < kAlternativeSources) sources.push_back(&t);
-      }
-      std::vector<Trial> alts;
-      for (std::size_t a = 0; a < sources.size(); ++a) {
-        for (std::size_t b = a + 1; b < sources.size(); ++b) {
-          EffectSet pair{{sources[a]->effect, sources[b]->effect}};
-          std::vector<double> start = sources[a]->fit.params;
-          start.insert(start.end(), sources[b]->fit.params.begin(), sources[b]->fit.params.end());
-          alts.push_back({sources[b]->effect, FitOutcome{pair, start, 0.0, 0.0, 0, false}, true});
-        }
-      }
-      parallel_for(alts.size(), opt.threads, [&](std::size_t i) {
-        alts[i].fit = fit_effects(fd, alts[i].fit.set, alts[i].fit.params, nullptr);
-      });
-      for (auto& t : alts) trials.push_back(std::move(t));
-    }
-
-    // One effective sample count for the whole round, so that the scores
-    // compare like with like: that of the best-fitting plausible candidate,
-    // whose residual is the best available estimate of the noise.
-    std::vector<std::string> why(trials.size());
-    std::optional<std::size_t> lowest;
-    for (std::size_t i = 0; i < trials.size(); ++i) {
-      const FitOutcome& f = trials[i].fit;
-      for (const Effect e : f.set.effects) {
-        const std::string w = implausibility(e, own_params(f.set, f.params, e));
-        if (w.empty()) continue;
-        if (trials[i].alternative) {
-          why[i] = std::string(effect_name(e)) + ": " + w;
-        } else if (e == trials[i].effect) {
-          why[i] = w;
-        } else {
-          why[i] = "makes " + std::string(effect_name(e)) + " implausible: " + w;
-        }
-        break;
-      }
-      if (why[i].empty() && (!lowest || f.rss_n2 < trials[*lowest].fit.rss_n2)) lowest = i;
-    }
-    const double n_eff = lowest ? trials[*lowest].fit.n_eff : res.n_eff_baseline;
-    std::optional<std::size_t> best;
-    for (std::size_t i = 0; i < trials.size(); ++i) {
-      Trial& t = trials[i];
-      const FitOutcome& f = t.fit;
-      CandidateResult c;
-      c.effect = t.effect;
-      c.model = f.set.effects;
-      c.alternative = t.alternative;
-      c.all_params = f.params;
-      c.params = own_params(f.set, f.params, t.effect);
-      c.n_eff = n_eff;
-      c.rss_reduction = current_rss > 0.0 ? 1.0 - f.rss_n2 / current_rss : 0.0;
-      const double added_k =
-          static_cast<double>(f.set.param_count()) - static_cast<double>(current.param_count());
-      c.delta_bic = n_eff * std::log(std::max(current_rss, 1e-300) / std::max(f.rss_n2, 1e-300)) -
-                    added_k * std::log(std::max(n_eff, 1.0));
-      c.gap = gap_on_fit(fd, f.rss_n2);
-      c.plausible = why[i].empty();
-      const std::string prefix = t.alternative ? "alternative model " + f.set.label() + ": " : "";
-      if (!c.plausible) {
-        c.verdict = prefix + "implausible: " + why[i];
-      } else if (c.delta_bic < opt.min_delta_bic) {
-        c.verdict = prefix + "not earned: delta BIC " + fmt("%.1f", c.delta_bic) + " < " + fmt("%g", opt.min_delta_bic);
-      } else if (c.rss_reduction < opt.min_rss_reduction) {
-        c.verdict = prefix + "not earned: removes " + fmt("%.1f", 100.0 * c.rss_reduction) +
-                    " % of the residual power, < " + fmt("%g", 100.0 * opt.min_rss_reduction) + " %";
-      } else {
-        c.verdict = prefix + "earned";
-        t.earned = true;
-        if (!best || c.delta_bic > round.candidates[*best].delta_bic) best = round.candidates.size();
-      }
-      round.candidates.push_back(std::move(c));
-    }
-    if (current.effects.empty()) {
+    const std::optional<std::size_t> best = score_round(ctx, current, trials, round);
+    if (current.set.effects.empty()) {
       // Round 1's fits, best first, are the sources of round 2's alternatives.
       first_round = std::move(trials);
       std::stable_sort(first_round.begin(), first_round.end(),
                        [](const Trial& a, const Trial& b) { return a.fit.rss_n2 < b.fit.rss_n2; });
     }
     if (!best) {
-      res.rounds.push_back(std::move(round));
+      rounds.push_back(std::move(round));
       break;
     }
     CandidateResult& win = round.candidates[*best];
@@ -253,29 +295,34 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
     win.verdict = win.alternative ? "chosen: alternative model " + EffectSet{win.model}.label() : "chosen";
     round.chosen = win.effect;
     round.model_after = win.model;
-    current.effects = win.model;
-    current_params = win.all_params;
-    current_rss = fit_rss(fd, current, current_params, ws);
-    res.rounds.push_back(std::move(round));
+    current.set.effects = win.model;
+    current.params = win.all_params;
+    current.rss = fit_rss(ctx.fd, current.set, current.params, ws);
+    rounds.push_back(std::move(round));
   }
+}
 
-  // Backward check: drop an effect the others make unnecessary.
-  while (current.effects.size() >= 2) {
+/// Backward check: drops, one at a time, the effect whose removal costs the
+/// least when the others then explain the data without it (its ΔBIC or its
+/// share of the residual power below the thresholds).
+void backward_check(const SelectionContext& ctx, Selection& current, ModelWorkspace& ws,
+                    std::vector<Effect>& dropped) {
+  while (current.set.effects.size() >= 2) {
     std::optional<std::size_t> weakest;
     double weakest_score = 0.0;
     FitOutcome weakest_fit;
     std::vector<double> resid;
-    (void)fit_rss(fd, current, current_params, ws, &resid);
-    const double n_eff = noise_effective_samples(fit_times, resid);
-    for (std::size_t i = 0; i < current.effects.size(); ++i) {
-      EffectSet s = current;
+    (void)fit_rss(ctx.fd, current.set, current.params, ws, &resid);
+    const double n_eff = noise_effective_samples(ctx.fit_times_s, resid);
+    for (std::size_t i = 0; i < current.set.effects.size(); ++i) {
+      EffectSet s = current.set;
       s.effects.erase(s.effects.begin() + static_cast<std::ptrdiff_t>(i));
-      FitOutcome f = fit_effects(fd, s, carry_params(s, current, current_params));
-      const double k = static_cast<double>(effect_info(current.effects[i]).params.size());
-      const double score = n_eff * std::log(std::max(f.rss_n2, 1e-300) / std::max(current_rss, 1e-300)) -
+      FitOutcome f = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params));
+      const double k = static_cast<double>(effect_info(current.set.effects[i]).params.size());
+      const double score = n_eff * std::log(std::max(f.rss_n2, 1e-300) / std::max(current.rss, 1e-300)) -
                            k * std::log(std::max(n_eff, 1.0));
-      const double reduction = f.rss_n2 > 0.0 ? 1.0 - current_rss / f.rss_n2 : 0.0;
-      const bool earned = score >= opt.min_delta_bic && reduction >= opt.min_rss_reduction;
+      const double reduction = f.rss_n2 > 0.0 ? 1.0 - current.rss / f.rss_n2 : 0.0;
+      const bool earned = score >= ctx.opt.min_delta_bic && reduction >= ctx.opt.min_rss_reduction;
       if (!earned && (!weakest || score < weakest_score)) {
         weakest = i;
         weakest_score = score;
@@ -283,18 +330,17 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
       }
     }
     if (!weakest) break;
-    res.dropped.push_back(current.effects[*weakest]);
-    current = weakest_fit.set;
-    current_params = weakest_fit.params;
-    current_rss = weakest_fit.rss_n2;
+    dropped.push_back(current.set.effects[*weakest]);
+    current = Selection{weakest_fit.set, weakest_fit.params, weakest_fit.rss_n2};
   }
+}
 
-  res.effects = current.effects;
-  res.params = current_params;
-
-  // Full-rate traces, gaps and localization.
+/// Full-rate traces of the baseline and the selected model, their gaps,
+/// and where the gap concentrates.
+void add_traces_and_regions(DiscrepancyResult& res, const DamperModel& model, const MeasuredData& data,
+                            const Selection& current, ModelWorkspace& ws) {
   model.simulate(EffectSet{}, {}, ws, res.baseline_force_n);
-  model.simulate(current, current_params, ws, res.updated_force_n);
+  model.simulate(current.set, current.params, ws, res.updated_force_n);
   res.gap_before = normalized_rms_gap(data.force_n, res.baseline_force_n);
   res.gap_after = normalized_rms_gap(data.force_n, res.updated_force_n);
   res.disp_m = model.input().disp_m;
@@ -304,6 +350,32 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
                           res.coil_current_a, data.force_n, res.baseline_force_n, res.updated_force_n};
   res.regions = localize_regions(tr, model.params().bingham.v_tf_m_s);
   res.windows = localize_time(tr);
+}
+
+}  // namespace
+
+DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOptions& opt) {
+  DiscrepancyResult res;
+  const DamperModel model(model_input(data, opt.smoothing_half_window_s));
+  res.velocity_derived = model.input().velocity_derived;
+  const FitData fd = make_fit_data(model, data.force_n, opt.fit_samples);
+  res.fit_samples = fd.index.size();
+  res.fit_stride = fd.index.size() > 1 ? fd.index[1] - fd.index[0] : 1;
+
+  Selection current;
+  ModelWorkspace ws;
+  std::vector<double> base_residual;
+  current.rss = fit_rss(fd, current.set, current.params, ws, &base_residual);
+  std::vector<double> fit_times(fd.index.size());
+  for (std::size_t r = 0; r < fit_times.size(); ++r) fit_times[r] = data.time_s[fd.index[r]];
+  res.n_eff_baseline = noise_effective_samples(fit_times, base_residual);
+
+  const SelectionContext ctx{fd, fit_times, opt, res.n_eff_baseline};
+  forward_selection(ctx, current, ws, res.rounds);
+  backward_check(ctx, current, ws, res.dropped);
+  res.effects = current.set.effects;
+  res.params = current.params;
+  add_traces_and_regions(res, model, data, current, ws);
   return res;
 }
 

@@ -1,7 +1,6 @@
 #include "host_sim/excitation/ground_motion.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -13,11 +12,19 @@
 #include <system_error>
 
 #include "mrd/units.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/text.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::excitation {
 namespace fs = std::filesystem;
-using report::UsageError;
+using io::file_label;
+using io::is_space;
+using io::line_prefix;
+using io::split_words;
+using io::strip_bom;
+using io::to_upper;
+using io::trim;
+using io::UsageError;
 
 namespace {
 
@@ -34,50 +41,10 @@ constexpr double kSnapFraction = 1e-9;
 /// Largest resampled length accepted (8 GB of doubles).
 constexpr double kMaxResampledSamples = 1e9;
 
-std::string file_label(const fs::path& path) { return path.string(); }
+/// Up to 60 characters of user text, on one printable line.
+std::string excerpt(std::string_view text) { return io::excerpt(text, 60); }
 
-std::string line_prefix(const std::string& file, std::size_t line_no) {
-  return file + ":" + std::to_string(line_no) + ": ";
-}
-
-/// Up to 60 characters of user text, control characters and non-ASCII bytes
-/// replaced by '?', so that an error message stays on one printable line.
-std::string excerpt(std::string_view text) {
-  constexpr std::size_t kMaxChars = 60;
-  std::string out;
-  for (const char c : text.substr(0, kMaxChars)) {
-    const auto u = static_cast<unsigned char>(c);
-    out += (u < 0x20 || u >= 0x7f) ? '?' : c;
-  }
-  if (text.size() > kMaxChars) out += "...";
-  return out;
-}
-
-std::string format_number(double value) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.9g", value);
-  return buf;
-}
-
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-std::string to_upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
-
-std::string_view strip_bom(std::string_view text) {
-  constexpr std::string_view kBom = "\xEF\xBB\xBF";
-  if (text.substr(0, kBom.size()) == kBom) text.remove_prefix(kBom.size());
-  return text;
-}
+std::string format_number(double value) { return io::format_number("%.9g", value); }
 
 std::string read_whole_file(const fs::path& path) {
   const std::string file = file_label(path);
@@ -159,34 +126,6 @@ double parse_field(std::string_view text, const std::string& file, std::size_t l
                                                            : "expected a number";
   throw UsageError(line_prefix(file, line_no) + "field '" + std::string(field) + "'" + field_detail + ": " + what +
                    ", got '" + excerpt(text) + "'");
-}
-
-/// Splits on commas, trimming each field.
-std::vector<std::string_view> split_csv(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    if (comma == std::string_view::npos) {
-      fields.push_back(trim(line.substr(start)));
-      return fields;
-    }
-    fields.push_back(trim(line.substr(start, comma - start)));
-    start = comma + 1;
-  }
-}
-
-/// Splits on whitespace.
-std::vector<std::string_view> split_words(std::string_view line) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && is_space(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !is_space(line[i])) ++i;
-    if (i > start) words.push_back(line.substr(start, i - start));
-  }
-  return words;
 }
 
 std::string stem_of(const fs::path& path) { return path.stem().string(); }
@@ -336,7 +275,7 @@ GroundMotion read_ground_motion_csv(const fs::path& path) {
   std::string_view line;
   while (lines.next(line) && trim(line).empty()) {
   }
-  const std::vector<std::string_view> header = split_csv(line);
+  const std::vector<std::string_view> header = io::split_commas(line);
   if (header.size() != 2 || header[0] != kTimeColumn || header[1] != kAccelColumn) {
     throw UsageError(line_prefix(file, lines.line_no()) + "expected header '" + std::string(kCsvHeader) + "', got '" +
                      excerpt(trim(line)) + "'");
@@ -351,7 +290,7 @@ GroundMotion read_ground_motion_csv(const fs::path& path) {
   while (lines.next(line)) {
     if (trim(line).empty()) continue;
     const std::size_t line_no = lines.line_no();
-    const std::vector<std::string_view> fields = split_csv(line);
+    const std::vector<std::string_view> fields = io::split_commas(line);
     if (fields.size() != 2) {
       throw UsageError(line_prefix(file, line_no) + "expected 2 fields '" + std::string(kCsvHeader) + "', got " +
                        std::to_string(fields.size()) + ": '" + excerpt(trim(line)) + "'");

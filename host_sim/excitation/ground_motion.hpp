@@ -12,7 +12,7 @@
 ///   line, Fortran style (`.1234567E-02`). They are converted to m/s² with
 ///   standard gravity, 9.80665 m/s².
 ///
-/// Every input problem throws `mrd::report::UsageError` with a one-line
+/// Every input problem throws `mrd::io::UsageError` with a one-line
 /// message of the form `<file>:<line>: field '<column>': <what was expected>`
 /// (or `<file>: <problem>` when no single line is at fault).
 
@@ -46,20 +46,20 @@ struct GroundMotion {
 /// around fields and blank lines. Requires at least two samples and times that
 /// increase with a uniform step: every step must equal the first one within
 /// 1e-6 of it plus 1e-9 s. The stored step is (t_last − t_first)/(N − 1).
-/// Throws report::UsageError on any problem.
+/// Throws io::UsageError on any problem.
 GroundMotion read_ground_motion_csv(const std::filesystem::path& path);
 
 /// Reads a PEER NGA `.AT2` acceleration file (values in g) and converts it
-/// to m/s². The count of values must equal NPTS. Throws report::UsageError on
+/// to m/s². The count of values must equal NPTS. Throws io::UsageError on
 /// any problem.
 GroundMotion read_peer_at2(const std::filesystem::path& path);
 
 /// Picks the reader by extension, case-insensitive: `.csv` or `.at2`.
-/// Throws report::UsageError for anything else.
+/// Throws io::UsageError for anything else.
 GroundMotion read_ground_motion(const std::filesystem::path& path);
 
 /// Factor that brings the record's PGA to `target_pga_m_s2`. Throws
-/// report::UsageError if the record has zero PGA or the target is not a
+/// io::UsageError if the record has zero PGA or the target is not a
 /// positive finite number.
 double scale_factor_for_pga(const GroundMotion& motion, double target_pga_m_s2);
 
@@ -74,7 +74,7 @@ GroundMotion scaled_to_pga(const GroundMotion& motion, double target_pga_m_s2);
 /// the ground is at rest outside the record.
 class GroundMotionSampler {
  public:
-  /// Keeps a copy of the samples. Throws report::UsageError if the record is
+  /// Keeps a copy of the samples. Throws io::UsageError if the record is
   /// empty or its step is not a positive finite number.
   explicit GroundMotionSampler(const GroundMotion& motion);
 
@@ -92,7 +92,7 @@ class GroundMotionSampler {
 /// The record at times k·dt_new_s, k = 0, 1, …, for k·dt_new_s up to the
 /// record's duration (within 1e-9 of a step), by linear interpolation. Times
 /// that fall on an original sample (within 1e-9 of a step) return that
-/// sample exactly. Throws report::UsageError if dt_new_s is not a positive
+/// sample exactly. Throws io::UsageError if dt_new_s is not a positive
 /// finite number or the result would exceed 1e9 samples.
 std::vector<double> resample_linear(const GroundMotion& motion, double dt_new_s);
 

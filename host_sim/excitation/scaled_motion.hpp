@@ -19,7 +19,7 @@ struct ScaledMotion {
 /// Reads `path` (CSV or PEER .AT2, see read_ground_motion), scales it to
 /// `pga_g` (in g, standard gravity) and resamples it to `step_s`, covering
 /// `duration_s` when > 0 (zero-padded after the record's end, or cut short),
-/// else the whole record. Throws report::UsageError naming the file, line and
+/// else the whole record. Throws io::UsageError naming the file, line and
 /// field for a bad record or a bad step.
 ScaledMotion load_scaled_motion(const std::filesystem::path& path, double pga_g, double step_s,
                                 double duration_s = 0.0);

@@ -6,10 +6,11 @@
 #include <cstdio>
 #include <vector>
 
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/text.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::excitation {
-using report::UsageError;
+using io::UsageError;
 
 namespace {
 
@@ -128,11 +129,7 @@ double output(const DiscreteFilter& f, const std::array<double, kStates>& x) {
   return y;
 }
 
-std::string format_number(double value) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
-}
+std::string format_number(double value) { return io::format_number("%.6g", value); }
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 

@@ -96,7 +96,7 @@ double jennings_envelope(double t_s, const SyntheticMotionParams& params) noexce
 double filter_power_gain(double omega_rad_s, const SyntheticMotionParams& params) noexcept;
 
 /// One realization of the model, named `synthetic-kanai-tajimi(seed=N)`,
-/// with the parameters written in `source`. Throws report::UsageError for
+/// with the parameters written in `source`. Throws io::UsageError for
 /// non-positive or non-finite steps, durations, frequencies, damping ratios
 /// or target PGA, for ω_g at or above the Nyquist frequency π/dt, for
 /// t₂ < t₁, for a negative decay rate, or for fewer than 2 or more than 1e9

@@ -13,7 +13,7 @@
 #include "firmware/platform/linux/posix_clock.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 #include "mrd/units.hpp"
 
 int main(int argc, char** argv) {
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   try {
     board = peers::board_or_defaults(board_file);
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
-      throw report::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
+      throw io::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     spec.step_s = board.period_s();
     spec.idle_time_s = units::years_to_s(idle_years);
     ag = excitation::load_scaled_motion(record, pga_g, spec.step_s, duration_s).accel_m_s2;

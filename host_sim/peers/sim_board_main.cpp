@@ -9,7 +9,7 @@
 #include "host_sim/peers/in_process_board.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 #include "mrd/units.hpp"
 
 int main(int argc, char** argv) {
@@ -29,11 +29,11 @@ int main(int argc, char** argv) {
     app::BoardConfig board = app::load_board_config(board_file);
     if (!mode.empty()) {
       const auto m = control::parse_mode_name(mode);
-      if (!m) throw report::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");
+      if (!m) throw io::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");
       board.mode = *m;
     }
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
-      throw report::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
+      throw io::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     plant::PlantSpec spec;
     spec.step_s = board.period_s();
     spec.idle_time_s = units::years_to_s(idle_years);

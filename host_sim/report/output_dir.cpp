@@ -5,10 +5,12 @@
 
 #include <cerrno>
 #include <cstring>
+#include <string>
 #include <system_error>
 
 namespace mrd::report {
 namespace fs = std::filesystem;
+using io::UsageError;
 
 namespace {
 std::string errno_text(int err) { return std::strerror(err); }

@@ -343,6 +343,32 @@ int wait_child(pid_t pid) {
   return status;
 }
 
+/// Reads `fd` into `text` (keeping its last kMaxStderrBytes) until end of
+/// file or a read error, or until `deadline`. False when the deadline came first.
+bool read_until_eof(int fd, std::chrono::steady_clock::time_point deadline, std::string& text) {
+  std::array<char, 4096> buf{};
+  for (;;) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
+    if (left <= 0) return false;
+    pollfd pfd{fd, POLLIN, 0};
+    const int pr = ::poll(&pfd, 1, static_cast<int>(std::min<long long>(left, 1000)));
+    if (pr < 0) {
+      if (errno == EINTR) continue;
+      return true;
+    }
+    if (pr == 0) continue;
+    const ssize_t n = ::read(fd, buf.data(), buf.size());
+    if (n < 0) {
+      if (errno == EINTR || errno == EAGAIN) continue;
+      return true;
+    }
+    if (n == 0) return true;
+    text.append(buf.data(), static_cast<std::size_t>(n));
+    if (text.size() > kMaxStderrBytes) text.erase(0, text.size() - kMaxStderrBytes);
+  }
+}
+
 // Runs gnuplot on `script` with `dir` as its working folder.
 PlotResult run_gnuplot(const std::string& script, const fs::path& dir, const PlotOptions& options) {
   const std::string exe_name = options.gnuplot.string();
@@ -390,32 +416,7 @@ PlotResult run_gnuplot(const std::string& script, const fs::path& dir, const Plo
   script_fd.reset();
 
   std::string err_text;
-  const auto deadline = std::chrono::steady_clock::now() + options.timeout;
-  bool timed_out = false;
-  std::array<char, 4096> buf{};
-  for (;;) {
-    const auto left =
-        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
-    if (left <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd pfd{err_read.get(), POLLIN, 0};
-    const int pr = ::poll(&pfd, 1, static_cast<int>(std::min<long long>(left, 1000)));
-    if (pr < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    if (pr == 0) continue;
-    const ssize_t n = ::read(err_read.get(), buf.data(), buf.size());
-    if (n < 0) {
-      if (errno == EINTR || errno == EAGAIN) continue;
-      break;
-    }
-    if (n == 0) break;
-    err_text.append(buf.data(), static_cast<std::size_t>(n));
-    if (err_text.size() > kMaxStderrBytes) err_text.erase(0, err_text.size() - kMaxStderrBytes);
-  }
+  const bool timed_out = !read_until_eof(err_read.get(), std::chrono::steady_clock::now() + options.timeout, err_text);
   if (timed_out) ::kill(pid, SIGKILL);
   const int status = wait_child(pid);
 

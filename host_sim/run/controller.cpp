@@ -1,12 +1,12 @@
 #include "host_sim/run/controller.hpp"
 
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::run {
 
 control::ControlMode parse_control_mode(const std::string& text) {
   if (const auto m = control::parse_mode_name(text)) return *m;
-  throw report::UsageError("--control: expected passive-off, passive-on or semi-active, got '" + text + "'");
+  throw io::UsageError("--control: expected passive-off, passive-on or semi-active, got '" + text + "'");
 }
 
 std::vector<control::ControlMode> available_modes() {
@@ -16,7 +16,7 @@ std::vector<control::ControlMode> available_modes() {
     try {
       (void)make_controller(m, 1e-3);
       modes.push_back(m);
-    } catch (const report::UsageError&) {
+    } catch (const io::UsageError&) {
     }
   }
   return modes;
@@ -27,7 +27,7 @@ const char* numeric_name(NumericKind kind) noexcept { return kind == NumericKind
 NumericKind parse_numeric_kind(const std::string& text) {
   if (text == "float") return NumericKind::kFloat;
   if (text == "fixed") return NumericKind::kFixed;
-  throw report::UsageError("--numeric: expected float or fixed, got '" + text + "'");
+  throw io::UsageError("--numeric: expected float or fixed, got '" + text + "'");
 }
 
 namespace {
@@ -38,7 +38,7 @@ std::unique_ptr<Controller> make_firmware(const fw::ControllerConfig& c) {
     const fw::ConfigError e = controller->init_error();
     const bool period = e == fw::ConfigError::kPeriod || e == fw::ConfigError::kFilterFrequency ||
                         e == fw::ConfigError::kVelocityFilter;
-    throw report::UsageError(std::string(period ? "--step-s" : "controller") +
+    throw io::UsageError(std::string(period ? "--step-s" : "controller") +
                              ": the firmware control core rejects its configuration at a period of " +
                              std::to_string(c.period_s) + " s (" + fw::config_error_name(e) + ")");
   }

@@ -40,7 +40,7 @@ enum class NumericKind { kFloat, kFixed };
 /// "float" | "fixed".
 const char* numeric_name(NumericKind kind) noexcept;
 
-/// Parses "float" | "fixed"; throws report::UsageError naming --numeric otherwise.
+/// Parses "float" | "fixed"; throws io::UsageError naming --numeric otherwise.
 NumericKind parse_numeric_kind(const std::string& text);
 
 /// The firmware control core (firmware/core) behind the simulator's
@@ -62,7 +62,7 @@ class FirmwareController final : public Controller {
 };
 
 /// control::parse_mode_name() for the command line: throws
-/// report::UsageError naming --control for an unknown mode.
+/// io::UsageError naming --control for an unknown mode.
 control::ControlMode parse_control_mode(const std::string& text);
 
 /// The modes this build can run, in the order reports list them.
@@ -71,7 +71,7 @@ std::vector<control::ControlMode> available_modes();
 /// The controller for a mode at the given control period: the firmware
 /// control core in the chosen numeric build, configured by
 /// fw::default_controller_config() as on a board, for every mode. Throws
-/// report::UsageError naming --step-s when the core rejects the period.
+/// io::UsageError naming --step-s when the core rejects the period.
 std::unique_ptr<Controller> make_controller(control::ControlMode mode, double period_s,
                                             NumericKind numeric = NumericKind::kFloat);
 

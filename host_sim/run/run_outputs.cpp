@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "mrd/units.hpp"
 #include "host_sim/report/plot.hpp"
+#include "host_sim/report/summary_json.hpp"
 #include "host_sim/report/time_series.hpp"
 
 namespace mrd::run {
@@ -87,6 +89,40 @@ std::vector<std::string> write_comparison_plot(const std::filesystem::path& png,
   mp.height_px = 900;
   std::vector<std::string> problems;
   note(problems, report::plot_png(mp, png), png);
+  return problems;
+}
+
+nlohmann::json closed_loop_summary_json(const plant::PlantSummary& s) {
+  return nlohmann::json{
+      {"peak_base_displacement_m", s.peak_base_displacement_m},
+      {"peak_damper_force_kn", units::n_to_kn(s.peak_damper_force_n)},
+      {"peak_superstructure_accel_m_s2", s.peak_superstructure_accel_m_s2},
+      {"peak_base_accel_m_s2", s.peak_base_accel_m_s2},
+      {"peak_current_a", s.peak_current_a},
+      {"sq", s.sq},
+      {"final_participant_ratio", s.final_participant_ratio},
+      {"duration_s", s.duration_s},
+  };
+}
+
+nlohmann::json sim_summary_json(const SimRun& run) {
+  nlohmann::json j = closed_loop_summary_json(run.summary);
+  j["record"] = run.motion.source;
+  j["synthetic_motion"] = run.motion.synthetic;
+  j["pga_m_s2"] = run.motion.pga_m_s2;
+  j["scale_factor"] = run.motion.scale_factor;
+  j["control"] = control::mode_name(run.spec.mode);
+  j["numeric"] = numeric_name(run.spec.numeric);
+  j["idle_years"] = run.spec.idle_years;
+  j["step_s"] = run.spec.step_s;
+  return j;
+}
+
+std::vector<std::string> write_sim_outputs(const std::filesystem::path& dir, const SimRun& run) {
+  const std::string title = run.motion.name + ", " + control::mode_name(run.spec.mode) + ", idle " +
+                            std::to_string(run.spec.idle_years) + " years";
+  auto problems = write_closed_loop_outputs(dir, "timeseries", title, run.record);
+  report::write_summary_json(dir, sim_summary_json(run));
   return problems;
 }
 

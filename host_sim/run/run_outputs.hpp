@@ -1,12 +1,14 @@
 #pragma once
 /// Files written for one closed-loop run: the time series (CSV) and plots in
-/// the style of thesis Fig. 6.9–6.11.
+/// the style of thesis Fig. 6.9–6.11, and the outputs of `mrd sim`.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/sim_run.hpp"
 
 namespace mrd::run {
 
@@ -22,5 +24,19 @@ std::vector<std::string> write_closed_loop_outputs(const std::filesystem::path& 
 std::vector<std::string> write_comparison_plot(const std::filesystem::path& png, const std::string& title,
                                                const std::string& label_a, const ClosedLoopRecord& a,
                                                const std::string& label_b, const ClosedLoopRecord& b);
+
+/// The peaks of a run, SQ, final participant ratio and duration, in the
+/// units their names say (force in kN).
+[[nodiscard]] nlohmann::json closed_loop_summary_json(const plant::PlantSummary& s);
+
+/// The fields documented in `mrd sim --help`: closed_loop_summary_json and
+/// the run's inputs.
+[[nodiscard]] nlohmann::json sim_summary_json(const SimRun& run);
+
+/// Writes the outputs of `mrd sim` into `dir` (which must exist):
+/// timeseries.csv and its plots (write_closed_loop_outputs, from
+/// run.record), then summary.json. Returns the reasons for plots that could
+/// not be drawn.
+std::vector<std::string> write_sim_outputs(const std::filesystem::path& dir, const SimRun& run);
 
 }  // namespace mrd::run

@@ -5,6 +5,7 @@
 
 #include "host_sim/report/output_dir.hpp"
 #include "host_sim/report/plot.hpp"
+#include "host_sim/report/summary_json.hpp"
 
 namespace mrd::run {
 namespace {
@@ -84,6 +85,39 @@ std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, c
       }
     }
   }
+  return problems;
+}
+
+double simulated_seconds(const std::vector<SweepRow>& rows) {
+  double simulated_s = 0.0;
+  for (const auto& r : rows) simulated_s += r.summary.duration_s;
+  return simulated_s;
+}
+
+nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<SweepRow>& rows, double wall_s,
+                                  const std::vector<std::string>& pngs) {
+  nlohmann::json motions = nlohmann::json::array();
+  for (const auto& m : spec.motions) {
+    motions.push_back({{"name", m.name}, {"source", m.source}, {"synthetic", m.synthetic},
+                       {"scale_factor", m.scale_factor}, {"pga_m_s2", m.pga_m_s2}});
+  }
+  nlohmann::json modes = nlohmann::json::array();
+  for (auto m : spec.modes) modes.push_back(control::mode_name(m));
+  const double simulated_s = simulated_seconds(rows);
+  return nlohmann::json{{"runs", rows.size()},          {"wall_time_s", wall_s},
+                        {"simulated_s", simulated_s},     {"real_time_factor", simulated_s / wall_s},
+                        {"motions", motions},            {"controls", modes},
+                        {"idle_years", spec.idle_years}, {"csv", "sweep.csv"},
+                        {"plots", pngs}};
+}
+
+std::vector<std::string> write_sweep_report(const std::filesystem::path& dir, const SweepSpec& spec,
+                                            const std::vector<SweepRow>& rows, double wall_s,
+                                            std::vector<std::string>* pngs) {
+  std::vector<std::string> written;
+  auto problems = write_sweep_outputs(dir, spec, rows, &written);
+  report::write_summary_json(dir, sweep_summary_json(spec, rows, wall_s, written));
+  if (pngs) *pngs = std::move(written);
   return problems;
 }
 

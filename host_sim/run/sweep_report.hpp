@@ -1,7 +1,9 @@
 #pragma once
-/// Files of an idle-time sweep: one CSV and the plots of Fig. 6.12–6.20.
+/// Files of an idle-time sweep: one CSV and the plots of Fig. 6.12–6.20, and
+/// the summary.json of `mrd sweep`.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -18,5 +20,19 @@ std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, c
 
 /// The sweep as CSV text (header + one row per run).
 std::string sweep_csv(const SweepSpec& spec, const std::vector<SweepRow>& rows);
+
+/// Simulated time summed over the runs, s.
+[[nodiscard]] double simulated_seconds(const std::vector<SweepRow>& rows);
+
+/// The fields documented in `mrd sweep --help`: runs, wall time,
+/// simulated seconds and their ratio, motions, controls, idle times, files.
+[[nodiscard]] nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<SweepRow>& rows,
+                                                double wall_s, const std::vector<std::string>& pngs);
+
+/// What `mrd sweep` writes: write_sweep_outputs, then summary.json. Returns
+/// the plot problems and the names of the PNGs written in `pngs`.
+std::vector<std::string> write_sweep_report(const std::filesystem::path& dir, const SweepSpec& spec,
+                                            const std::vector<SweepRow>& rows, double wall_s,
+                                            std::vector<std::string>* pngs);
 
 }  // namespace mrd::run

@@ -6,8 +6,9 @@
 #include <string>
 
 #include "mrd/units.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 #include "host_sim/report/plot.hpp"
+#include "host_sim/report/summary_json.hpp"
 #include "host_sim/report/time_series.hpp"
 
 namespace mrd::schedule {
@@ -16,7 +17,7 @@ namespace {
 constexpr double kDay_s = 86400.0;
 
 void check(bool ok, const std::string& message) {
-  if (!ok) throw report::UsageError(message);
+  if (!ok) throw io::UsageError(message);
 }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
@@ -190,7 +191,7 @@ std::vector<std::string> write_schedule_outputs(const std::filesystem::path& dir
   const report::PlotResult pr = report::plot_png(mp, png);
   if (!pr.ok) problems.push_back(png.filename().string() + ": " + pr.reason);
 
-  report::write_file_atomically(dir / "summary.json", summary_json(r).dump(2) + "\n");
+  report::write_summary_json(dir, summary_json(r));
   return problems;
 }
 

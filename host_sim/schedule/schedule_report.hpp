@@ -32,7 +32,7 @@ struct ScheduleResult {
   std::vector<PolicyResult> policies; ///< none, fixed-interval, estimator
 };
 
-/// Checks the options (report::UsageError naming the option) and runs.
+/// Checks the options (io::UsageError naming the option) and runs.
 ScheduleResult run_schedule(const ScheduleOptions& options);
 
 nlohmann::json summary_json(const ScheduleResult& r);

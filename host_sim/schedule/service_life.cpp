@@ -9,7 +9,7 @@
 #include "firmware/app/mixing_task.hpp"
 #include "host_sim/excitation/synthetic_motion.hpp"
 #include "mrd/units.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::schedule {
 namespace {
@@ -20,7 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kSamplesPerMixingPeriod = 20;  // hits the stroke's peaks: 4A per period exactly
 
 void require(bool ok, const std::string& what) {
-  if (!ok) throw report::UsageError(what);
+  if (!ok) throw io::UsageError(what);
 }
 
 /// Uniform in (0, 1] from the top 53 bits of one draw.

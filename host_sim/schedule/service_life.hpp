@@ -75,7 +75,7 @@ struct World {
 
 /// Draws the world. Deterministic for a seed on any platform (own
 /// exponential and log-normal draws from std::mt19937_64, not the
-/// library-defined std distributions). Throws report::UsageError for
+/// library-defined std distributions). Throws io::UsageError for
 /// non-finite or negative inputs, years ≤ 0 or above 1000.
 World make_world(const WorldConfig& config);
 

@@ -10,7 +10,7 @@
 
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "mrd/units.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::discrepancy {
 namespace {
@@ -31,7 +31,7 @@ std::string csv(const std::string& header, int rows) {
 std::string error_of(const std::string& text) {
   try {
     (void)parse_measured_csv(text, "lab.csv");
-  } catch (const report::UsageError& e) {
+  } catch (const io::UsageError& e) {
     return e.what();
   }
   return "(no error)";
@@ -156,7 +156,7 @@ TEST(MeasuredCsv, TooCoarseSampling) {
 }
 
 TEST(MeasuredFile, MissingFileIsAUsageError) {
-  EXPECT_THROW((void)read_measured("/nonexistent/lab.csv"), report::UsageError);
+  EXPECT_THROW((void)read_measured("/nonexistent/lab.csv"), io::UsageError);
 }
 
 class MeasuredMat : public ::testing::Test {
@@ -191,7 +191,7 @@ TEST_F(MeasuredMat, NamesVariableAndElement) {
   try {
     (void)read_measured(p);
     FAIL() << "no error";
-  } catch (const report::UsageError& e) {
+  } catch (const io::UsageError& e) {
     const std::string s = e.what();
     EXPECT_NE(s.find("bad.mat"), std::string::npos) << s;
     EXPECT_NE(s.find("force_N"), std::string::npos) << s;
@@ -205,7 +205,7 @@ TEST_F(MeasuredMat, NotAMatFile) {
   ASSERT_NE(f, nullptr);
   std::fputs("time_s\n", f);
   std::fclose(f);
-  EXPECT_THROW((void)read_measured(p), report::UsageError);
+  EXPECT_THROW((void)read_measured(p), io::UsageError);
 }
 
 // A polynomial of degree ≤ 4 is reproduced exactly by the quartic fit, on

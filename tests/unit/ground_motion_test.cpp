@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "mrd/units.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::excitation {
 namespace {
@@ -45,13 +45,13 @@ class TempDirTest : public ::testing::Test {
   fs::path dir_;
 };
 
-/// Runs `f`, expects report::UsageError, and checks that the message is one
+/// Runs `f`, expects io::UsageError, and checks that the message is one
 /// line and contains every piece of `expected`.
 void expect_usage_error(const std::function<void()>& f, std::initializer_list<std::string> expected) {
   try {
     f();
-    ADD_FAILURE() << "expected report::UsageError";
-  } catch (const report::UsageError& e) {
+    ADD_FAILURE() << "expected io::UsageError";
+  } catch (const io::UsageError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     for (const std::string& piece : expected) {

@@ -22,6 +22,7 @@
 
 #include "host_sim/report/output_dir.hpp"
 #include "host_sim/report/plot.hpp"
+#include "host_sim/report/summary_json.hpp"
 #include "host_sim/report/time_series.hpp"
 
 namespace mrd::report {
@@ -229,7 +230,16 @@ TEST(TimeSeries, WriteCsvReplacesFileAtomically) {
 TEST(TimeSeries, WriteCsvIntoMissingFolderIsUsageError) {
   ScratchDir dir;
   const TimeSeries ts({"time_s"});
-  EXPECT_THROW(write_csv(ts, dir.path() / "no-such-folder" / "a.csv"), UsageError);
+  EXPECT_THROW(write_csv(ts, dir.path() / "no-such-folder" / "a.csv"), io::UsageError);
+}
+
+TEST(SummaryJson, WritesIndentedJsonWithFinalNewline) {
+  ScratchDir dir;
+  const fs::path path = write_summary_json(dir.path(), nlohmann::json{{"b_n", 2.5}, {"a", {1, 2}}});
+  EXPECT_EQ(path, dir.path() / "summary.json");
+  EXPECT_EQ(slurp(path), "{\n  \"a\": [\n    1,\n    2\n  ],\n  \"b_n\": 2.5\n}\n");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"summary.json"});
+  EXPECT_THROW((void)write_summary_json(dir.path() / "no-such-folder", nlohmann::json::object()), io::UsageError);
 }
 
 // ---------------------------------------------------------------- plot helpers

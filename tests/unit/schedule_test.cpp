@@ -13,7 +13,7 @@
 
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 #include "host_sim/schedule/schedule_report.hpp"
 
 namespace mrd::schedule {
@@ -101,17 +101,17 @@ TEST(ScheduleWorld, PoissonEarthquakesAndLogNormalAmbient) {
 TEST(ScheduleWorld, BadInputIsAUsageError) {
   WorldConfig c;
   c.years = -1;
-  EXPECT_THROW(make_world(c), report::UsageError);
+  EXPECT_THROW(make_world(c), io::UsageError);
   c = {};
   c.years = std::nan("");
-  EXPECT_THROW(make_world(c), report::UsageError);
+  EXPECT_THROW(make_world(c), io::UsageError);
   c = {};
   c.earthquakes_per_year = -0.1;
-  EXPECT_THROW(make_world(c), report::UsageError);
+  EXPECT_THROW(make_world(c), io::UsageError);
   c = {};
   c.ambient_median_m3_per_day = -1;
-  EXPECT_THROW(make_world(c), report::UsageError);
-  EXPECT_THROW(simulate_policy(quiet_world(10), {}, {PolicyKind::kFixedInterval, 0.0}), report::UsageError);
+  EXPECT_THROW(make_world(c), io::UsageError);
+  EXPECT_THROW(simulate_policy(quiet_world(10), {}, {PolicyKind::kFixedInterval, 0.0}), io::UsageError);
 }
 
 // ------------------------------------------------------------ policies, by hand

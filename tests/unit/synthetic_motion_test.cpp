@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::excitation {
 namespace {
@@ -242,8 +242,8 @@ TEST(SyntheticMotion, InvalidParametersRejected) {
   const auto expect_error = [](SyntheticMotionParams p, const std::string& piece) {
     try {
       synthetic_motion(p);
-      ADD_FAILURE() << "expected report::UsageError for " << piece;
-    } catch (const report::UsageError& e) {
+      ADD_FAILURE() << "expected io::UsageError for " << piece;
+    } catch (const io::UsageError& e) {
       EXPECT_NE(std::string(e.what()).find(piece), std::string::npos) << e.what();
     }
   };

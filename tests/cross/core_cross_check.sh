@@ -7,7 +7,7 @@
 #   - DamperController<...>::step() and its parts (step_*) call no
 #     double-precision soft-float routine (__aeabi_d*): the M4's FPU is
 #     single precision.
-# Usage: cross_check.sh ARM_GXX SOURCE OBJECT SOURCE_ROOT COMMON_INCLUDE_DIR
+# Usage: core_cross_check.sh ARM_GXX SOURCE OBJECT SOURCE_ROOT COMMON_INCLUDE_DIR
 set -euo pipefail
 cxx=$1 src=$2 obj=$3 root=$4 common=$5
 

@@ -1,0 +1,22 @@
+#include <cstdio>
+
+#include "host_sim/cli/command.hpp"
+#include "host_sim/report/output_dir.hpp"
+
+namespace mrd::cli {
+
+std::filesystem::path open_out_dir(const std::string& out_dir) {
+  report::prepare_output_dir(out_dir);
+  return out_dir;
+}
+
+std::optional<std::filesystem::path> open_optional_out_dir(const std::string& out_dir) {
+  if (out_dir.empty()) return std::nullopt;
+  return open_out_dir(out_dir);
+}
+
+void warn_plots_not_written(const char* command, const std::vector<std::string>& problems) {
+  for (const auto& p : problems) std::fprintf(stderr, "mrd %s: warning: plot not written: %s\n", command, p.c_str());
+}
+
+}  // namespace mrd::cli

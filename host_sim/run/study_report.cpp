@@ -1,0 +1,173 @@
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "host_sim/io/text.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/summary_json.hpp"
+#include "host_sim/run/controller.hpp"
+#include "host_sim/run/run_outputs.hpp"
+#include "host_sim/run/study.hpp"
+#include "host_sim/run/sweep_report.hpp"
+
+namespace mrd::run {
+namespace {
+
+using io::format_number;
+
+std::string pct(double now, double before) { return format_number("%+.1f %%", 100.0 * (now - before) / before); }
+
+/// "a → b (±x %)": the two values as shown, in `format`, and the change from
+/// `before` to `now` in %.
+std::string change(const char* format, double shown_before, double shown_now, double before, double now) {
+  return format_number(format, shown_before) + " → " + format_number(format, shown_now) + " (" + pct(now, before) +
+         ")";
+}
+
+std::string comparison_png(const StudyRow& row) {
+  return row.motion + "_" + control::mode_name(row.mode) + ".png";
+}
+
+void write_title(std::ostream& md, const StudyResult& r) {
+  md << "# Chapter-6 study: idle time and the seismic performance of a base-isolated building\n\n";
+  if (r.synthetic_motions) {
+    md << "> The four records of Table 6.2 were not found (no shared data folder): this report uses four "
+          "synthetic Kanai-Tajimi motions instead. Its numbers are not the thesis's.\n\n";
+  }
+}
+
+/// §6.1: the first three modes.
+void write_structure(std::ostream& md, const StudyResult& r) {
+  md << "## Structure (Table 6.1, Fig. 6.2)\n\n| mode | frequency | damping ratio |\n|---:|---:|---:|\n";
+  for (std::size_t i = 0; i < 3; ++i) {
+    md << "| " << i + 1 << " | " << format_number("%.4f Hz", r.modal.frequencies_hz[i]) << " | "
+       << format_number("%.2f %%", 100.0 * r.modal.damping_ratios[i]) << " |\n";
+  }
+  md << "\nThesis: 0.25 Hz; 4.97 %, 3.17 %, 5.07 %.\n\n";
+}
+
+/// §5.3: settling time and the sine tests of Table 5.1.
+void write_idle_model(std::ostream& md, const StudyResult& r) {
+  md << "## Damper after idle time (§5.3)\n\nMaximum settling time (Eq. 5.4): "
+     << format_number("%.4f", r.max_settling_time_years)
+     << " years (thesis 0.8531). Past it the settling quotient saturates at 1, so " << r.options.idle_years
+     << " years idle is a fully settled damper.\n\n";
+  md << "Sine tests of Table 5.1, model against Table 5.2 (a):\n\n| case | initial force | max force | rise to 90 % | "
+        "rise to 95 % |\n|---|---:|---:|---:|---:|\n";
+  for (const auto& [c, m] : r.sine_cases) {
+    md << "| " << c.name << " | " << format_number("%.1f", m.initial_force_n / 1e3) << " / " << c.initial_force_kn
+       << " kN | " << format_number("%.1f", m.max_force_n / 1e3) << " / " << c.max_force_kn << " kN | "
+       << format_number("%.2f", m.rise_time_90_s) << " / " << c.rise_time_90_s << " s | "
+       << format_number("%.2f", m.rise_time_95_s) << " / " << c.rise_time_95_s << " s |\n";
+  }
+  md << "\n(model / measured)\n\n";
+}
+
+/// §6.4, Fig. 6.9–6.11: the table of peaks and the plots drawn.
+void write_earthquakes(std::ostream& md, const StudyResult& r, const std::vector<std::string>& figures) {
+  const StudyOptions& o = r.options;
+  md << "## Earthquakes at " << o.pga_g << " g: fully mixed against " << o.idle_years
+     << " years idle (Fig. 6.9-6.11)\n\n"
+     << "| record | control | peak base displacement [mm] | peak damper force [kN] | peak superstructure accel [m/s²] |\n"
+     << "|---|---|---:|---:|---:|\n";
+  for (const auto& row : r.rows) {
+    const auto& a = row.fully_mixed;
+    const auto& b = row.idle;
+    md << "| " << row.label << " | " << control::mode_name(row.mode) << " | "
+       << change("%.1f", a.peak_base_displacement_m * 1e3, b.peak_base_displacement_m * 1e3,
+                 a.peak_base_displacement_m, b.peak_base_displacement_m)
+       << " | "
+       << change("%.1f", a.peak_damper_force_n / 1e3, b.peak_damper_force_n / 1e3, a.peak_damper_force_n,
+                 b.peak_damper_force_n)
+       << " | "
+       << change("%.3f", a.peak_superstructure_accel_m_s2, b.peak_superstructure_accel_m_s2,
+                 a.peak_superstructure_accel_m_s2, b.peak_superstructure_accel_m_s2)
+       << " |\n";
+  }
+  md << "\n(fully mixed → " << o.idle_years << " years idle)\n\n";
+  for (const auto& f : figures) md << "![" << f << "](" << f << ")\n\n";
+}
+
+/// Fig. 6.12–6.20.
+void write_sweep_section(std::ostream& md, const StudyResult& r, const std::vector<std::string>& pngs) {
+  md << "## Idle-time sweep, 0 to 1 year every 0.05 year (Fig. 6.12-6.20)\n\n"
+     << r.sweep->rows.size() << " closed-loop runs in " << format_number("%.2f", r.sweep->wall_s)
+     << " s. The curves flatten past the maximum settling time, " << format_number("%.3f", r.max_settling_time_years)
+     << " years. Data: [sweep/sweep.csv](sweep/sweep.csv).\n\n";
+  for (const auto& p : pngs) md << "![" << p << "](sweep/" << p << ")\n\n";
+}
+
+void write_model(std::ostream& md, const StudyResult& r) {
+  md << "## Model\n\nDamper: Bingham plastic with exponential current laws and transition function (Eq. 4.1-4.4, "
+        "Table 4.1), coil dynamics Eq. 4.5 at unity DC gain, idle time through the participant ratio "
+        "(Eq. 5.5-5.12, Table 5.6) with the mixing integral calibrated to Table 5.2. Structure: 6-DOF shear building "
+        "of Table 6.1, exact zero-order hold at "
+     << r.options.step_s * 1e3 << " ms. Passive-on is " << fw::kPassiveOnCurrent_a << " A.\n";
+}
+
+nlohmann::json peaks_json(const plant::PlantSummary& s) {
+  return nlohmann::json{{"peak_base_displacement_m", s.peak_base_displacement_m},
+                        {"peak_damper_force_kn", s.peak_damper_force_n / 1e3},
+                        {"peak_superstructure_accel_m_s2", s.peak_superstructure_accel_m_s2},
+                        {"sq", s.sq}};
+}
+
+nlohmann::json study_summary_json(const StudyResult& r) {
+  nlohmann::json runs = nlohmann::json::array();
+  for (const auto& row : r.rows) {
+    runs.push_back({{"record", row.motion},
+                    {"control", control::mode_name(row.mode)},
+                    {"fully_mixed", peaks_json(row.fully_mixed)},
+                    {"idle", peaks_json(row.idle)},
+                    {"plot", comparison_png(row)}});
+  }
+  nlohmann::json sweep;
+  if (r.sweep) sweep = {{"runs", r.sweep->rows.size()}, {"wall_time_s", r.sweep->wall_s}, {"csv", "sweep/sweep.csv"}};
+  return nlohmann::json{{"pga_g", r.options.pga_g},
+                        {"idle_years", r.options.idle_years},
+                        {"synthetic_motions", r.synthetic_motions},
+                        {"max_settling_time_years", r.max_settling_time_years},
+                        {"runs", runs},
+                        {"sweep", sweep},
+                        {"report", "report.md"}};
+}
+
+/// One comparison plot per row; the names of those drawn go to `figures`.
+void write_comparison_plots(const std::filesystem::path& dir, const StudyResult& r, std::vector<std::string>& figures,
+                            std::vector<std::string>& problems) {
+  const std::string idle_label = format_number("%.3g", r.options.idle_years) + " years idle";
+  for (const auto& row : r.rows) {
+    const std::string png = comparison_png(row);
+    const auto p = write_comparison_plot(dir / png, row.label + ", " + control::mode_name(row.mode), "fully mixed",
+                                         row.fully_mixed_record, idle_label, row.idle_record);
+    if (p.empty()) figures.push_back(png);
+    problems.insert(problems.end(), p.begin(), p.end());
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> write_study_outputs(const std::filesystem::path& dir, const StudyResult& r) {
+  std::vector<std::string> problems;
+  std::vector<std::string> figures;
+  write_comparison_plots(dir, r, figures, problems);
+  std::vector<std::string> sweep_pngs;
+  if (r.sweep) {
+    const auto sweep_dir = dir / "sweep";
+    report::prepare_output_dir(sweep_dir);
+    const auto p = write_sweep_outputs(sweep_dir, r.sweep->spec, r.sweep->rows, &sweep_pngs);
+    problems.insert(problems.end(), p.begin(), p.end());
+  }
+
+  std::ostringstream md;
+  write_title(md, r);
+  write_structure(md, r);
+  write_idle_model(md, r);
+  write_earthquakes(md, r, figures);
+  if (r.sweep) write_sweep_section(md, r, sweep_pngs);
+  write_model(md, r);
+  report::write_file_atomically(dir / "report.md", md.str());
+  report::write_summary_json(dir, study_summary_json(r));
+  return problems;
+}
+
+}  // namespace mrd::run
