@@ -1,3 +1,4 @@
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -16,7 +17,16 @@ constexpr CommandHelp kSimHelp{
     R"(The closed loop: the 6-DOF base-isolated building of Table 6.1 (exact zero-order hold at
 --step-s), the MR damper between ground and base (Bingham + transition, Eq. 4.1-4.4; idle-time
 participant ratio, Eq. 5.5-5.12; coil dynamics Eq. 4.5), and the controller.
-Without --record the run uses a synthetic Kanai-Tajimi motion and says so.
+Without --record the run uses a synthetic Kanai-Tajimi motion and says so; --record none runs
+without ground motion (zero acceleration) for --duration-s.
+
+--plant thesis (default): ideal sensors and drive, the coil current follows Eq. 4.5.
+--plant hardware: the rig of Sec. 3.2: PWM drive on a 72 V bus (PI current loop, 30 A peak,
+15 A continuous by I^2t, +-10 V command at 1 V/A), coil 4.8 ohm with L 5.0 H at 1 A and 3.0 H at
+2 A, the field lagging the coil current by Eq. 4.5's slow branch; LVDT (+-0.2921 m, 16 bit,
+2 um RMS), load cell (+-250 kN, 16 bit, 250 N RMS) and coil-current sensor (+-15 A, 12 bit,
+5 mA RMS), noise seeded by --sensor-seed; the damper parked --offset-mm off its stroke centre
+(the LVDT reads it; the building is at rest). See host_sim/plant/README.md.
 
 Fields of DIR/summary.json:
   peak_base_displacement_m        max |base displacement relative to the ground|, m
@@ -26,6 +36,13 @@ Fields of DIR/summary.json:
   peak_current_a                  max |coil current|, A
   sq, final_participant_ratio     settling quotient at the start (Eq. 5.5), PR at the end (Eq. 5.9)
   record, pga_m_s2, scale_factor, control, numeric, idle_years, duration_s, step_s: the run's inputs
+  plant                           thesis | hardware
+  peak_coil_current_a             max |coil current| over the ticks, A
+  rms_coil_current_a              RMS coil current over the ticks, A
+  time_above_rated_s              time with |coil current| above the rated 2.5 A, s
+  command_changes_per_s           changes of the current command between consecutive ticks, per s of run
+  peak_coil_temperature_rise_k    max coil temperature above ambient, K (i^2 R into a first-order
+                                  thermal model: 2 K/W, 20 min; both plants)
 Files: DIR/timeseries.csv (every step; columns name their units), DIR/timeseries_response.png
 (displacement, force, floor acceleration, current over time, like Fig. 6.9-6.11) and
 DIR/timeseries_loop.png (force against stroke).)"};
@@ -39,8 +56,16 @@ struct SimOptions {
   double duration_s = 0.0;
   double step_s = 1.0e-3;
   unsigned seed = 1;
+  std::string plant = "thesis";
+  std::uint64_t sensor_seed = 1;
+  double offset_mm = 3.0;
   std::string out_dir;
 };
+
+plant::PlantKind parse_plant_kind(const std::string& text) {
+  require_choice("--plant", text, {"thesis", "hardware"});
+  return text == "hardware" ? plant::PlantKind::kHardware : plant::PlantKind::kThesis;
+}
 
 /// The run the options ask for; throws io::UsageError for a bad option.
 run::SimSpec sim_spec(const SimOptions& o) {
@@ -48,7 +73,12 @@ run::SimSpec sim_spec(const SimOptions& o) {
   check_idle_years(o.idle_years);
   require_finite_at_least("--duration-s", o.duration_s, 0.0);
   require_step_s(o.step_s, 0.02, "0.02 s");
+  require_finite_at_least("--offset-mm", o.offset_mm, -292.1);
+  require_at_most("--offset-mm", o.offset_mm, 292.1, "292.1 mm");
   run::SimSpec spec;
+  spec.plant = parse_plant_kind(o.plant);
+  spec.sensor_seed = o.sensor_seed;
+  spec.stroke_offset_m = o.offset_mm * 1e-3;
   spec.record = o.record;
   spec.pga_g = o.pga_g;
   spec.mode = run::parse_control_mode(o.control);
@@ -73,6 +103,12 @@ void print_summary(const run::SimRun& r) {
   std::printf("  peak superstructure accel    %10.4f m/s^2\n", s.peak_superstructure_accel_m_s2);
   std::printf("  peak base accel              %10.4f m/s^2\n", s.peak_base_accel_m_s2);
   std::printf("  peak coil current            %10.3f A\n", s.peak_current_a);
+  const plant::CoilFigures& c = s.coil;
+  std::printf("  plant                        %10s\n", plant::plant_kind_name(r.spec.plant));
+  std::printf("  rms coil current             %10.4f A\n", c.rms_coil_current_a);
+  std::printf("  time above rated 2.5 A       %10.3f s\n", c.time_above_rated_s);
+  std::printf("  command changes              %10.2f per s\n", c.command_changes_per_s);
+  std::printf("  peak coil temperature rise   %10.4f K\n", c.peak_coil_temperature_rise_k);
 }
 
 void add_options(CLI::App& app, SimOptions& o) {
@@ -85,6 +121,10 @@ void add_options(CLI::App& app, SimOptions& o) {
   app.add_option("--duration-s", o.duration_s, "Simulated time, s (default: the record's length; 40 s synthetic)");
   add_step_s_option(app, o.step_s, "Simulation and control step, s");
   app.add_option("--seed", o.seed, "Seed of the synthetic motion (without --record)")->capture_default_str();
+  app.add_option("--plant", o.plant, "thesis | hardware")->capture_default_str();
+  app.add_option("--sensor-seed", o.sensor_seed, "Seed of the hardware plant's sensor noise")->capture_default_str();
+  app.add_option("--offset-mm", o.offset_mm, "Hardware plant: damper parked this far off its stroke centre, mm")
+      ->capture_default_str();
   add_out_option(app, o.out_dir, "Folder for summary.json, timeseries.csv and plots");
 }
 

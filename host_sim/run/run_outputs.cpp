@@ -115,6 +115,13 @@ nlohmann::json sim_summary_json(const SimRun& run) {
   j["numeric"] = numeric_name(run.spec.numeric);
   j["idle_years"] = run.spec.idle_years;
   j["step_s"] = run.spec.step_s;
+  const plant::CoilFigures& c = run.summary.coil;
+  j["plant"] = plant::plant_kind_name(run.spec.plant);
+  j["peak_coil_current_a"] = c.peak_coil_current_a;
+  j["rms_coil_current_a"] = c.rms_coil_current_a;
+  j["time_above_rated_s"] = c.time_above_rated_s;
+  j["command_changes_per_s"] = c.command_changes_per_s;
+  j["peak_coil_temperature_rise_k"] = c.peak_coil_temperature_rise_k;
   return j;
 }
 

@@ -29,8 +29,8 @@ std::vector<std::string> write_comparison_plot(const std::filesystem::path& png,
 /// units their names say (force in kN).
 [[nodiscard]] nlohmann::json closed_loop_summary_json(const plant::PlantSummary& s);
 
-/// The fields documented in `mrd sim --help`: closed_loop_summary_json and
-/// the run's inputs.
+/// The fields documented in `mrd sim --help`: closed_loop_summary_json, the
+/// run's inputs, the plant and the coil figures (plant::CoilFigures).
 [[nodiscard]] nlohmann::json sim_summary_json(const SimRun& run);
 
 /// Writes the outputs of `mrd sim` into `dir` (which must exist):

@@ -3,6 +3,7 @@
 /// synthetic motion at a PGA, the firmware control core in one mode and
 /// numeric build, after an idle time.
 
+#include <cstdint>
 #include <string>
 
 #include "mrd/control/io.hpp"
@@ -12,8 +13,11 @@
 
 namespace mrd::run {
 
+/// `record` value for a run without ground motion (zero acceleration).
+inline constexpr const char* kNoRecord = "none";
+
 struct SimSpec {
-  std::string record;           ///< CSV or PEER .AT2 file; empty: a synthetic motion
+  std::string record;           ///< CSV or PEER .AT2 file; kNoRecord: no ground motion; empty: a synthetic motion
   double pga_g = kThesisPga_g;  ///< PGA the motion is scaled to, g
   control::ControlMode mode = control::ControlMode::kPassiveOff;
   NumericKind numeric = NumericKind::kFloat;
@@ -22,6 +26,9 @@ struct SimSpec {
   double step_s = 1.0e-3;
   unsigned seed = 1;            ///< of the synthetic motion
   bool keep_record = false;     ///< keep the time series for the outputs
+  plant::PlantKind plant = plant::PlantKind::kThesis;
+  std::uint64_t sensor_seed = 1;   ///< of the hardware plant's sensor noise
+  double stroke_offset_m = 0.003;  ///< where the hardware plant's damper is parked off centre, m
 };
 
 struct SimRun {
@@ -34,9 +41,10 @@ struct SimRun {
 /// Synthetic motion length without a record and without a duration, s.
 inline constexpr double kSyntheticSimDuration_s = 40.0;
 
-/// Loads or synthesizes the motion and runs the loop with `controller`
-/// (made for spec.mode, spec.numeric and spec.step_s). Throws io::UsageError
-/// for a record that cannot be read.
+/// Loads or synthesizes the motion (zero acceleration over spec.duration_s
+/// for kNoRecord) and runs the loop on spec.plant with `controller` (made for
+/// spec.mode, spec.numeric and spec.step_s). Throws io::UsageError for a
+/// record that cannot be read, or kNoRecord without a duration.
 SimRun run_sim(const SimSpec& spec, Controller& controller);
 
 }  // namespace mrd::run
