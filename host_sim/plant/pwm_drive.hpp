@@ -13,10 +13,13 @@
 ///
 /// K_p = L(1 A) ω_c = 1000 V/A and K_i = R ω_c = 960 V/(A s) with
 /// ω_c = 200 rad/s: the zero cancels the coil's pole at R/L(1 A), so in the
-/// linear range the loop is a first-order lag of 5 ms; a large step
+/// linear range the loop is a first-order lag of 5 ms (K_p · 0.1 ms / L stays
+/// ≤ 0.2 down to the coil's 0.5 H floor, so the sampled loop is well damped); a large step
 /// saturates the bridge and the current slews at (72 V − R i)/L(i). The
 /// integrator stops while the output is saturated in the direction of the
-/// error (anti-windup).
+/// error (anti-windup); after a saturated rise it takes over the coil's R i
+/// from the proportional term with K_p/K_i = 1.04 s (2.5 A: 12 mA left at
+/// the end of the rise).
 ///
 /// Current limit: I_lim is 30 A, folded back to 15 A by an I²t budget:
 /// E += (i² − I_cont²) dt, E ≥ 0; once E reaches (I_peak² − I_cont²) · 2 s
