@@ -56,6 +56,66 @@ TEST_F(SimCli, WithoutRecordUsesASyntheticMotionAndSaysSo) {
   EXPECT_TRUE(j["synthetic_motion"].get<bool>());
 }
 
+constexpr const char* kCoilFigures[] = {"peak_coil_current_a", "rms_coil_current_a", "time_above_rated_s",
+                                        "command_changes_per_s", "peak_coil_temperature_rise_k"};
+
+// Passive-off commands 0 A throughout: the hardware coil never carries current.
+TEST_F(SimCli, HardwarePlantAtRestWritesTheCoilFigures) {
+  const auto r = run_mrd("sim --plant hardware --record none --duration-s 2 --control passive-off --out " +
+                             out_.path().string(),
+                         scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  for (const char* k : kCoilFigures) {
+    ASSERT_TRUE(j.contains(k)) << k;
+    EXPECT_EQ(j[k].get<double>(), 0.0) << k;
+  }
+  EXPECT_EQ(j["plant"], "hardware");
+  EXPECT_DOUBLE_EQ(j["duration_s"].get<double>(), 2.0);
+  EXPECT_EQ(j["peak_base_displacement_m"].get<double>(), 0.0);
+  EXPECT_NE(r.out.find("peak coil temperature rise"), std::string::npos) << r.out;
+}
+
+// Passive-on: one command change (0 → 2.5 A) in 2 s = 0.5 per s; the drive
+// does not overshoot the rated current; 2.5 A for 2 s heats the coil by less
+// than 60 K (1 − e^(−2/1200)) = 0.0999 K.
+TEST_F(SimCli, HardwarePlantPassiveOnCoilFigures) {
+  const auto r = run_mrd("sim --plant hardware --record none --duration-s 2 --control passive-on --sensor-seed 3 "
+                         "--offset-mm 5 --out " + out_.path().string(),
+                         scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  EXPECT_DOUBLE_EQ(j["command_changes_per_s"].get<double>(), 0.5);
+  EXPECT_LE(j["peak_coil_current_a"].get<double>(), 2.5);
+  EXPECT_GT(j["peak_coil_current_a"].get<double>(), 2.4);
+  EXPECT_EQ(j["time_above_rated_s"].get<double>(), 0.0);
+  EXPECT_GT(j["peak_coil_temperature_rise_k"].get<double>(), 0.0);
+  EXPECT_LT(j["peak_coil_temperature_rise_k"].get<double>(), 60.0 * (1.0 - std::exp(-2.0 / 1200.0)));
+}
+
+TEST_F(SimCli, ThesisPlantWritesTheCoilFiguresToo) {
+  const auto r = run_mrd("sim --duration-s 2 --control passive-on --out " + out_.path().string(), scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  for (const char* k : kCoilFigures) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["plant"], "thesis");
+  EXPECT_DOUBLE_EQ(j["peak_coil_current_a"].get<double>(), j["peak_current_a"].get<double>());
+}
+
+TEST_F(SimCli, BadPlantIsRefused) {
+  const auto r = run_mrd("sim --plant bogus --record none --duration-s 2 --out " + out_.path().string(),
+                         scratch_.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--plant"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out_.path() / "summary.json"));
+}
+
+TEST_F(SimCli, NoRecordNeedsADuration) {
+  const auto r = run_mrd("sim --record none --out " + out_.path().string(), scratch_.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--duration-s"), std::string::npos) << r.err;
+}
+
 struct BadRecord {
   const char* name;
   const char* content;
