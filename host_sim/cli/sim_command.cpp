@@ -112,7 +112,8 @@ void print_summary(const run::SimRun& r) {
 }
 
 void add_options(CLI::App& app, SimOptions& o) {
-  app.add_option("--record", o.record, "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2");
+  app.add_option("--record", o.record,
+                 "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2; none: no ground motion");
   add_pga_g_option(app, o.pga_g, "Scale the record to this PGA, g (Table 6.3: 0.1127)");
   app.add_option("--control", o.control, "passive-off | passive-on | semi-active")->capture_default_str();
   app.add_option("--numeric", o.numeric, "Numeric build of the firmware control core: float | fixed")
