@@ -7,9 +7,9 @@
 /// - the command stage turns the drive's output into the coil drive the
 ///   damper sees over the step.
 ///
-/// Both are ideal today. Sensor models (noise, offset, bandwidth, converter
-/// resolution) go into sensor_stage(); a drive model (PWM ripple, slew rate,
-/// voltage limit) goes into command_stage_a().
+/// Both stages here are ideal: the thesis plant's. The hardware plant
+/// replaces them with the rig's sensors (hardware_sensors.hpp) and its PWM
+/// drive and coil (pwm_drive.hpp, coil.hpp).
 
 namespace mrd::plant {
 
