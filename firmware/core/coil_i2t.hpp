@@ -20,13 +20,14 @@
 /// the ceiling at 0 A the coil only cools. The estimate starts at ambient
 /// (m = 0) at reset().
 ///
-/// Fixed point: i² and m in Q9.22 A² (i² saturates at 512 A², beyond the
-/// current sensor's 15 A); the N-tick mean accumulates i²/16 so it cannot
-/// leave Q9.22; α = 1.33e−5 in Q2.29 (7158 LSB). Rounding lets m settle up
+/// Fixed point: m in Q9.22 A²; each tick adds i²/16, formed as i² in Q13.18
+/// (saturating at 8192 A², far beyond the current sensor's 15 A) read as
+/// Q9.22, so the 16-tick mean cannot leave Q9.22; α = 1.33e−5 in Q2.29 (7158 LSB). Rounding lets m settle up
 /// to 0.5 LSB/α = 9e−3 A² from the exact value, 0.09 K of the 60 K rating.
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "firmware/core/numeric_formats.hpp"
 
@@ -34,6 +35,7 @@ namespace mrd::fw {
 
 /// Ticks averaged per I²t update.
 inline constexpr std::uint32_t kCoilI2tDecimation = 16;
+static_assert(kCoilI2tDecimation == 16, "CoilI2t::sixteenth_of_square divides by 16");
 
 template <class Policy>
 class CoilI2t {
@@ -46,7 +48,6 @@ class CoilI2t {
   void init(double time_constant_s, double period_s, double rated_a, double derate_fraction) noexcept {
     alpha_ = num::from_double<Coef>(
         1.0 - std::exp(-static_cast<double>(kCoilI2tDecimation) * period_s / time_constant_s));
-    sixteenth_ = num::from_double<Coef>(1.0 / static_cast<double>(kCoilI2tDecimation));
     rated_a_ = num::from_double<Current>(rated_a);
     rated_square_ = num::from_double<Square>(rated_a * rated_a);
     derate_from_ = num::from_double<Square>(derate_fraction * rated_a * rated_a);
@@ -63,7 +64,7 @@ class CoilI2t {
 
   /// One tick with the measured coil current.
   void step(Current coil_a) noexcept {
-    sum_ = sum_ + num::mul<Square>(num::mul<Square>(coil_a, coil_a), sixteenth_);
+    sum_ = sum_ + sixteenth_of_square(coil_a);
     if (++count_ < kCoilI2tDecimation) return;
     count_ = 0;
     mean_square_ = mean_square_ + num::mul<Square>(alpha_, sum_ - mean_square_);
@@ -81,8 +82,17 @@ class CoilI2t {
   double heating_fraction() const noexcept { return num::to_double(mean_square_) / num::to_double(rated_square_); }
 
  private:
+  /// i²/16 in the Square format. Fixed point: i² rounded once into Q13.18,
+  /// whose raw bits read as Q9.22 are i²/16 (no second product).
+  static Square sixteenth_of_square(Current i) noexcept {
+    if constexpr (std::is_floating_point_v<Square>) {
+      return i * i * Square{0.0625f};
+    } else {
+      return Square::from_raw(num::mul<num::Fixed<13, 18>>(i, i).raw());
+    }
+  }
+
   Coef alpha_{};
-  Coef sixteenth_{};
   Current rated_a_{};
   Square rated_square_{};
   Square derate_from_{};
