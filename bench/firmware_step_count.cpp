@@ -27,7 +27,7 @@ int run(std::size_t n) {
   std::printf("%s: %zu steps, mean command %.4f A, over-drive %u, back-drive %u, off %u, hold %u ticks\n",
               Policy::kName, n, sum_a / static_cast<double>(n),
               c.status().branch(mrd::fw::OdbdcoBranch::kOverDrive), c.status().branch(mrd::fw::OdbdcoBranch::kBackDrive),
-              c.status().branch(mrd::fw::OdbdcoBranch::kOff), c.status().branch(mrd::fw::OdbdcoBranch::kHold));
+              c.status().branch(mrd::fw::OdbdcoBranch::kOff), c.status().branch(mrd::fw::OdbdcoBranch::kTarget));
   return 0;
 }
 

@@ -25,17 +25,24 @@ struct ControllerConfig {
   double filter_freq_rad_s = 2.0 * units::kPi * 0.2508;           ///< ω_f, fundamental mode (`mrd modal`)
   double desired_force_limit_n = 400.0e3;                         ///< |F_d| clamp: 2× the 200 kN rating
 
-  // Velocity sign for ODBDCO.
-  double velocity_cutoff_hz = 30.0;     ///< f_v of the differentiating low-pass
-  double velocity_deadband_m_s = 1e-3;  ///< v_db: below it the direction is unknown
+  // Velocity direction for ODBDCO (hysteresis, odbdco.hpp).
+  double velocity_cutoff_hz = 30.0;        ///< f_v of the differentiating low-pass
+  double velocity_on_m_s = 6.0e-3;         ///< v_on: beyond it the direction is known
+  double velocity_off_m_s = 3.0e-3;        ///< v_off: below it a known direction becomes unknown
 
-  // ODBDCO, §6.3 and Phillips & Spencer 2012 (law in odbdco.hpp).
+  // ODBDCO, §6.3 and Phillips & Spencer 2012, held to the coil's rating (law in odbdco.hpp).
   double nominal_current_a = kPassiveOnCurrent_a;  ///< passive-on current (§6.4)
-  double overdrive_current_a = 10.0;     ///< I_od
-  double coil_current_ceiling_a = 10.0;  ///< I_ceil: over-drive holds here once the coil reaches it
-  double backdrive_current_a = -10.0;    ///< I_bd
-  double release_current_a = 0.05;       ///< I_rel: back-drive ends at this coil current
-  double force_deadband_n = 2.0e3;       ///< F_db
+  double rated_current_a = kPassiveOnCurrent_a;    ///< I_r: the steady ceiling (Table 4.1's laws span 0–2.5 A)
+  double overdrive_current_a = 10.0;    ///< I_od: voltage forcing while the coil is short of the target
+  double backdrive_current_a = -10.0;   ///< I_bd: voltage forcing while the coil is above the target
+  double current_band_a = 0.1;          ///< I_band: within it of the target, the command is the target
+  double force_deadband_n = 2.0e3;      ///< F_db
+  double target_dwell_s = 0.030;        ///< minimum time between target changes
+  double rest_release_s = 1.0;          ///< direction unknown this long → target 0 A
+
+  // Coil I²t (coil_i2t.hpp): the rating is the rise at I_r held continuously.
+  double coil_thermal_time_constant_s = 1200.0;  ///< τ of the coil (20 min)
+  double coil_derate_fraction = 0.8;             ///< derating starts at this fraction of the rated rise
 
   // PWM drive (§3.2; SPEC): command ±10 A at 1 V/A; 15 A continuous, 30 A peak.
   double command_limit_a = 10.0;
@@ -78,9 +85,10 @@ enum class ConfigError : std::uint8_t {
   kLossFactor,       ///< η not in (0, 10]
   kFilterFrequency,  ///< ω_f not in (0, π/T)
   kForceLimit,       ///< F_d limit not > 0
-  kVelocityFilter,   ///< f_v not in (0, 1/(2T)), or v_db < 0
+  kVelocityFilter,   ///< f_v not in (0, 1/(2T)), or not 0 ≤ v_off ≤ v_on
   kCurrentLevels,    ///< currents out of order (see validate_config)
-  kDeadband,         ///< F_db < 0
+  kDeadband,         ///< F_db < 0, dwell or rest time not in [0, 60] s
+  kThermal,          ///< τ not > 0 or derate fraction not in (0, 1)
   kSensorLimits,     ///< guard limits not > 0, stuck_ticks < 2
   kFixedPointRange,  ///< a constant does not fit its fixed-point format
 };
@@ -94,9 +102,10 @@ constexpr const char* config_error_name(ConfigError e) noexcept {
     case ConfigError::kLossFactor: return "loss_factor";
     case ConfigError::kFilterFrequency: return "filter_freq_rad_s";
     case ConfigError::kForceLimit: return "desired_force_limit_n";
-    case ConfigError::kVelocityFilter: return "velocity_cutoff_hz/velocity_deadband_m_s";
+    case ConfigError::kVelocityFilter: return "velocity_cutoff_hz/velocity_on_m_s/velocity_off_m_s";
     case ConfigError::kCurrentLevels: return "current levels";
-    case ConfigError::kDeadband: return "force_deadband_n";
+    case ConfigError::kDeadband: return "force_deadband_n/target_dwell_s/rest_release_s";
+    case ConfigError::kThermal: return "coil_thermal_time_constant_s/coil_derate_fraction";
     case ConfigError::kSensorLimits: return "sensor limits";
     case ConfigError::kFixedPointRange: return "fixed-point range";
   }
@@ -110,8 +119,8 @@ constexpr bool finite(double v) noexcept { return v > -1.0e300 && v < 1.0e300; }
 
 /// Checks a configuration for the numeric policy; kNone when usable.
 /// Current levels must satisfy
-///   0 < I_nom ≤ I_od ≤ I_cmd ≤ I_cont ≤ I_peak,  0 < I_ceil ≤ I_cmd,
-///   −I_cmd ≤ I_bd < 0,  0 ≤ I_rel < I_nom,  0 ≤ I_fallback ≤ I_cmd,
+///   0 < I_nom ≤ I_od ≤ I_cmd ≤ I_cont ≤ I_peak,  0 < I_r ≤ I_od,
+///   −I_cmd ≤ I_bd < 0,  0 < I_band < I_r,  0 ≤ I_fallback ≤ I_cmd,
 /// so over-drive never exceeds the drive's command range nor its continuous
 /// rating.
 template <class Policy>
@@ -129,19 +138,26 @@ constexpr ConfigError validate_config(const ControllerConfig& c) noexcept {
   }
   if (!detail::finite_positive(c.desired_force_limit_n)) return ConfigError::kForceLimit;
   if (!(c.velocity_cutoff_hz > 0.0 && c.velocity_cutoff_hz * 2.0 * c.period_s < 1.0) ||
-      !(c.velocity_deadband_m_s >= 0.0 && detail::finite(c.velocity_deadband_m_s))) {
+      !(c.velocity_off_m_s >= 0.0 && c.velocity_off_m_s <= c.velocity_on_m_s && detail::finite(c.velocity_on_m_s))) {
     return ConfigError::kVelocityFilter;
   }
   const bool currents_ok =
       c.nominal_current_a > 0.0 && c.nominal_current_a <= c.overdrive_current_a &&
       c.overdrive_current_a <= c.command_limit_a && c.command_limit_a <= c.drive_continuous_limit_a &&
       c.drive_continuous_limit_a <= c.drive_peak_limit_a && detail::finite(c.drive_peak_limit_a) &&
-      c.coil_current_ceiling_a > 0.0 && c.coil_current_ceiling_a <= c.command_limit_a &&
-      c.backdrive_current_a >= -c.command_limit_a && c.backdrive_current_a < 0.0 && c.release_current_a >= 0.0 &&
-      c.release_current_a < c.nominal_current_a && c.fallback_current_a >= 0.0 &&
+      c.rated_current_a > 0.0 && c.rated_current_a <= c.overdrive_current_a &&
+      c.backdrive_current_a >= -c.command_limit_a && c.backdrive_current_a < 0.0 && c.current_band_a > 0.0 &&
+      c.current_band_a < c.rated_current_a && c.fallback_current_a >= 0.0 &&
       c.fallback_current_a <= c.command_limit_a;
   if (!currents_ok) return ConfigError::kCurrentLevels;
-  if (!(c.force_deadband_n >= 0.0 && detail::finite(c.force_deadband_n))) return ConfigError::kDeadband;
+  if (!(c.force_deadband_n >= 0.0 && detail::finite(c.force_deadband_n)) ||
+      !(c.target_dwell_s >= 0.0 && c.target_dwell_s <= 60.0) || !(c.rest_release_s >= 0.0 && c.rest_release_s <= 60.0)) {
+    return ConfigError::kDeadband;
+  }
+  if (!detail::finite_positive(c.coil_thermal_time_constant_s) ||
+      !(c.coil_derate_fraction > 0.0 && c.coil_derate_fraction < 1.0)) {
+    return ConfigError::kThermal;
+  }
   if (!detail::finite_positive(c.disp_limit_m) || !detail::finite_positive(c.force_limit_n) ||
       !detail::finite_positive(c.accel_limit_m_s2) || !detail::finite_positive(c.coil_current_limit_a) ||
       !detail::finite_positive(c.shaking_threshold_m_s2) || c.stuck_ticks < 2) {
@@ -155,10 +171,13 @@ constexpr ConfigError validate_config(const ControllerConfig& c) noexcept {
       representable<typename F::Force>(c.force_limit_n) && representable<typename F::Force>(c.force_deadband_n) &&
       representable<typename F::Current>(c.coil_current_limit_a) &&
       representable<typename F::Current>(c.drive_peak_limit_a) &&
-      representable<typename F::Disp>(c.velocity_deadband_m_s * c.period_s) &&
-      // a velocity deadband that rounds to zero counts would be no deadband
-      (c.velocity_deadband_m_s == 0.0 ||
-       num::to_double(num::from_double<typename F::Disp>(c.velocity_deadband_m_s * c.period_s)) > 0.0);
+      representable<typename F::Disp>(c.velocity_on_m_s * c.period_s) &&
+      // a velocity threshold that rounds to zero counts would be no threshold
+      (c.velocity_on_m_s == 0.0 ||
+       num::to_double(num::from_double<typename F::Disp>(c.velocity_on_m_s * c.period_s)) > 0.0) &&
+      // I²t: I_r² and the derating slope 1/((1 − f) I_r) in their formats
+      representable<typename F::Square>(c.rated_current_a * c.rated_current_a) &&
+      representable<typename F::Current>(1.0 / ((1.0 - c.coil_derate_fraction) * c.rated_current_a));
   if (!fits) return ConfigError::kFixedPointRange;
   return ConfigError::kNone;
 }

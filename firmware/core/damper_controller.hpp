@@ -19,8 +19,11 @@
 ///     The first usable sample primes both at rest;
 ///  3. output by mode:
 ///     - passive-off: 0 A;  passive-on: I_nom (2.5 A);
-///     - semi-active: ODBDCO (odbdco.hpp) from F_d, F_m, i_m and the velocity
-///       sign, when stroke, force and coil current are all usable.
+///     - semi-active: ODBDCO (odbdco.hpp) from F_d, F_m, i_m and the velocity,
+///       when stroke, force and coil current are all usable, under the coil
+///       I²t ceiling (coil_i2t.hpp). The law's state and the I²t estimate
+///       run in every mode on usable input, so switching modes is bumpless
+///       and the coil's heating in passive-on is counted.
 /// Safe outputs (SAFE-1 … SAFE-4), whatever the mode; SAFE-1 comes first in 3.:
 ///     - SAFE-1 drive fault line asserted: 0 A, drive disabled, and it stays
 ///       disabled `drive_reenable_delay_ticks` after the line clears;
@@ -41,6 +44,7 @@
 #include <array>
 #include <cstdint>
 
+#include "firmware/core/coil_i2t.hpp"
 #include "firmware/core/controller_config.hpp"
 #include "firmware/core/input_guard.hpp"
 #include "firmware/core/numeric_formats.hpp"
@@ -97,6 +101,10 @@ class DamperController {
   control::ControllerOutput step(const control::ControllerInput& in) noexcept;
 
   const DamperControllerStatus& status() const noexcept { return status_; }
+  /// The coil I²t estimate (its ceiling and heating).
+  const CoilI2t<Policy>& coil_i2t() const noexcept { return i2t_; }
+  /// The ODBDCO law's state (direction, target).
+  const Odbdco<Policy>& law() const noexcept { return law_; }
   const ControllerConfig& config() const noexcept { return config_; }
   bool initialized() const noexcept { return initialized_; }
 
@@ -109,6 +117,8 @@ class DamperController {
   VelocityEstimator<Policy> velocity_{};
   InputGuard guard_{};
   OdbdcoParams<Policy> odbdco_{};
+  Odbdco<Policy> law_{};
+  CoilI2t<Policy> i2t_{};
   Force desired_limit_n_{};
   Current nominal_a_{};
   Current fallback_a_{};
@@ -162,11 +172,15 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
   limits.shaking_threshold_m_s2 = static_cast<float>(config.shaking_threshold_m_s2);
   guard_.init(limits);
   odbdco_.overdrive_a = num::from_double<Current>(config.overdrive_current_a);
-  odbdco_.ceiling_a = num::from_double<Current>(config.coil_current_ceiling_a);
   odbdco_.backdrive_a = num::from_double<Current>(config.backdrive_current_a);
-  odbdco_.release_a = num::from_double<Current>(config.release_current_a);
+  odbdco_.band_a = num::from_double<Current>(config.current_band_a);
   odbdco_.deadband_n = num::from_double<Force>(config.force_deadband_n);
-  odbdco_.velocity_deadband_m = num::from_double<Disp>(config.velocity_deadband_m_s * config.period_s);
+  odbdco_.velocity_on_m = num::from_double<Disp>(config.velocity_on_m_s * config.period_s);
+  odbdco_.velocity_off_m = num::from_double<Disp>(config.velocity_off_m_s * config.period_s);
+  odbdco_.dwell_ticks = static_cast<std::uint32_t>(config.target_dwell_s / config.period_s + 0.5);
+  odbdco_.rest_ticks = static_cast<std::uint32_t>(config.rest_release_s / config.period_s + 0.5);
+  i2t_.init(config.coil_thermal_time_constant_s, config.period_s, config.rated_current_a,
+            config.coil_derate_fraction);
   desired_limit_n_ = num::from_double<Force>(config.desired_force_limit_n);
   nominal_a_ = num::from_double<Current>(config.nominal_current_a);
   fallback_a_ = num::from_double<Current>(config.fallback_current_a);
@@ -180,6 +194,8 @@ template <class Policy>
 void DamperController<Policy>::reset() noexcept {
   rild_.reset();
   velocity_.reset();
+  law_.reset();
+  i2t_.reset();
   guard_.reset();
   ticks_ = 0;
   have_sample_ = false;
@@ -296,15 +312,19 @@ inline typename DamperController<Policy>::Current DamperController<Policy>::step
                                                                              const InputGuard::Faults& faults,
                                                                              bool disp_ok,
                                                                              control::ControllerOutput& out) noexcept {
+  const bool coil_ok = faults[InputGuard::idx(InputSignal::kCoilCurrent)] == InputFault::kNone;
+  const bool usable = disp_ok && coil_ok && faults[InputGuard::idx(InputSignal::kForce)] == InputFault::kNone;
+  const Current coil_a = num::from_float<Current>(in.coil_current_a);
+  if (coil_ok) i2t_.step(coil_a);
+  OdbdcoDecision<Policy> d;
+  if (usable) {
+    d = law_.step(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n), coil_a, velocity_.per_tick_m(),
+                  i2t_.ceiling_a());
+  }
   if (mode_ == control::ControlMode::kPassiveOn) return nominal_a_;
   if (mode_ != control::ControlMode::kSemiActive) return Current{};  // passive-off
-  const bool usable = disp_ok && faults[InputGuard::idx(InputSignal::kForce)] == InputFault::kNone &&
-                      faults[InputGuard::idx(InputSignal::kCoilCurrent)] == InputFault::kNone;
   if (usable) {
     bad_run_ = 0;
-    const OdbdcoDecision<Policy> d = odbdco<Policy>(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n),
-                                                    num::from_float<Current>(in.coil_current_a),
-                                                    velocity_.per_tick_m());
     bump(status_.branch_ticks[static_cast<int>(d.branch)]);
     out.desired_force_n = num::to_float(desired_n_);
     return d.command_a;

@@ -15,6 +15,7 @@
 /// | Current | A              | Q7.24  | [−128, 128) A       | 6.0e−8 A    | command ±10 A, drive peak 30 A         |
 /// | Coef    | 1              | Q2.29  | [−4, 4)             | 1.9e−9      | filter poles and gains in (−1, 1)      |
 /// | Gain    | N/m            | Q23.8  | [−8.39e6, 8.39e6)   | 3.9e−3 N/m  | kη = 2.63e6 N/m (Eq. 6.1)              |
+/// | Square  | A²             | Q9.22  | [−512, 512) A²      | 2.4e−7 A²   | i² ≤ 225 A² at the sensor's 15 A       |
 ///
 /// Products (`num::mul<Out>`) form the exact 64-bit product of the two raw
 /// values, round once to the output's resolution and saturate to its range.
@@ -39,6 +40,7 @@ struct Formats<num::Float32Policy> {
   using Current = float;  ///< A
   using Coef = float;     ///< dimensionless filter coefficient
   using Gain = float;     ///< N/m
+  using Square = float;   ///< A², mean-square coil current
 };
 
 template <>
@@ -48,6 +50,7 @@ struct Formats<num::Fixed32Policy> {
   using Current = num::Fixed<7, 24>;
   using Coef = num::Fixed<2, 29>;
   using Gain = num::Fixed<23, 8>;
+  using Square = num::Fixed<9, 22>;
 };
 
 /// True when `v` lies in the range of T (float: finite and within ±FLT_MAX).

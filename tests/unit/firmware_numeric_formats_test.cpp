@@ -55,6 +55,19 @@ TEST(FirmwareFormats, RangesMatchTheDocumentedTable) {
   EXPECT_FALSE(representable<Fx::Gain>(1e7));
   EXPECT_TRUE(representable<float>(1e7));
   EXPECT_FALSE(representable<float>(std::numeric_limits<double>::quiet_NaN()));
+  // Square, Q9.22 A²: ±512 A², 2^−22 A² = 2.4e−7 A²; holds (15 A)² = 225 A².
+  EXPECT_DOUBLE_EQ(Fx::Square::lowest_value(), -512.0);
+  EXPECT_DOUBLE_EQ(Fx::Square::epsilon().to_double(), std::ldexp(1.0, -22));
+  EXPECT_TRUE(representable<Fx::Square>(15.0 * 15.0));
+}
+
+TEST(FirmwareFormats, SquareOfACurrentRoundsOnceIntoQ9_22) {
+  // 2.5 A · 2.5 A = 6.25 A² exactly: raw 6.25 · 2^22 = 26 214 400.
+  const Fx::Current i = num::from_float<Fx::Current>(2.5f);
+  EXPECT_EQ(num::mul<Fx::Square>(i, i).raw(), 26214400);
+  // 30 A (the sensor guard's limit): 900 A² saturates at the top of Q9.22.
+  const Fx::Current big = num::from_float<Fx::Current>(30.0f);
+  EXPECT_EQ(num::mul<Fx::Square>(big, big), Fx::Square::max());
 }
 
 }  // namespace
