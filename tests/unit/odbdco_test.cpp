@@ -206,7 +206,7 @@ TYPED_TEST(OdbdcoTest, AtRestTheTargetDecaysToZeroAndASensorBiasIsNotIntegrated)
   EXPECT_DOUBLE_EQ(this->amps(this->tick(law, -7.9e3, 0.0, 2.5, 0.0)), -10.0);  // target 0: pull down
   EXPECT_TRUE(law.target_off());
   // The coil reads +20 mA or −20 mA of bias for 600 s: the command stays 0 A
-  // (the old HOLD, u = i_m, closed a loop that integrated the bias).
+  // (a hold commanding u = i_m would close a loop that integrates the bias).
   for (int k = 0; k < 600000; ++k) {
     const double bias = (k % 2 == 0) ? 0.02 : -0.02;
     const auto d = this->tick(law, -7.9e3, 0.0, bias, 0.0);
