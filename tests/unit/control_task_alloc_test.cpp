@@ -32,6 +32,21 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 namespace mrd::app {
 namespace {
 
+/// One tick's inbound frames, as the DAQ (node 3) and the drive (node 2) send
+/// them: a 20 mm, 1 rad/s sine stroke, the given ground and base
+/// accelerations, and a following drive at 2 A.
+void send_tick_inputs(hal::CanBus& peer, std::uint64_t k, float ground_m_s2, float base_m_s2) {
+  const auto c = static_cast<std::uint8_t>(k);
+  const float x = 0.02f * static_cast<float>(std::sin(1e-3 * static_cast<double>(k)));
+  hal::CanFrame f;
+  protocol::encode(protocol::DaqMotion{x, true, 1e6f * x, true, c}, 3, f);
+  peer.send(f);
+  protocol::encode(protocol::DaqAccel{ground_m_s2, true, base_m_s2, true, c}, 3, f);
+  peer.send(f);
+  protocol::encode(protocol::DriveStatus{2.0f, 2.0f, 0, protocol::DriveState::kFollowing, c}, 2, f);
+  peer.send(f);
+}
+
 TEST(ControlTaskAllocations, NoneOverTenThousandTicks) {
   sim::MemoryBus bus;
   auto& ctrl = bus.attach(64);
@@ -48,14 +63,7 @@ TEST(ControlTaskAllocations, NoneOverTenThousandTicks) {
   hal::CanFrame f;
   const long before = g_allocations.load();
   for (std::uint64_t k = 0; k < 10000; ++k) {
-    const auto c = static_cast<std::uint8_t>(k);
-    const float x = 0.02f * static_cast<float>(std::sin(1e-3 * static_cast<double>(k)));
-    protocol::encode(protocol::DaqMotion{x, true, 1e6f * x, true, c}, 3, f);
-    peer.send(f);
-    protocol::encode(protocol::DaqAccel{0.5f, true, 0.1f, true, c}, 3, f);
-    peer.send(f);
-    protocol::encode(protocol::DriveStatus{2.0f, 2.0f, 0, protocol::DriveState::kFollowing, c}, 2, f);
-    peer.send(f);
+    send_tick_inputs(peer, k, 0.5f, 0.1f);
     task.run_tick();
     while (peer.receive(f) == hal::CanResult::kOk) {
     }
@@ -90,15 +98,8 @@ TEST(BoardRuntimeAllocations, NoneOverTenThousandTicksWithTheMixingTask) {
   hal::CanFrame f;
   const long before = g_allocations.load();
   for (std::uint64_t k = 0; k < 10000; ++k) {
-    const auto c = static_cast<std::uint8_t>(k);
-    const float x = 0.02f * static_cast<float>(std::sin(1e-3 * static_cast<double>(k)));
-    protocol::encode(protocol::DaqMotion{x, true, 1e6f * x, true, c}, 3, f);
-    peer.send(f);
-    protocol::encode(protocol::DaqAccel{0.01f, true, 0.01f, true, c}, 3, f);
-    peer.send(f);
-    protocol::encode(protocol::DriveStatus{2.0f, 2.0f, 0, protocol::DriveState::kFollowing, c}, 2, f);
-    peer.send(f);
-    protocol::encode(protocol::MixingStatus{protocol::MixingState::kIdle, 0.0f, 0.0f, 0, c}, 4, f);
+    send_tick_inputs(peer, k, 0.01f, 0.01f);
+    protocol::encode(protocol::MixingStatus{protocol::MixingState::kIdle, 0.0f, 0.0f, 0, static_cast<std::uint8_t>(k)}, 4, f);
     peer.send(f);
     rt.run_tick();
     rtc.advance_s(1e-3);

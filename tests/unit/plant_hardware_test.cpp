@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "host_sim/plant/plant.hpp"
@@ -14,6 +15,20 @@ namespace {
 
 constexpr double kStep_s = 1e-3;
 constexpr double kVel_m_s = 0.1;
+
+/// The least time to raise the coil current from 0 to `to_a` with the whole
+/// bus across it: ∫_0^I L(i)/(72 V − 4.8 Ω · i) di, L(i) = (25/3)(3/5)^i H
+/// (through the thesis's 5.0 H at 1 A and 3.0 H at 2 A), midpoint rule.
+double slew_bound_s(double to_a) {
+  const int n = 20000;
+  const double h = to_a / n;
+  double t = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double i = (k + 0.5) * h;
+    t += (25.0 / 3.0) * std::pow(0.6, i) / (72.0 - 4.8 * i) * h;
+  }
+  return t;
+}
 
 /// Coil current, field current and force at 0.1 m/s after a 0→2.5 A command
 /// at t = 0, sampled at the ticks t = (k+1) ms.
@@ -58,8 +73,10 @@ double time_to(const std::vector<double>& y, double y0, double y_end, double fra
 // Eq. 4.5 (unity DC gain), 2.5 A step: i(t) = 2.5 (1 − ½e^(−t/0.7) − ½e^(−t/0.03)).
 // The fast term is below 5e-4 by t = 0.2 s, so 63 %: ½e^(−t/0.7) = 0.37 →
 // t = 0.7 ln(1/0.74) = 0.2108 s; 90 %: t = 0.7 ln 5 = 1.1266 s (± 2 ms).
-// Hardware coil current: the slew bound (plant_coil_drive_test.cpp) gives
-// 0.1313 s to 63 % and 0.1652 s to 90 %. Its field current ½ i + ½ lag(i)
+// Hardware coil current: no faster than the slew bound with the whole 72 V
+// bus across the coil, t_min(I) = ∫_0^I L(i)/(72 − 4.8 i) di with the thesis
+// points' L(i) = (25/3)(3/5)^|i| H (0.1313 s to 63 %, 0.1652 s to 90 %), and
+// within 1.5 ms of it (the PI loop leaves saturation only near the target). Its field current ½ i + ½ lag(i)
 // can be no faster than with a coil current that stepped at once (0.2108 s
 // to 63 %) and no later than that plus the coil's 0.2 s to settle.
 // The force rises monotonically with the field current, and the hardware
@@ -72,8 +89,10 @@ TEST(HardwarePlant, StepResponseBesideEq45) {
   EXPECT_NEAR(t63_th, 0.7 * std::log(1.0 / 0.74), 2e-3);
   EXPECT_NEAR(t90_th, 0.7 * std::log(5.0), 2e-3);
   const double t63_hw = time_to(hw.coil_a, 0.0, 2.5, 0.63), t90_hw = time_to(hw.coil_a, 0.0, 2.5, 0.9);
-  EXPECT_NEAR(t63_hw, 0.1313, 1.5e-3);
-  EXPECT_NEAR(t90_hw, 0.1652, 1.5e-3);
+  for (const auto& [t_hw, level_a] : {std::pair{t63_hw, 0.63 * 2.5}, std::pair{t90_hw, 0.9 * 2.5}}) {
+    EXPECT_GE(t_hw, slew_bound_s(level_a)) << level_a;
+    EXPECT_LE(t_hw, slew_bound_s(level_a) + 1.5e-3) << level_a;
+  }
 
   const double f_end_th = th.force_n.back(), f_end_hw = hw.force_n.back();
   EXPECT_NEAR(f_end_hw / f_end_th, 1.0, 1e-3);  // same steady field, 4 s ≈ 5.7 τ_slow
