@@ -20,8 +20,9 @@ ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s)
   return in;
 }
 
-DamperModel::DamperModel(ModelInput input, const physics::MrDamperParams& params)
-    : in_(std::move(input)), p_(params) {
+DamperModel::DamperModel(ModelInput input, Baseline baseline) : in_(std::move(input)), p_(std::move(baseline)) {
+  const double scale = p_.force_scale_n();
+  force_ratio_ = scale > 0.0 ? scale / thesis_force_scale_n() : 1.0;
   const std::size_t n = in_.time_s.size();
   step_s_.resize(n);
   for (std::size_t k = 0; k + 1 < n; ++k) step_s_[k] = in_.time_s[k + 1] - in_.time_s[k];
@@ -34,7 +35,7 @@ DamperModel::DamperModel(ModelInput input, const physics::MrDamperParams& params
     }
   }
   coil_current(1.0, base_current_a_);
-  coefficients(base_current_a_, base_a_fc_, base_b_fc_, base_a_c0_, base_b_c0_);
+  coefficients(base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_);
 }
 
 void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a) const {
@@ -64,23 +65,24 @@ void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a)
   }
 }
 
-void DamperModel::coefficients(const std::vector<double>& current_a, std::vector<double>& a_fc,
-                               std::vector<double>& b_fc, std::vector<double>& a_c0, std::vector<double>& b_c0) const {
-  // Eq. 5.10–5.11 rearranged: f_c = f_c,a e + PR f_c,b (1 − e), e = exp(−f_c,c |i|); same for c_0.
-  const auto& b = p_.bingham;
+void DamperModel::coefficients(const std::vector<double>& current_a, std::vector<double>& a_y,
+                               std::vector<double>& b_y, std::vector<double>& a_c, std::vector<double>& b_c) const {
+  // Eq. 5.10–5.11 rearranged: Y = Y_a e + PR Y_b (1 − e), e = exp(−Y_c |i|); same for C.
+  const CurrentLaw& y = p_.yield_n;
+  const CurrentLaw& c = p_.viscous_ns_m;
   const std::size_t n = current_a.size();
-  a_fc.resize(n);
-  b_fc.resize(n);
-  a_c0.resize(n);
-  b_c0.resize(n);
+  a_y.resize(n);
+  b_y.resize(n);
+  a_c.resize(n);
+  b_c.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const double i = std::fabs(current_a[k]);
-    const double e_fc = std::exp(-b.fc_c_per_a * i);
-    const double e_c0 = std::exp(-b.c0_c_per_a * i);
-    a_fc[k] = b.fc_a_n * e_fc;
-    b_fc[k] = b.fc_b_n * (1.0 - e_fc);
-    a_c0[k] = b.c0_a_ns_m * e_c0;
-    b_c0[k] = b.c0_b_ns_m * (1.0 - e_c0);
+    const double e_y = std::exp(-y.rate_per_a * i);
+    const double e_c = std::exp(-c.rate_per_a * i);
+    a_y[k] = y.at_zero * e_y;
+    b_y[k] = y.limit * (1.0 - e_y);
+    a_c[k] = c.at_zero * e_c;
+    b_c[k] = c.limit * (1.0 - e_c);
   }
 }
 
@@ -136,17 +138,17 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
     return off ? params[*off + i] : fallback;
   };
   const double tau_scale = param(Effect::coil_lag, 0, 1.0);
-  const double* a_fc = base_a_fc_.data();
-  const double* b_fc = base_b_fc_.data();
-  const double* a_c0 = base_a_c0_.data();
-  const double* b_c0 = base_b_c0_.data();
+  const double* a_y = base_a_y_.data();
+  const double* b_y = base_b_y_.data();
+  const double* a_c = base_a_c_.data();
+  const double* b_c = base_b_c_.data();
   if (set.contains(Effect::coil_lag)) {
     coil_current(tau_scale, ws.current_a);
-    coefficients(ws.current_a, ws.a_fc, ws.b_fc, ws.a_c0, ws.b_c0);
-    a_fc = ws.a_fc.data();
-    b_fc = ws.b_fc.data();
-    a_c0 = ws.a_c0.data();
-    b_c0 = ws.b_c0.data();
+    coefficients(ws.current_a, ws.a_y, ws.b_y, ws.a_c, ws.b_c);
+    a_y = ws.a_y.data();
+    b_y = ws.b_y.data();
+    a_c = ws.a_c.data();
+    b_c = ws.b_c.data();
   }
 
   // Damper motion: the actuator's, or through the free play of the mounting.
@@ -168,27 +170,39 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double alpha_v = std::max(param(Effect::thermal_fade, 1, 0.0), 0.0) / kThermalCapacity_j_per_k;
   const double k_gas = param(Effect::gas_spring, 0, 0.0);
   const double offset = param(Effect::force_offset, 0, 0.0);
-  const double v_tf = p_.bingham.v_tf_m_s;
+  const double v_tf = p_.v_tf_m_s;
+  const bool bouc_wen = p_.law == BaseLaw::bouc_wen;
+  const double x_y = p_.yield_disp_m;
+  const double k_0 = p_.stiffness_n_m;
 
   ws.force_n.resize(n);
   double energy_j = 0.0;
   double pr = 1.0;
   double decay = 1.0;  // exp(−c_PR ∫Q dt), ∫Q dt in volume units, updated by a factor per step
+  double z = 0.0;      // Bouc–Wen variable; the record starts unloaded
   for (std::size_t k = 0; k < n; ++k) {
     const double v = vd[k];
     const double av = std::fabs(v);
     if (idle) pr = pr_c.b_pr + (pr_c.a_pr - pr_c.b_pr) * decay;  // Eq. 5.9
-    double fc = a_fc[k] + pr * b_fc[k];                           // Eq. 5.10
-    double c0 = a_c0[k] + pr * b_c0[k];                           // Eq. 5.11
+    double fy = a_y[k] + pr * b_y[k];                             // Eq. 5.10
+    double cv = a_c[k] + pr * b_c[k];                             // Eq. 5.11
     if (thermal) {
-      fc *= std::max(1.0 - alpha_y * energy_j, 0.0);
-      c0 *= std::max(1.0 - alpha_v * energy_j, 0.0);
+      fy *= std::max(1.0 - alpha_y * energy_j, 0.0);
+      cv *= std::max(1.0 - alpha_v * energy_j, 0.0);
     }
-    const double sgn = v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
-    const double tf = av < v_tf ? av / v_tf : 1.0;  // Eq. 4.4
-    const double fb = tf * (fc * sgn + c0 * v);    // Eq. 4.1, 5.12
-    ws.force_n[k] = fb + k_gas * xd[k] + offset;
     const double dt = step_s_[k];
+    double fb = 0.0;
+    double elastic = 0.0;
+    if (bouc_wen) {
+      fb = fy * z + cv * v;
+      elastic = k_0 * xd[k];
+      z = bouc_wen_step(z, v, dt, x_y);
+    } else {
+      const double sgn = v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
+      const double tf = av < v_tf ? av / v_tf : 1.0;  // Eq. 4.4
+      fb = tf * (fy * sgn + cv * v);                 // Eq. 4.1, 5.12
+    }
+    ws.force_n[k] = fb + elastic + k_gas * xd[k] + offset;
     if (idle) {
       decay *= std::exp(-pr_c.c_pr * av * q_per_m * dt);
     }

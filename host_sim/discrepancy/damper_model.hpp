@@ -1,7 +1,8 @@
 #pragma once
-/// The chapter-4 damper model driven by a measured record, with any set of
-/// catalogue effects added. Built for many evaluations of one record: the
-/// coil current of Eq. 4.5 and the current-dependent Bingham coefficients are
+/// The baseline damper model (baseline.hpp: the thesis's chapter-4 model or
+/// a calibrated Bingham or Bouc–Wen model) driven by a measured record, with
+/// any set of catalogue effects added. Built for many evaluations of one
+/// record: the coil current of Eq. 4.5 and the current-dependent laws are
 /// computed once; an evaluation is one pass over the samples.
 ///
 /// Per sample k (step dt_k = t_{k+1} − t_k, inputs held over the step):
@@ -11,20 +12,22 @@
 ///              engagement averaged over ±3 ms (contact compliance)          (backlash)
 ///   PR[k]    = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q dt),  Eq. 5.6–5.9           (idle_settling)
 ///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
-///   F_b[k]   = TF(v_d) (φ_y f_c(i, PR) sgn v_d + φ_v c_0(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12
+///   F_b[k]   = TF(v_d) (φ_y Y(i, PR) sgn v_d + φ_v C(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12   (bingham)
+///            = φ_y Y(i, PR) z[k] + φ_v C(i, PR) v_d + k_0 x_d,  z[k+1] = bouc_wen_step   (bouc_wen)
 ///   F[k]     = F_b[k] + k_gas x_d[k] + F_0                                   (gas_spring, force_offset)
 ///   E[k+1]   = E[k] + F_b[k] v_d[k] dt_k;   ∫Q += |v_d| A dt_k
 ///   F_meas(t) = F(t − τ)   (linear interpolation; before the record, F[0])   (time_delay)
 /// </pre>
-/// Without effects this is damper_force_n(Table 4.1, i[k], v[k]) with PR = 1.
+/// Without effects and with the thesis baseline this is
+/// damper_force_n(Table 4.1, i[k], v[k]) with PR = 1.
 
 #include <cstddef>
 #include <span>
 #include <vector>
 
+#include "host_sim/discrepancy/baseline.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
-#include "mrd/physics/mr_damper.hpp"
 
 namespace mrd::discrepancy {
 
@@ -48,16 +51,19 @@ inline constexpr double kContactHalfWindow_s = 0.003;
 
 /// Scratch space for one thread's evaluations.
 struct ModelWorkspace {
-  std::vector<double> current_a, a_fc, b_fc, a_c0, b_c0, disp_m, vel_m_s, engaged, force_n;
+  std::vector<double> current_a, a_y, b_y, a_c, b_c, disp_m, vel_m_s, engaged, force_n;
 };
 
 class DamperModel {
  public:
-  explicit DamperModel(ModelInput input, const physics::MrDamperParams& params = {});
+  explicit DamperModel(ModelInput input, Baseline baseline = thesis_baseline());
 
   [[nodiscard]] const ModelInput& input() const noexcept { return in_; }
   [[nodiscard]] std::size_t size() const noexcept { return in_.time_s.size(); }
-  [[nodiscard]] const physics::MrDamperParams& params() const noexcept { return p_; }
+  [[nodiscard]] const Baseline& baseline() const noexcept { return p_; }
+  /// force_scale_n() of the baseline over that of the thesis damper: the
+  /// factor on the effects' force-valued bounds.
+  [[nodiscard]] double force_ratio() const noexcept { return force_ratio_; }
   /// Coil current of Eq. 4.5 from the commanded current, A.
   [[nodiscard]] const std::vector<double>& baseline_current_a() const noexcept { return base_current_a_; }
 
@@ -81,14 +87,15 @@ class DamperModel {
   /// Fills ws.disp_m and ws.vel_m_s with the rod's motion when the mounting
   /// has a free play of ±half_gap_m (backlash); uses ws.engaged.
   void backlash_motion(double half_gap_m, ModelWorkspace& ws) const;
-  void coefficients(const std::vector<double>& current_a, std::vector<double>& a_fc, std::vector<double>& b_fc,
-                    std::vector<double>& a_c0, std::vector<double>& b_c0) const;
+  void coefficients(const std::vector<double>& current_a, std::vector<double>& a_y, std::vector<double>& b_y,
+                    std::vector<double>& a_c, std::vector<double>& b_c) const;
 
   ModelInput in_;
-  physics::MrDamperParams p_;
+  Baseline p_;
+  double force_ratio_ = 1.0;
   std::vector<double> step_s_;  ///< dt_k; the last entry repeats the one before
   bool uniform_ = false;
-  std::vector<double> base_current_a_, base_a_fc_, base_b_fc_, base_a_c0_, base_b_c0_;
+  std::vector<double> base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_;
 };
 
 /// Normalized RMS of a − b over the samples: sqrt(Σ(a−b)² / Σ a²).

@@ -19,7 +19,7 @@ constexpr std::array kBacklashParams{
 constexpr std::array kGasParams{
     // k = γ p A_rod² / V_gas: 1.4 · 5.17 MPa (§3.1) · (π 0.04²)² / V ≈ 0.18 MN/m per litre of gas;
     // 5 MN/m allows a gas volume down to ~0.04 L.
-    ParamInfo{"stiffness_n_m", 0.0, 5.0e6, 0.0, false, {5.0e4, 2.0e5, 5.0e5, 1.0e6, 3.0e6}},
+    ParamInfo{"stiffness_n_m", 0.0, 5.0e6, 0.0, false, {5.0e4, 2.0e5, 5.0e5, 1.0e6, 3.0e6}, true},
 };
 constexpr std::array kThermalParams{
     // Fractional loss per kelvin, the temperature rise being E / kThermalCapacity_j_per_k.
@@ -35,7 +35,7 @@ constexpr std::array kCoilParams{
 };
 constexpr std::array kOffsetParams{
     // Zero offset of the 250 kN load cell (§3.2), up to 12 % of its range.
-    ParamInfo{"offset_n", -30.0e3, 30.0e3, 0.0, false, {-5.0e3, -1.0e3, 0.0, 1.0e3, 5.0e3}},
+    ParamInfo{"offset_n", -30.0e3, 30.0e3, 0.0, false, {-5.0e3, -1.0e3, 0.0, 1.0e3, 5.0e3}, true},
 };
 
 const std::array<EffectInfo, kEffectCount>& catalogue() {
@@ -63,6 +63,16 @@ const std::array<EffectInfo, kEffectCount>& catalogue() {
 }
 
 }  // namespace
+
+ParamInfo scaled_param(const ParamInfo& p, double force_ratio) noexcept {
+  if (!p.force_scaled) return p;
+  ParamInfo s = p;
+  s.lower *= force_ratio;
+  s.upper *= force_ratio;
+  s.null_value *= force_ratio;
+  for (double& g : s.init_grid) g *= force_ratio;
+  return s;
+}
 
 const EffectInfo& effect_info(Effect e) noexcept { return catalogue()[static_cast<std::size_t>(e)]; }
 

@@ -39,7 +39,14 @@ struct ParamInfo {
   /// value means the effect is being stretched to mimic something else.
   bool upper_bound_physical;
   std::array<double, 5> init_grid;  ///< starting values tried before the local fit
+  /// The value is a force (or force per metre): bounds and grid are for the
+  /// thesis's 200 kN damper and scale with the baseline's force scale.
+  bool force_scaled = false;
 };
+
+/// `p` with bounds, null value and grid multiplied by `force_ratio` when it is
+/// force-scaled (DamperModel::force_ratio()); `p` itself otherwise.
+[[nodiscard]] ParamInfo scaled_param(const ParamInfo& p, double force_ratio) noexcept;
 
 struct EffectInfo {
   Effect effect;

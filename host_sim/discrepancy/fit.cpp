@@ -13,10 +13,13 @@ struct Bound {
   double range;
 };
 
-std::vector<Bound> bounds_of(const EffectSet& set) {
+std::vector<Bound> bounds_of(const EffectSet& set, double force_ratio) {
   std::vector<Bound> b;
   for (const Effect e : set.effects) {
-    for (const auto& p : effect_info(e).params) b.push_back({p.lower, p.upper - p.lower});
+    for (const auto& info : effect_info(e).params) {
+      const ParamInfo p = scaled_param(info, force_ratio);
+      b.push_back({p.lower, p.upper - p.lower});
+    }
   }
   return b;
 }
@@ -25,7 +28,7 @@ std::vector<Bound> bounds_of(const EffectSet& set) {
 /// normalized parameters u ∈ [0, 1]^k, with a forward-difference Jacobian.
 class SetCost final : public ceres::CostFunction {
  public:
-  SetCost(const FitData& data, const EffectSet& set) : data_(data), set_(set), bounds_(bounds_of(set)) {
+  SetCost(const FitData& data, const EffectSet& set) : data_(data), set_(set), bounds_(bounds_of(set, data.model->force_ratio())) {
     set_num_residuals(static_cast<int>(data.index.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(bounds_.size()));
     model_.resize(data.index.size());
@@ -151,7 +154,8 @@ FitOutcome fit_effects(const FitData& data, const EffectSet& set, std::vector<do
                        std::size_t max_starts) {
   FitOutcome out;
   out.set = set;
-  const std::vector<Bound> b = bounds_of(set);
+  const double ratio = data.model->force_ratio();
+  const std::vector<Bound> b = bounds_of(set, ratio);
   const std::size_t k = b.size();
   ModelWorkspace ws;
 
@@ -170,7 +174,7 @@ FitOutcome fit_effects(const FitData& data, const EffectSet& set, std::vector<do
       for (std::size_t c = 0; c < combos; ++c) {
         std::size_t rest = c;
         for (std::size_t i = 0; i < params.size(); ++i) {
-          trial[*off + i] = params[i].init_grid[rest % params[i].init_grid.size()];
+          trial[*off + i] = scaled_param(params[i], ratio).init_grid[rest % params[i].init_grid.size()];
           rest /= params[i].init_grid.size();
         }
         starts.emplace_back(fit_rss(data, set, trial, ws), trial);

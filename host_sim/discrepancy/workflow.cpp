@@ -79,11 +79,11 @@ struct Trial {
 
 }  // namespace
 
-std::string implausibility(Effect e, std::span<const double> params) {
+std::string implausibility(Effect e, std::span<const double> params, double force_ratio) {
   const auto& info = effect_info(e);
   bool all_null = true;
   for (std::size_t i = 0; i < info.params.size(); ++i) {
-    const auto& p = info.params[i];
+    const ParamInfo p = scaled_param(info.params[i], force_ratio);
     const double range = p.upper - p.lower;
     const double v = params[i];
     if (std::fabs(v - p.null_value) > kAtBoundFraction * range) all_null = false;
@@ -348,7 +348,7 @@ void add_traces_and_regions(DiscrepancyResult& res, const DamperModel& model, co
   res.coil_current_a = model.baseline_current_a();
   const ResidualTraces tr{data.time_s,  res.disp_m,          res.vel_m_s,           data.current_cmd_a,
                           res.coil_current_a, data.force_n, res.baseline_force_n, res.updated_force_n};
-  res.regions = localize_regions(tr, model.params().bingham.v_tf_m_s);
+  res.regions = localize_regions(tr, model.baseline().v_tf_m_s);
   res.windows = localize_time(tr);
 }
 

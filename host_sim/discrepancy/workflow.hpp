@@ -95,6 +95,6 @@ struct DiscrepancyResult {
 
 /// Physical plausibility of fitted parameters of one effect: empty when
 /// plausible, else the reason (at its null value, or pinned at a bound).
-[[nodiscard]] std::string implausibility(Effect e, std::span<const double> params);
+[[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, double force_ratio = 1.0);
 
 }  // namespace mrd::discrepancy

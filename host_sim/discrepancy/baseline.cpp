@@ -1,0 +1,46 @@
+#include "host_sim/discrepancy/baseline.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrd::discrepancy {
+
+const char* base_law_name(BaseLaw law) noexcept { return law == BaseLaw::bouc_wen ? "bouc_wen" : "bingham"; }
+
+double CurrentLaw::at(double current_a, double participant_ratio) const noexcept {
+  const double b = participant_ratio * limit;
+  return b + (at_zero - b) * std::exp(-rate_per_a * std::fabs(current_a));
+}
+
+double Baseline::force_scale_n() const noexcept { return std::fabs(yield_n.at(range.current_max_a)); }
+
+Baseline thesis_baseline() {
+  Baseline b;
+  b.range.current_min_a = 0.0;
+  b.range.current_max_a = 2.5;         // drive rating, §3.1
+  b.range.velocity_max_m_s = 0.2491;   // Table 3.1
+  b.range.force_peak_n = 200.0e3;      // the damper's rating
+  return b;
+}
+
+double thesis_force_scale_n() { return thesis_baseline().force_scale_n(); }
+
+double bouc_wen_step(double z, double v_m_s, double dt_s, double yield_disp_m) noexcept {
+  if (!(yield_disp_m > 0.0)) return v_m_s > 0.0 ? 1.0 : (v_m_s < 0.0 ? -1.0 : z);
+  const double s = v_m_s * dt_s / yield_disp_m;
+  if (s == 0.0) return z;
+  const double d = s > 0.0 ? 1.0 : -1.0;
+  double travel = std::fabs(s);
+  double mag = z * d;  // z along the direction of motion
+  if (mag < 0.0) {
+    // Unloading: linear until z crosses zero.
+    if (travel <= -mag) return z + s;
+    travel += mag;
+    mag = 0.0;
+  }
+  constexpr double kEdge = 1.0 - 1e-15;
+  mag = std::tanh(std::atanh(std::min(mag, kEdge)) + travel);
+  return d * std::min(mag, kEdge);
+}
+
+}  // namespace mrd::discrepancy

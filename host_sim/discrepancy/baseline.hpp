@@ -1,0 +1,92 @@
+#pragma once
+/// The baseline damper model the discrepancy workflow compares a record
+/// with: the thesis's 200 kN damper (chapter 4, Table 4.1) or a model
+/// calibrated to the user's damper (`mrd calibrate`), in one of two forms.
+///
+/// Both forms share the exponential current laws of Eq. 4.2–4.3, with the
+/// high-current limit scaled by the participant ratio (Eq. 5.10–5.11):
+/// <pre>
+///   Y(I, PR) = PR·Y_b + (Y_a − PR·Y_b) exp(−Y_c |I|)        yield force, N
+///   C(I, PR) = PR·C_b + (C_a − PR·C_b) exp(−C_c |I|)        viscous coefficient, N·s/m
+/// </pre>
+/// and differ in how the yield force acts:
+/// <pre>
+///   bingham:   F = TF(v) (Y sgn v + C v),  TF of Eq. 4.4 with v_TF         (Eq. 4.1–4.4)
+///   bouc_wen:  F = Y z + C v + k_0 x,
+///              ż = (v / x_y) (1 − |z|^n (β + γ sgn(v z))),  β = γ = ½, n = 2
+/// </pre>
+/// The Bouc–Wen form is Spencer et al. (1997)'s simple model with its
+/// evolutionary variable normalized to |z| ≤ 1 (A = 1/x_y, β + γ = 1/x_y^n in
+/// their notation), so that Y is a yield force like the Bingham f_c and x_y is
+/// the displacement over which the force builds after a reversal (pre-yield).
+/// The coil current of both is Eq. 4.5 from the commanded current.
+
+#include <string>
+
+#include "mrd/physics/current_dynamics.hpp"
+#include "mrd/physics/participant_ratio.hpp"
+
+namespace mrd::discrepancy {
+
+enum class BaseLaw { bingham, bouc_wen };
+
+[[nodiscard]] const char* base_law_name(BaseLaw law) noexcept;
+
+/// value(I, PR) = PR·limit + (at_zero − PR·limit) exp(−rate |I|), Eq. 4.2–4.3, 5.10–5.11.
+struct CurrentLaw {
+  double at_zero = 0.0;     ///< value at 0 A
+  double limit = 0.0;       ///< value approached at high current (scaled by PR)
+  double rate_per_a = 1.0;  ///< exponential rate, 1/A
+
+  [[nodiscard]] double at(double current_a, double participant_ratio = 1.0) const noexcept;
+};
+
+/// The conditions a baseline was built from or is known to hold over. A
+/// record far outside them is not judged against the baseline.
+struct ValidityRange {
+  double current_min_a = 0.0;
+  double current_max_a = 0.0;
+  double velocity_max_m_s = 0.0;     ///< largest |v| covered
+  double force_peak_n = 0.0;         ///< largest |F| measured (or the rating)
+  double amplitude_min_m = 0.0;      ///< displacement half ranges covered (0 = not stated)
+  double amplitude_max_m = 0.0;
+  double frequency_min_hz = 0.0;     ///< dominant frequencies covered (0 = not stated)
+  double frequency_max_hz = 0.0;
+};
+
+struct Baseline {
+  std::string name = "thesis";       ///< where it comes from (for reports)
+  BaseLaw law = BaseLaw::bingham;
+  /// Table 4.1 in SI: f_c 4.1 kN → 170 kN at 0.7 1/A; c_0 0.0825 → 0.365 kN·s/mm at 1.15 1/A.
+  CurrentLaw yield_n{4.1e3, 170.0e3, 0.7};
+  CurrentLaw viscous_ns_m{82.5e3, 365.0e3, 1.15};
+  double v_tf_m_s = 0.010;           ///< Eq. 4.4 transition velocity (bingham); low-velocity band (both)
+  double yield_disp_m = 0.0;         ///< x_y (bouc_wen)
+  double stiffness_n_m = 0.0;        ///< k_0 (bouc_wen)
+  physics::CurrentDynamicsParams coil{};
+  physics::ParticipantRatioParams pr{};
+  ValidityRange range;
+  /// Normalized RMS gap expected on a record inside the range, from the
+  /// calibration residuals (model form and noise); 0 for the thesis model.
+  double expected_gap = 0.0;
+
+  /// Yield force at the top of the current range, PR = 1: the force scale
+  /// the effects' force-valued bounds are measured against, N.
+  [[nodiscard]] double force_scale_n() const noexcept;
+};
+
+/// The thesis's damper: Table 4.1, Eq. 4.5, Table 5.6; range 0–2.5 A (the
+/// drive's rating, §3.1), |v| ≤ 0.2491 m/s (Table 3.1), 200 kN.
+[[nodiscard]] Baseline thesis_baseline();
+
+/// Force scale of the thesis damper: Y at 2.5 A, N. Effect bounds given in
+/// newtons are for this scale and are multiplied by force_scale_n()/this.
+[[nodiscard]] double thesis_force_scale_n();
+
+/// The Bouc–Wen variable after one step of length dt_s at velocity v_m_s
+/// (held), solved exactly: with β = γ = ½ and n = 2 it unloads linearly
+/// (ż = v/x_y while v z < 0) and loads as ż = (v/x_y)(1 − z²), so
+/// z = tanh(atanh z_0 + v dt/x_y). |z| < 1 throughout.
+[[nodiscard]] double bouc_wen_step(double z, double v_m_s, double dt_s, double yield_disp_m) noexcept;
+
+}  // namespace mrd::discrepancy
