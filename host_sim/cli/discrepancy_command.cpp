@@ -96,8 +96,11 @@ void print_summary(const discrepancy::MeasuredData& data, const discrepancy::Dis
                   c.verdict.c_str());
     }
   }
+  std::printf("verdict: %s\n", discrepancy::verdict_name(r.verdict));
+  for (const auto& f : r.findings) std::printf("  %s\n", f.c_str());
   std::printf("effects: %s\n", discrepancy::EffectSet{r.effects}.label().c_str());
-  std::printf("gap: %.2f %% before, %.2f %% after\n", 100.0 * r.gap_before, 100.0 * r.gap_after);
+  std::printf("gap: %.2f %% before, %.2f %% after; held out: %.2f %% before, %.2f %% after\n", 100.0 * r.gap_before,
+              100.0 * r.gap_after, 100.0 * r.gap_validation_before, 100.0 * r.gap_validation_after);
 }
 
 void add_options(CLI::App& app, DiscrepancyCliOptions& o) {

@@ -171,8 +171,10 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double k_gas = param(Effect::gas_spring, 0, 0.0);
   const double offset = param(Effect::force_offset, 0, 0.0);
   const double v_tf = p_.v_tf_m_s;
-  const bool bouc_wen = p_.law == BaseLaw::bouc_wen;
-  const double x_y = p_.yield_disp_m;
+  const bool preyield = set.contains(Effect::preyield_hysteresis) && param(Effect::preyield_hysteresis, 0, 0.0) > 0.0;
+  const bool bouc_wen = p_.law == BaseLaw::bouc_wen || preyield;
+  const double x_y = preyield ? param(Effect::preyield_hysteresis, 0, 0.0) : p_.yield_disp_m;
+  const double asym = param(Effect::direction_asymmetry, 0, 0.0);
   const double k_0 = p_.stiffness_n_m;
 
   ws.force_n.resize(n);
@@ -202,6 +204,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       const double tf = av < v_tf ? av / v_tf : 1.0;  // Eq. 4.4
       fb = tf * (fy * sgn + cv * v);                 // Eq. 4.1, 5.12
     }
+    if (asym != 0.0) fb *= v > 0.0 ? 1.0 + asym : (v < 0.0 ? 1.0 - asym : 1.0);
     ws.force_n[k] = fb + elastic + k_gas * xd[k] + offset;
     if (idle) {
       decay *= std::exp(-pr_c.c_pr * av * q_per_m * dt);

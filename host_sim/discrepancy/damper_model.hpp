@@ -14,6 +14,8 @@
 ///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
 ///   F_b[k]   = TF(v_d) (φ_y Y(i, PR) sgn v_d + φ_v C(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12   (bingham)
 ///            = φ_y Y(i, PR) z[k] + φ_v C(i, PR) v_d + k_0 x_d,  z[k+1] = bouc_wen_step   (bouc_wen)
+///   F_b[k]  ×= 1 + a sgn v_d                                                   (direction_asymmetry)
+///   F_b: the bouc_wen form with x_y fitted, on either baseline              (preyield_hysteresis)
 ///   F[k]     = F_b[k] + k_gas x_d[k] + F_0                                   (gas_spring, force_offset)
 ///   E[k+1]   = E[k] + F_b[k] v_d[k] dt_k;   ∫Q += |v_d| A dt_k
 ///   F_meas(t) = F(t − τ)   (linear interpolation; before the record, F[0])   (time_delay)

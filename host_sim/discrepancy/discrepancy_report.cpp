@@ -27,6 +27,24 @@ std::vector<double> thin(std::span<const double> v, std::size_t stride, double s
 
 json effects_json(const std::vector<Effect>& effects);
 
+/// {parameter: flag} for the flagged parameters only.
+json flags_json(Effect e, const std::vector<std::string>& flags) {
+  json j = json::object();
+  const auto& info = effect_info(e);
+  for (std::size_t i = 0; i < info.params.size() && i < flags.size(); ++i) {
+    if (!flags[i].empty()) j[std::string(info.params[i].name)] = flags[i];
+  }
+  return j;
+}
+
+json signatures_json(const SignatureAnalysis& a) {
+  json sig = json::array();
+  for (const auto& s : a.signatures) {
+    sig.push_back(json{{"name", s.name}, {"looks_like", s.looks_like}, {"held_out_share", s.held_out_share}});
+  }
+  return json{{"structured_share", a.structured_share}, {"signatures", sig}};
+}
+
 json candidate_json(const CandidateResult& c) {
   return json{{"name", effect_name(c.effect)},
               {"model", effects_json(c.model)},
@@ -34,9 +52,11 @@ json candidate_json(const CandidateResult& c) {
               {"score", c.delta_bic},
               {"delta_bic", c.delta_bic},
               {"rss_reduction", c.rss_reduction},
+              {"held_out_reduction", c.held_out_reduction},
               {"gap", c.gap},
               {"effective_samples", c.n_eff},
               {"parameters", params_json(c.effect, c.params)},
+              {"flags", flags_json(c.effect, c.flags)},
               {"plausible", c.plausible},
               {"chosen", c.chosen},
               {"verdict", c.verdict}};
@@ -127,6 +147,7 @@ void write_fit_csv(const std::filesystem::path& dir, const MeasuredData& data, c
 }
 
 std::string model_label(const DiscrepancyResult& r) {
+  if (!r.rejected.empty()) return "fitted, rejected: " + EffectSet{r.rejected}.label();
   return r.effects.empty() ? "updated (= baseline)" : "updated: " + EffectSet{r.effects}.label();
 }
 
@@ -144,7 +165,7 @@ void plot_force_and_residual(const std::filesystem::path& dir, const MeasuredDat
   }
   report::PlotSpec ft{data.source + ": force", "time [s]", "force [kN]",
                       {{"measured", t, thin(data.force_n, stride, 1e-3)},
-                       {"baseline (chapter 4)", t, thin(r.baseline_force_n, stride, 1e-3)},
+                       {"baseline (" + r.baseline_name + ")", t, thin(r.baseline_force_n, stride, 1e-3)},
                        {label, t, thin(r.updated_force_n, stride, 1e-3)}}};
   note(problems, report::plot_png(ft, dir / "force_time.png"), dir / "force_time.png");
   report::PlotSpec rs{data.source + ": residual (measured - model)", "time [s]", "force residual [kN]",
@@ -183,9 +204,13 @@ std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
   std::string md = "# Model discrepancy: " + data.source + "\n\n";
   md += std::to_string(data.size()) + " samples over " + g4(data.duration_s()) + " s; velocity " +
         (r.velocity_derived ? "derived from the displacement" : "measured") + ".\n\n";
-  md += "Baseline: chapter-4 damper model (Bingham + transition, Eq. 4.1-4.4, Table 4.1; coil current Eq. 4.5).\n\n";
-  md += "**Effects named:** " + (r.effects.empty() ? std::string("none") : EffectSet{r.effects}.label()) + "\n\n";
-  md += "**Gap** (normalized RMS force error): " + pct(r.gap_before) + " before, " + pct(r.gap_after) + " after.\n\n";
+  md += "Baseline: " + r.baseline_name + " (expected gap " + pct(r.expected_gap) + ").\n\n";
+  md += "**Verdict: " + std::string(verdict_name(r.verdict)) + "**\n\n";
+  for (const auto& f : r.findings) md += "- " + f + "\n";
+  md += "\n**Effects named:** " + (r.effects.empty() ? std::string("none") : EffectSet{r.effects}.label()) + "\n\n";
+  md += "**Gap** (normalized RMS force error), on the samples the fits saw: " + pct(r.gap_before) + " before, " +
+        pct(r.gap_after) + " after; held out (30 %, never fitted): " + pct(r.gap_validation_before) + " before, " +
+        pct(r.gap_validation_after) + " after.\n\n";
   if (!r.effects.empty()) {
     md += "| effect | parameter | value |\n|---|---|---:|\n";
     const EffectSet set{r.effects};
@@ -204,10 +229,10 @@ std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
   for (std::size_t i = 0; i < r.rounds.size(); ++i) {
     const auto& rd = r.rounds[i];
     md += "### Round " + std::to_string(i + 1) + " (model: " + EffectSet{rd.model}.label() + ", gap " + pct(rd.gap) +
-          ")\n\n| candidate | delta BIC | residual power removed | gap | verdict |\n|---|---:|---:|---:|---|\n";
+          ")\n\n| candidate | delta BIC | residual power removed | held out | gap | verdict |\n|---|---:|---:|---:|---:|---|\n";
     for (const auto& c : rd.candidates) {
       md += "| " + (c.alternative ? EffectSet{c.model}.label() + " (instead)" : std::string(effect_name(c.effect))) +
-            " | " + g4(c.delta_bic) + " | " + pct(c.rss_reduction) +
+            " | " + g4(c.delta_bic) + " | " + pct(c.rss_reduction) + " | " + pct(c.held_out_reduction) +
             " | " + pct(c.gap) + " | " + c.verdict + " |\n";
     }
     md += "\n";
@@ -225,6 +250,17 @@ std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
     md += "| " + g4(w.start_s) + " - " + g4(w.end_s) + " | " + g4(w.rms_before_n / 1e3) + " | " +
           g4(w.rms_after_n / 1e3) + " |\n";
   }
+  md += "\n## What the residual looks like (held-out share of its power per signature)\n\n| signature | looks like | "
+        "baseline | updated |\n|---|---|---:|---:|\n";
+  for (const auto& s : r.signatures_before.signatures) {
+    double after = 0.0;
+    for (const auto& a : r.signatures_after.signatures) {
+      if (a.name == s.name) after = a.held_out_share;
+    }
+    md += "| " + s.name + " | " + s.looks_like + " | " + pct(s.held_out_share) + " | " + pct(after) + " |\n";
+  }
+  md += "| all together | | " + pct(r.signatures_before.structured_share) + " | " +
+        pct(r.signatures_after.structured_share) + " |\n";
   md += "\n![force](force_time.png)\n\n![residual](residual.png)\n\n![loops](loops.png)\n";
   return md;
 }
@@ -255,11 +291,29 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
   j["samples"] = data.size();
   j["duration_s"] = data.duration_s();
   j["velocity"] = r.velocity_derived ? "derived" : "measured";
+  j["verdict"] = verdict_name(r.verdict);
+  j["findings"] = r.findings;
+  j["baseline"] = json{{"name", r.baseline_name},
+                       {"expected_gap", r.expected_gap},
+                       {"mismatch", r.baseline_check.mismatch},
+                       {"mismatch_reasons", r.baseline_check.reasons},
+                       {"force_ratio", r.baseline_check.force_ratio},
+                       {"min_force_ratio", r.baseline_check.min_force_ratio},
+                       {"max_force_ratio", kMaxForceRatio},
+                       {"record_velocity_max_m_s", r.baseline_check.velocity_max_m_s},
+                       {"record_current_min_a", r.baseline_check.current_min_a},
+                       {"record_current_max_a", r.baseline_check.current_max_a}};
   j["effects"] = effects_json(r.effects);
   j["gap_before"] = r.gap_before;
   j["gap_after"] = r.gap_after;
+  j["gap_validation_before"] = r.gap_validation_before;
+  j["gap_validation_after"] = r.gap_validation_after;
   j["gap_reduction"] = r.gap_before > 0.0 ? 1.0 - r.gap_after / r.gap_before : 0.0;
   j["parameters"] = effect_params_json(r.effects, r.params);
+  j["rejected"] = effects_json(r.rejected);
+  j["rejected_parameters"] = effect_params_json(r.rejected, r.rejected_params);
+  j["residual_before"] = signatures_json(r.signatures_before);
+  j["residual_after"] = signatures_json(r.signatures_after);
   j["candidates"] = json::array();
   if (!r.rounds.empty()) {
     for (const auto& c : r.rounds.front().candidates) j["candidates"].push_back(candidate_json(c));

@@ -38,6 +38,16 @@ constexpr std::array kOffsetParams{
     ParamInfo{"offset_n", -30.0e3, 30.0e3, 0.0, false, {-5.0e3, -1.0e3, 0.0, 1.0e3, 5.0e3}, true},
 };
 
+constexpr std::array kAsymmetryParams{
+    // F·(1 + a) while extending (v > 0), F·(1 − a) while compressing: up to a 3:1 ratio.
+    ParamInfo{"asymmetry", -0.5, 0.5, 0.0, false, {-0.2, -0.08, 0.0, 0.08, 0.2}},
+};
+constexpr std::array kPreyieldParams{
+    // Displacement over which the yield force builds after a reversal (Bouc–Wen x_y,
+    // baseline.hpp); 0 is the baseline's own law. Up to 10 mm.
+    ParamInfo{"yield_disp_m", 0.0, 0.010, 0.0, false, {0.0002, 0.0005, 0.001, 0.002, 0.005}},
+};
+
 const std::array<EffectInfo, kEffectCount>& catalogue() {
   static const std::array<EffectInfo, kEffectCount> c{
       EffectInfo{Effect::idle_settling, "idle_settling",
@@ -58,6 +68,13 @@ const std::array<EffectInfo, kEffectCount>& catalogue() {
       EffectInfo{Effect::coil_lag, "coil_lag", "coil current slower than Eq. 4.5: both time constants scaled",
                  kCoilParams},
       EffectInfo{Effect::force_offset, "force_offset", "load-cell zero offset: a constant force", kOffsetParams},
+      EffectInfo{Effect::direction_asymmetry, "direction_asymmetry",
+                 "the damper stronger in one direction: force scaled by 1 + a in extension, 1 - a in compression",
+                 kAsymmetryParams},
+      EffectInfo{Effect::preyield_hysteresis, "preyield_hysteresis",
+                 "pre-yield hysteresis: after each reversal the yield force builds over a displacement x_y "
+                 "(Bouc-Wen) instead of following the velocity (Eq. 4.4)",
+                 kPreyieldParams},
   };
   return c;
 }

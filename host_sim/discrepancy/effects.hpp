@@ -21,12 +21,15 @@ enum class Effect {
   time_delay,     ///< pure transport delay of the measured force
   coil_lag,       ///< coil current slower than Eq. 4.5
   force_offset,   ///< load-cell zero offset
+  direction_asymmetry,  ///< force in extension and compression scaled differently
+  preyield_hysteresis,  ///< yield force building over a pre-yield displacement after each reversal
 };
 
-inline constexpr std::size_t kEffectCount = 7;
+inline constexpr std::size_t kEffectCount = 9;
 inline constexpr std::array<Effect, kEffectCount> kAllEffects{
-    Effect::idle_settling, Effect::backlash, Effect::gas_spring, Effect::thermal_fade,
-    Effect::time_delay,    Effect::coil_lag, Effect::force_offset};
+    Effect::idle_settling, Effect::backlash,  Effect::gas_spring,          Effect::thermal_fade,
+    Effect::time_delay,    Effect::coil_lag,  Effect::force_offset,        Effect::direction_asymmetry,
+    Effect::preyield_hysteresis};
 
 /// One fitted parameter, in SI (or dimensionless) units.
 struct ParamInfo {

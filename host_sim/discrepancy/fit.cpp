@@ -91,6 +91,37 @@ FitData make_fit_data(const DamperModel& model, std::span<const double> measured
   return d;
 }
 
+FitData make_fit_data(const DamperModel& model, std::span<const double> measured_force_n,
+                      std::span<const std::size_t> candidates, std::size_t target) {
+  FitData d;
+  d.model = &model;
+  d.measured_force_n = measured_force_n;
+  const std::size_t n = candidates.size();
+  const std::size_t stride = std::max<std::size_t>(1, target > 0 ? n / target : 1);
+  double ss = 0.0;
+  for (std::size_t j = 0; j < n; j += stride) {
+    d.index.push_back(candidates[j]);
+    ss += measured_force_n[candidates[j]] * measured_force_n[candidates[j]];
+  }
+  const double m = static_cast<double>(d.index.size());
+  d.force_scale_n = m > 0 && ss > 0.0 ? std::sqrt(ss / m) : 1.0;
+  return d;
+}
+
+SampleSplit split_samples(std::span<const double> time_s) {
+  SampleSplit s;
+  if (time_s.empty()) return s;
+  const double t0 = time_s.front();
+  const double span_s = time_s.back() - t0;
+  for (std::size_t k = 0; k < time_s.size(); ++k) {
+    const double u = span_s > 0.0 ? (time_s[k] - t0) / span_s : 0.0;
+    const auto block = std::min(static_cast<std::size_t>(u * static_cast<double>(kSplitBlocks)), kSplitBlocks - 1);
+    const std::size_t r = block % 10;
+    (r == 2 || r == 5 || r == 8 ? s.held_out : s.train).push_back(k);
+  }
+  return s;
+}
+
 double fit_rss(const FitData& data, const EffectSet& set, std::span<const double> params, ModelWorkspace& ws,
                std::vector<double>* residual_n) {
   std::vector<double> model(data.index.size());

@@ -173,7 +173,7 @@ std::vector<double> draw_params(const EffectSet& set, Rng& rng) {
     for (std::size_t p = 0; p < effect_info(e).params.size(); ++p) {
       const auto [lo, hi] = synth_range(e, p);
       double v = rng.uniform(lo, hi);
-      if (e == Effect::force_offset && rng.uniform() < 0.5) v = -v;
+      if ((e == Effect::force_offset || e == Effect::direction_asymmetry) && rng.uniform() < 0.5) v = -v;
       params.push_back(v);
     }
   }
@@ -251,6 +251,8 @@ std::pair<double, double> synth_range(Effect e, std::size_t i) {
     case Effect::time_delay: return {0.004, 0.030};       // s
     case Effect::coil_lag: return {1.8, 5.0};             // × Eq. 4.5 time constants
     case Effect::force_offset: return {2.0e3, 8.0e3};     // |offset|, N (sign drawn)
+    case Effect::direction_asymmetry: return {0.08, 0.3};  // |a| (sign drawn)
+    case Effect::preyield_hysteresis: return {0.0005, 0.004};  // x_y, m
   }
   return {0.0, 0.0};
 }

@@ -100,7 +100,43 @@ std::string implausibility(Effect e, std::span<const double> params, double forc
   return {};
 }
 
+std::vector<std::string> bound_flags(Effect e, std::span<const double> params, double force_ratio) {
+  const auto& info = effect_info(e);
+  std::vector<std::string> flags(info.params.size());
+  for (std::size_t i = 0; i < info.params.size(); ++i) {
+    const ParamInfo p = scaled_param(info.params[i], force_ratio);
+    const double range = p.upper - p.lower;
+    const double v = params[i];
+    if (v - p.lower <= kAtBoundFraction * range && p.lower != p.null_value) {
+      flags[i] = "at its lower bound " + format_number("%g", p.lower);
+    } else if (p.upper - v <= kAtBoundFraction * range && p.upper != p.null_value) {
+      flags[i] = "at its upper bound " + format_number("%g", p.upper) +
+                 (p.upper_bound_physical ? " (a physical state, accepted)" : "");
+    }
+  }
+  return flags;
+}
+
+const char* verdict_name(Verdict v) noexcept {
+  switch (v) {
+    case Verdict::none: return "none";
+    case Verdict::explained: return "explained";
+    case Verdict::unexplained: return "unexplained";
+    case Verdict::baseline_mismatch: return "baseline_mismatch";
+  }
+  return "none";
+}
+
 namespace {
+
+/// A model whose RMS force falls below this share of the baseline's has
+/// collapsed: the effect has switched the damper off rather than changed it.
+constexpr double kCollapsedForceShare = 0.25;
+/// The effects that joined must take at least this share of the discrepancy
+/// found (removed + structure left) for the verdict explained.
+constexpr double kExplainedShare = 0.5;
+/// A held-out gap within this factor of the baseline's expected gap is no discrepancy.
+constexpr double kExpectedGapFactor = 1.25;
 
 /// The model the selection has reached: its effects, their fitted
 /// parameters (packed) and its RSS on the fit samples.
@@ -108,15 +144,44 @@ struct Selection {
   EffectSet set;
   std::vector<double> params;
   double rss = 0.0;
+  double rss_held = 0.0;  ///< on the held-out samples
 };
 
 /// What every step of the selection reads.
 struct SelectionContext {
   const FitData& fd;
+  const FitData& held;                  ///< the held-out samples, full rate
   std::span<const double> fit_times_s;  ///< times of the fit samples
   const DiscrepancyOptions& opt;
   double n_eff_baseline = 0.0;
+  double stroke_m = 0.0;                ///< peak-to-peak actuator displacement
+  double baseline_rms_n = 0.0;          ///< RMS baseline force on the fit samples
 };
+
+/// Why a fitted model is rejected as a damper that is no longer there (empty when it is not).
+std::string collapse_reason(const SelectionContext& ctx, const FitOutcome& f) {
+  if (const auto off = f.set.offset(Effect::backlash)) {
+    const double play_m = f.params[*off];
+    if (play_m >= ctx.stroke_m) {
+      return "collapses: free play " + format_number("%.3g", play_m) + " m is at least the record's stroke " +
+             format_number("%.3g", ctx.stroke_m) + " m";
+    }
+  }
+  ModelWorkspace ws;
+  std::vector<double> resid;
+  (void)fit_rss(ctx.fd, f.set, f.params, ws, &resid);
+  double ss = 0.0;
+  for (std::size_t r = 0; r < resid.size(); ++r) {
+    const double model = ctx.fd.measured_force_n[ctx.fd.index[r]] - resid[r];
+    ss += model * model;
+  }
+  const double rms = resid.empty() ? 0.0 : std::sqrt(ss / static_cast<double>(resid.size()));
+  if (rms < kCollapsedForceShare * ctx.baseline_rms_n) {
+    return "collapses: the model's RMS force " + format_number("%.3g", rms) + " N is below a quarter of the baseline's " +
+           format_number("%.3g", ctx.baseline_rms_n) + " N";
+  }
+  return {};
+}
 
 /// Fits the model plus each effect of `todo`. In rounds after the first,
 /// next to effects already in the model, whose values may have absorbed
@@ -178,12 +243,15 @@ std::vector<Trial> alternative_trials(const SelectionContext& ctx, const Selecti
 
 /// Why each trial is implausible (empty when it is plausible): the first
 /// effect of its model whose fitted parameters are.
-std::vector<std::string> implausibility_reasons(const std::vector<Trial>& trials) {
+std::vector<std::string> implausibility_reasons(const SelectionContext& ctx, const std::vector<Trial>& trials) {
   std::vector<std::string> why(trials.size());
+  const double ratio = ctx.fd.model->force_ratio();
   for (std::size_t i = 0; i < trials.size(); ++i) {
     const FitOutcome& f = trials[i].fit;
+    why[i] = collapse_reason(ctx, f);
+    if (!why[i].empty()) continue;
     for (const Effect e : f.set.effects) {
-      const std::string w = implausibility(e, own_params(f.set, f.params, e));
+      const std::string w = implausibility(e, own_params(f.set, f.params, e), ratio);
       if (w.empty()) continue;
       if (trials[i].alternative) {
         why[i] = std::string(effect_name(e)) + ": " + w;
@@ -221,8 +289,12 @@ CandidateResult score_trial(const SelectionContext& ctx, const Selection& curren
   c.alternative = t.alternative;
   c.all_params = f.params;
   c.params = own_params(f.set, f.params, t.effect);
+  c.flags = bound_flags(t.effect, c.params, ctx.fd.model->force_ratio());
   c.n_eff = n_eff;
   c.rss_reduction = current.rss > 0.0 ? 1.0 - f.rss_n2 / current.rss : 0.0;
+  ModelWorkspace ws;
+  const double rss_held = fit_rss(ctx.held, f.set, f.params, ws);
+  c.held_out_reduction = current.rss_held > 0.0 ? 1.0 - rss_held / current.rss_held : 0.0;
   const double added_k = static_cast<double>(f.set.param_count()) - static_cast<double>(current.set.param_count());
   c.delta_bic = n_eff * std::log(std::max(current.rss, 1e-300) / std::max(f.rss_n2, 1e-300)) -
                 added_k * std::log(std::max(n_eff, 1.0));
@@ -239,6 +311,9 @@ CandidateResult score_trial(const SelectionContext& ctx, const Selection& curren
   } else if (c.rss_reduction < min_reduction) {
     c.verdict = prefix + "not earned: removes " + format_number("%.1f", 100.0 * c.rss_reduction) +
                 " % of the residual power, < " + format_number("%g", 100.0 * min_reduction) + " %";
+  } else if (c.held_out_reduction < min_reduction) {
+    c.verdict = prefix + "does not generalize: removes " + format_number("%.1f", 100.0 * c.held_out_reduction) +
+                " % of the held-out residual power, < " + format_number("%g", 100.0 * min_reduction) + " %";
   } else {
     c.verdict = prefix + "earned";
     t.earned = true;
@@ -250,7 +325,7 @@ CandidateResult score_trial(const SelectionContext& ctx, const Selection& curren
 /// candidate with the highest ΔBIC, if any.
 std::optional<std::size_t> score_round(const SelectionContext& ctx, const Selection& current,
                                        std::vector<Trial>& trials, RoundResult& round) {
-  const std::vector<std::string> why = implausibility_reasons(trials);
+  const std::vector<std::string> why = implausibility_reasons(ctx, trials);
   const double n_eff = round_n_eff(trials, why, ctx.n_eff_baseline);
   std::optional<std::size_t> best;
   for (std::size_t i = 0; i < trials.size(); ++i) {
@@ -298,6 +373,7 @@ void forward_selection(const SelectionContext& ctx, Selection& current, ModelWor
     current.set.effects = win.model;
     current.params = win.all_params;
     current.rss = fit_rss(ctx.fd, current.set, current.params, ws);
+    current.rss_held = fit_rss(ctx.held, current.set, current.params, ws);
     rounds.push_back(std::move(round));
   }
 }
@@ -331,18 +407,32 @@ void backward_check(const SelectionContext& ctx, Selection& current, ModelWorksp
     }
     if (!weakest) break;
     dropped.push_back(current.set.effects[*weakest]);
-    current = Selection{weakest_fit.set, weakest_fit.params, weakest_fit.rss_n2};
+    current = Selection{weakest_fit.set, weakest_fit.params, weakest_fit.rss_n2,
+                        fit_rss(ctx.held, weakest_fit.set, weakest_fit.params, ws)};
   }
+}
+
+/// Normalized RMS gap of `model` against the measured force over `index`.
+double gap_over(std::span<const double> measured, std::span<const double> model, std::span<const std::size_t> index) {
+  double se = 0.0;
+  double ss = 0.0;
+  for (const std::size_t k : index) {
+    se += (measured[k] - model[k]) * (measured[k] - model[k]);
+    ss += measured[k] * measured[k];
+  }
+  return ss > 0.0 ? std::sqrt(se / ss) : 0.0;
 }
 
 /// Full-rate traces of the baseline and the selected model, their gaps,
 /// and where the gap concentrates.
 void add_traces_and_regions(DiscrepancyResult& res, const DamperModel& model, const MeasuredData& data,
-                            const Selection& current, ModelWorkspace& ws) {
+                            const Selection& current, const SampleSplit& split, ModelWorkspace& ws) {
   model.simulate(EffectSet{}, {}, ws, res.baseline_force_n);
   model.simulate(current.set, current.params, ws, res.updated_force_n);
-  res.gap_before = normalized_rms_gap(data.force_n, res.baseline_force_n);
-  res.gap_after = normalized_rms_gap(data.force_n, res.updated_force_n);
+  res.gap_before = gap_over(data.force_n, res.baseline_force_n, split.train);
+  res.gap_after = gap_over(data.force_n, res.updated_force_n, split.train);
+  res.gap_validation_before = gap_over(data.force_n, res.baseline_force_n, split.held_out);
+  res.gap_validation_after = gap_over(data.force_n, res.updated_force_n, split.held_out);
   res.disp_m = model.input().disp_m;
   res.vel_m_s = model.input().vel_m_s;
   res.coil_current_a = model.baseline_current_a();
@@ -352,13 +442,119 @@ void add_traces_and_regions(DiscrepancyResult& res, const DamperModel& model, co
   res.windows = localize_time(tr);
 }
 
+SignatureAnalysis signatures_of(const DiscrepancyResult& res, const MeasuredData& data,
+                                std::span<const double> model_force_n, const SampleSplit& split, double v_band_m_s) {
+  std::vector<double> resid(data.size());
+  for (std::size_t k = 0; k < resid.size(); ++k) resid[k] = data.force_n[k] - model_force_n[k];
+  const SignatureInput in{data.time_s, res.disp_m, res.vel_m_s, res.coil_current_a, model_force_n, resid, v_band_m_s};
+  return analyse_residual(in, split.train, split.held_out);
+}
+
+std::string percent(double fraction) { return format_number("%.1f", 100.0 * fraction) + " %"; }
+
+/// Where the residual concentrates and what it looks like.
+void describe_residual(DiscrepancyResult& res, const SignatureAnalysis& sig, bool after) {
+  std::string where;
+  for (const auto& r : res.regions) {
+    if (!r.concentrated) continue;
+    if (!where.empty()) where += "; ";
+    where += r.name + " (" + percent(r.share_of_gap_before) + " of the baseline's squared gap in " +
+             percent(r.fraction_of_time) + " of the time)";
+  }
+  if (!where.empty()) res.findings.push_back("The baseline's gap concentrates in: " + where + ".");
+  std::string what;
+  for (const auto& s : sig.signatures) {
+    if (s.held_out_share < 0.05) break;
+    if (!what.empty()) what += "; ";
+    what += s.looks_like + " [" + s.name + ", " + percent(s.held_out_share) + "]";
+  }
+  const std::string whose = after ? "The updated model's residual" : "The residual";
+  if (what.empty()) {
+    res.findings.push_back(whose + " has no shape of the signatures above 5 % of its held-out power (together " +
+                           percent(std::max(sig.structured_share, 0.0)) + ").");
+  } else {
+    res.findings.push_back(whose + " looks like " + what + " (shares of its held-out power; all signatures together " +
+                           percent(std::max(sig.structured_share, 0.0)) + ").");
+  }
+}
+
+/// Round-1 candidates that were not earned, with their reasons.
+void describe_rejections(DiscrepancyResult& res) {
+  if (res.rounds.empty()) return;
+  std::string rejected;
+  for (const auto& c : res.rounds.front().candidates) {
+    if (c.chosen || c.alternative) continue;
+    if (!rejected.empty()) rejected += "; ";
+    rejected += std::string(effect_name(c.effect)) + ": " + c.verdict;
+  }
+  if (!rejected.empty()) res.findings.push_back("Candidates rejected in round 1: " + rejected + ".");
+}
+
+void decide_verdict(DiscrepancyResult& res, const Selection& current, const Selection& baseline) {
+  const double tolerance = kExpectedGapFactor * res.expected_gap;
+  const double p_before = baseline.rss_held;
+  const double p_after = current.rss_held;
+  const SignatureAnalysis& sb = res.signatures_before;
+  const SignatureAnalysis& sa = res.signatures_after;
+  if (current.set.effects.empty()) {
+    const bool structured = sb.structured_share >= kStructuredShare && res.gap_validation_before > tolerance;
+    res.verdict = structured ? Verdict::unexplained : Verdict::none;
+    if (structured) {
+      res.findings.push_back("No catalogued effect or pair shrinks the held-out gap enough, but " +
+                             percent(sb.structured_share) +
+                             " of the baseline's held-out residual power has a shape (signatures.hpp), beyond noise.");
+      describe_residual(res, sb, false);
+      describe_rejections(res);
+    } else {
+      const std::string why = res.gap_validation_before <= tolerance
+                                  ? std::string("within 1.25 times its expected gap")
+                                  : "without a shape (" + percent(std::max(sb.structured_share, 0.0)) +
+                                        " structured, below " + percent(kStructuredShare) + "): noise";
+      res.findings.push_back("No effect earned its parameters, and the baseline's held-out residual is " + why + ".");
+    }
+    return;
+  }
+  const double removed = std::max(p_before - p_after, 0.0);
+  const double left = std::max(sa.structured_share, 0.0) * p_after;
+  const double share = removed + left > 0.0 ? removed / (removed + left) : 0.0;
+  const std::string label = EffectSet{current.set.effects}.label();
+  if (share >= kExplainedShare) {
+    res.verdict = Verdict::explained;
+    res.findings.push_back(label + " removes " + percent(p_before > 0.0 ? removed / p_before : 0.0) +
+                           " of the held-out residual power: " + percent(share) +
+                           " of the discrepancy found (removed plus structure left).");
+    if (sa.structured_share >= kStructuredShare) describe_residual(res, sa, true);
+    return;
+  }
+  res.verdict = Verdict::unexplained;
+  res.rejected = res.effects;
+  res.rejected_params = res.params;
+  res.effects.clear();
+  res.params.clear();
+  res.findings.push_back(label + " was fitted but takes only " + percent(share) +
+                         " of the discrepancy found (removed plus structure left, held out), below " +
+                         percent(kExplainedShare) + ": it is not the explanation.");
+  describe_residual(res, sb, false);
+  describe_rejections(res);
+}
+
+double peak_to_peak(const std::vector<double>& x) {
+  if (x.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  return *hi - *lo;
+}
+
 }  // namespace
 
 DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOptions& opt) {
   DiscrepancyResult res;
-  const DamperModel model(model_input(data, opt.smoothing_half_window_s));
+  const DamperModel model(model_input(data, opt.smoothing_half_window_s), opt.baseline);
   res.velocity_derived = model.input().velocity_derived;
-  const FitData fd = make_fit_data(model, data.force_n, opt.fit_samples);
+  res.baseline_name = opt.baseline.name;
+  res.expected_gap = opt.baseline.expected_gap;
+  const SampleSplit split = split_samples(data.time_s);
+  const FitData fd = make_fit_data(model, data.force_n, split.train, opt.fit_samples);
+  const FitData held = make_fit_data(model, data.force_n, split.held_out, 0);
   res.fit_samples = fd.index.size();
   res.fit_stride = fd.index.size() > 1 ? fd.index[1] - fd.index[0] : 1;
 
@@ -366,16 +562,46 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   ModelWorkspace ws;
   std::vector<double> base_residual;
   current.rss = fit_rss(fd, current.set, current.params, ws, &base_residual);
+  current.rss_held = fit_rss(held, current.set, current.params, ws);
+  const Selection baseline = current;
   std::vector<double> fit_times(fd.index.size());
-  for (std::size_t r = 0; r < fit_times.size(); ++r) fit_times[r] = data.time_s[fd.index[r]];
+  double base_ss = 0.0;
+  for (std::size_t r = 0; r < fit_times.size(); ++r) {
+    fit_times[r] = data.time_s[fd.index[r]];
+    const double f = data.force_n[fd.index[r]] - base_residual[r];
+    base_ss += f * f;
+  }
   res.n_eff_baseline = noise_effective_samples(fit_times, base_residual);
 
-  const SelectionContext ctx{fd, fit_times, opt, res.n_eff_baseline};
-  forward_selection(ctx, current, ws, res.rounds);
-  backward_check(ctx, current, ws, res.dropped);
+  std::vector<double> base_force;
+  model.simulate(EffectSet{}, {}, ws, base_force);
+  std::vector<double> settled_force;
+  const std::vector<double> fully_settled{1.0};  // SQ = 1, Eq. 5.5
+  model.simulate(EffectSet{{Effect::idle_settling}}, fully_settled, ws, settled_force);
+  res.baseline_check = check_baseline(opt.baseline, data.force_n, base_force, settled_force, model.input().vel_m_s,
+                                      data.current_cmd_a);
+  if (!res.baseline_check.mismatch) {
+    const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
+    const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, peak_to_peak(model.input().disp_m),
+                               base_rms};
+    forward_selection(ctx, current, ws, res.rounds);
+    backward_check(ctx, current, ws, res.dropped);
+  }
   res.effects = current.set.effects;
   res.params = current.params;
-  add_traces_and_regions(res, model, data, current, ws);
+  add_traces_and_regions(res, model, data, current, split, ws);
+  const double band = model.baseline().v_tf_m_s;
+  res.signatures_before = signatures_of(res, data, res.baseline_force_n, split, band);
+  res.signatures_after = signatures_of(res, data, res.updated_force_n, split, band);
+  if (res.baseline_check.mismatch) {
+    res.verdict = Verdict::baseline_mismatch;
+    res.findings.push_back("The baseline (" + res.baseline_name +
+                           ") does not describe this damper; no effect was fitted. Calibrate a baseline to it "
+                           "(mrd calibrate) and pass it with --baseline.");
+    for (const auto& r : res.baseline_check.reasons) res.findings.push_back(r);
+    return res;
+  }
+  decide_verdict(res, current, baseline);
   return res;
 }
 

@@ -1,7 +1,50 @@
 #pragma once
-/// The model-discrepancy workflow: baseline (chapter-4 model), localization
-/// of the gap, and greedy forward selection of named effects with a BIC
-/// penalty, physical plausibility checks and a final backward check.
+/// The model-discrepancy workflow: a baseline (the thesis's chapter-4 model
+/// or one calibrated to the user's damper), a check that the record lies
+/// inside what the baseline describes, localization of the gap, greedy
+/// forward selection of named effects with a BIC penalty, physical
+/// plausibility checks, a held-out judgement and a final backward check,
+/// and a verdict.
+///
+/// Held out: 30 % of the record (split_samples, fit.hpp) is never fitted.
+/// An effect joins the model only if it also removes at least
+/// min_rss_reduction of the held-out residual power.
+///
+/// Verdict:
+/// <pre>
+///   baseline_mismatch  check_baseline() failed: no effect is fitted
+///   none               no effect joined, and the held-out residual is not
+///                      structured (signatures.hpp: < kStructuredShare) or
+///                      within 1.25 × the baseline's expected gap
+///   explained          effects joined and took at least half of the
+///                      discrepancy found: removed / (removed + structure
+///                      left), powers on the held-out samples
+///   unexplained        otherwise; the effects that joined are then reported
+///                      as rejected, with what the residual looks like
+/// </pre>
+///
+/// Plausibility: a parameter pinned at a bound other than its null value is
+/// flagged and its effect cannot be the explanation, except SQ = 1, the
+/// fully settled state of Eq. 5.5 (idle ≥ T_max), which is a physical state
+/// and not a limit of the fit; it is still flagged. A model whose force
+/// collapses (free play at least the record's stroke, or an RMS force below
+/// a quarter of the baseline's) is rejected.
+///
+/// Confusable pairs and what separates them (each is a column of the
+/// joint fit, and the independent study checks them):
+/// <pre>
+///   idle_settling / thermal_fade   settling's deficit shrinks with displaced volume (force grows
+///                                  over the record); a fade grows with dissipated energy (force falls)
+///   idle_settling / force_offset   settling scales the force (odd in v, vanishing at v = 0); an offset
+///                                  is even and constant
+///   thermal_fade / force_offset    a fade scales the force and grows; an offset is constant
+///   time_delay / backlash          a delay shifts every part of the cycle alike; play flattens the
+///                                  force only after reversals, for a displacement, not a time
+///   gas_spring / time_delay        a spring is in phase with x at every frequency; a delay's
+///                                  quadrature part scales with dF/dt
+///   preyield_hysteresis / backlash both soften reversals; pre-yield keeps the force's sign through
+///                                  the reversal (a loop), play drops it to zero
+/// </pre>
 ///
 /// Selection, per round: every catalogue effect not yet in the model is
 /// added to it and all parameters (old and new) are refitted jointly. Its
@@ -26,13 +69,17 @@
 #include <string>
 #include <vector>
 
+#include "host_sim/discrepancy/baseline.hpp"
+#include "host_sim/discrepancy/baseline_check.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "host_sim/discrepancy/regions.hpp"
+#include "host_sim/discrepancy/signatures.hpp"
 
 namespace mrd::discrepancy {
 
 struct DiscrepancyOptions {
+  Baseline baseline = thesis_baseline();
   std::vector<Effect> catalogue{kAllEffects.begin(), kAllEffects.end()};
   /// "Very strong" evidence on the Kass–Raftery scale.
   double min_delta_bic = 10.0;
@@ -57,6 +104,9 @@ struct CandidateResult {
   std::vector<double> all_params;  ///< model + candidate, packed
   double delta_bic = 0.0;
   double rss_reduction = 0.0;      ///< 1 − RSS_with / RSS_without
+  double held_out_reduction = 0.0; ///< the same on the held-out samples
+  /// Per parameter of `params`: "" or why it is flagged (at a bound).
+  std::vector<std::string> flags;
   double n_eff = 0.0;             ///< the round's effective sample count
   double gap = 0.0;                ///< normalized RMS gap on the fit samples with the candidate
   bool plausible = false;
@@ -72,12 +122,30 @@ struct RoundResult {
   std::vector<Effect> model_after;  ///< the model after the round (when one was chosen)
 };
 
+enum class Verdict { none, explained, unexplained, baseline_mismatch };
+[[nodiscard]] const char* verdict_name(Verdict v) noexcept;
+
 struct DiscrepancyResult {
-  std::vector<Effect> effects;     ///< named effects, in the order they were added
+  Verdict verdict = Verdict::none;
+  /// Sentences that back the verdict: the numbers, where the residual
+  /// concentrates, what it looks like, what was rejected and why.
+  std::vector<std::string> findings;
+  std::vector<Effect> effects;     ///< the explanation (empty unless explained), in the order added
   std::vector<double> params;      ///< their parameters, packed in that order
+  /// Effects the selection took but the verdict does not accept (unexplained).
+  std::vector<Effect> rejected;
+  std::vector<double> rejected_params;
   std::vector<Effect> dropped;     ///< chosen, then removed by the backward check
-  double gap_before = 0.0;         ///< normalized RMS force error of the baseline, full rate
-  double gap_after = 0.0;          ///< the same for the updated model
+  BaselineCheck baseline_check;
+  std::string baseline_name;
+  double expected_gap = 0.0;       ///< the baseline's own
+  // Normalized RMS force gaps at full rate: on the samples the fits saw, and held out.
+  double gap_before = 0.0;
+  double gap_after = 0.0;
+  double gap_validation_before = 0.0;
+  double gap_validation_after = 0.0;
+  SignatureAnalysis signatures_before;  ///< of the baseline's residual
+  SignatureAnalysis signatures_after;   ///< of the updated model's residual
   std::vector<RoundResult> rounds;
   std::vector<RegionStat> regions;
   std::vector<TimeWindowStat> windows;
@@ -95,6 +163,10 @@ struct DiscrepancyResult {
 
 /// Physical plausibility of fitted parameters of one effect: empty when
 /// plausible, else the reason (at its null value, or pinned at a bound).
+/// `force_ratio`: DamperModel::force_ratio() (force-valued bounds scale).
 [[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, double force_ratio = 1.0);
+
+/// Per parameter of effect `e`: "" or "at its lower/upper bound …".
+[[nodiscard]] std::vector<std::string> bound_flags(Effect e, std::span<const double> params, double force_ratio = 1.0);
 
 }  // namespace mrd::discrepancy

@@ -1,0 +1,62 @@
+#include "host_sim/discrepancy/baseline_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host_sim/io/text.hpp"
+
+namespace mrd::discrepancy {
+
+using io::format_number;
+
+BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> measured_force_n,
+                             std::span<const double> baseline_force_n, std::span<const double> settled_force_n,
+                             std::span<const double> vel_m_s,
+                             std::span<const double> current_cmd_a) {
+  BaselineCheck c;
+  double fm = 0.0;
+  double bb = 0.0;
+  double mm = 0.0;
+  double sb = 0.0;
+  for (std::size_t k = 0; k < measured_force_n.size(); ++k) {
+    fm += measured_force_n[k] * baseline_force_n[k];
+    sb += settled_force_n[k] * baseline_force_n[k];
+    bb += baseline_force_n[k] * baseline_force_n[k];
+    mm += measured_force_n[k] * measured_force_n[k];
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(measured_force_n.size(), 1));
+  const double rms_meas = std::sqrt(mm / n);
+  const double rms_base = std::sqrt(bb / n);
+  c.force_ratio = bb > 0.0 ? fm / bb : 0.0;
+  c.min_force_ratio = kSettledRatioMargin * (bb > 0.0 ? sb / bb : 1.0);
+  if (!(c.force_ratio >= c.min_force_ratio && c.force_ratio <= kMaxForceRatio)) {
+    c.mismatch = true;
+    c.reasons.push_back("force scale: the measured force is " + format_number("%.3g", c.force_ratio) +
+                        " times the baseline's (least squares; RMS " + format_number("%.4g", rms_meas) + " N against " +
+                        format_number("%.4g", rms_base) + " N), outside [" + format_number("%.3g", c.min_force_ratio) +
+                        ", " + format_number("%g", kMaxForceRatio) +
+                        "] (below: weaker than half a fully settled damper on this record)");
+  }
+  for (const double v : vel_m_s) c.velocity_max_m_s = std::max(c.velocity_max_m_s, std::fabs(v));
+  const auto [lo, hi] = std::minmax_element(current_cmd_a.begin(), current_cmd_a.end());
+  if (lo != current_cmd_a.end()) {
+    c.current_min_a = *lo;
+    c.current_max_a = *hi;
+  }
+  const ValidityRange& r = baseline.range;
+  if (r.velocity_max_m_s > 0.0 && c.velocity_max_m_s > kRangeFactor * r.velocity_max_m_s) {
+    c.mismatch = true;
+    c.reasons.push_back("velocity: the record reaches " + format_number("%.4g", c.velocity_max_m_s) +
+                        " m/s, the baseline covers up to " + format_number("%.4g", r.velocity_max_m_s) + " m/s");
+  }
+  // The current laws depend on |I| (Eq. 4.2–4.3): a back-driven current counts by its magnitude.
+  const double i_abs = std::max(std::fabs(c.current_min_a), std::fabs(c.current_max_a));
+  if (r.current_max_a > 0.0 && i_abs > kRangeFactor * r.current_max_a + kCurrentSlack_a) {
+    c.mismatch = true;
+    c.reasons.push_back("current: the record commands up to " + format_number("%.3g", i_abs) +
+                        " A, the baseline covers up to " + format_number("%.3g", r.current_max_a) + " A");
+  }
+  return c;
+}
+
+}  // namespace mrd::discrepancy

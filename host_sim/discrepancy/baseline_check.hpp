@@ -1,0 +1,43 @@
+#pragma once
+/// Whether a record lies inside what the baseline describes. A record whose
+/// force scale, velocity or current is far outside the baseline's validity
+/// range is not judged against it: no catalogue effect may be fitted to hide
+/// a baseline that describes another damper.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "host_sim/discrepancy/baseline.hpp"
+
+namespace mrd::discrepancy {
+
+/// Limits of the check: a least-squares force ratio F_meas ≈ s·F_baseline
+/// above kMaxForceRatio (no catalogue effect adds force beyond an asymmetry
+/// of 1.5 and an offset), or below half the ratio a fully settled fluid
+/// gives on the same record (SQ = 1, PR from a_PR(1) ≈ 0.1 recovering with
+/// the record's displaced volume, Eq. 5.6–5.9; the half leaves room for a
+/// fade or free play on top).
+inline constexpr double kMaxForceRatio = 4.0;
+inline constexpr double kSettledRatioMargin = 0.5;
+/// Velocity or current beyond the range by this factor (plus the slack below).
+inline constexpr double kRangeFactor = 1.5;
+inline constexpr double kCurrentSlack_a = 0.05;
+
+struct BaselineCheck {
+  bool mismatch = false;
+  std::vector<std::string> reasons;  ///< one sentence each, with the numbers
+  double force_ratio = 1.0;          ///< least-squares s in F_meas ≈ s·F_baseline
+  double min_force_ratio = 0.0;      ///< the lower limit it was checked against
+  double velocity_max_m_s = 0.0;     ///< of the record
+  double current_min_a = 0.0;
+  double current_max_a = 0.0;
+};
+
+/// `settled_force_n`: the baseline with idle_settling at SQ = 1 on the record.
+[[nodiscard]] BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> measured_force_n,
+                                           std::span<const double> baseline_force_n,
+                                           std::span<const double> settled_force_n,
+                                           std::span<const double> vel_m_s, std::span<const double> current_cmd_a);
+
+}  // namespace mrd::discrepancy

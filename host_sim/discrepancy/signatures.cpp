@@ -1,0 +1,138 @@
+#include "host_sim/discrepancy/signatures.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrd::discrepancy {
+namespace {
+
+struct Signature {
+  const char* name;
+  const char* looks_like;
+};
+
+constexpr Signature kSignatures[] = {
+    {"offset", "a constant force (a zero offset)"},
+    {"drift", "a slow drift over the record"},
+    {"stiffness", "a force proportional to displacement (a spring)"},
+    {"lag", "a lag: the measured force follows the model late or early"},
+    {"force_scale", "a force-scale error: the model too strong or too weak"},
+    {"asymmetry", "an asymmetry: extension and compression differ"},
+    {"low_velocity_loop", "a loop at low velocity: force kept through reversals (pre-yield hysteresis)"},
+    {"transition_shape", "the force rising with velocity near zero otherwise than Eq. 4.4"},
+    {"current_law", "the force depending on the current otherwise than the current law"},
+    {"inertia", "a force in phase with acceleration (inertia or fluid compressibility)"},
+};
+constexpr std::size_t kCount = std::size(kSignatures);
+
+/// Central difference of `y` over `t`.
+std::vector<double> derivative(std::span<const double> t, std::span<const double> y) {
+  const std::size_t n = y.size();
+  std::vector<double> d(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t a = k > 0 ? k - 1 : 0;
+    const std::size_t b = k + 1 < n ? k + 1 : n - 1;
+    if (b > a && t[b] > t[a]) d[k] = (y[b] - y[a]) / (t[b] - t[a]);
+  }
+  return d;
+}
+
+/// Signal `j` at sample k.
+Eigen::MatrixXd signals(const SignatureInput& in, std::span<const std::size_t> index, std::span<const double> dfdt,
+                        std::span<const double> acc) {
+  const std::size_t n = in.time_s.size();
+  const double t0 = in.time_s.front();
+  const double span_s = std::max(in.time_s.back() - t0, 1e-9);
+  double i_max = 0.0;
+  for (const double i : in.current_a) i_max = std::max(i_max, std::fabs(i));
+  const double band = 3.0 * std::max(in.low_velocity_band_m_s, 1e-6);
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(index.size()), static_cast<Eigen::Index>(kCount));
+  for (std::size_t r = 0; r < index.size(); ++r) {
+    const std::size_t k = std::min(index[r], n - 1);
+    const double v = in.vel_m_s[k];
+    const double f = in.model_force_n[k];
+    const double w = std::max(0.0, 1.0 - std::fabs(v) / band);
+    const double sa = acc[k] > 0.0 ? 1.0 : (acc[k] < 0.0 ? -1.0 : 0.0);
+    const double sv = v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
+    const auto row = static_cast<Eigen::Index>(r);
+    m(row, 0) = 1.0;
+    m(row, 1) = (in.time_s[k] - t0) / span_s - 0.5;
+    m(row, 2) = in.disp_m[k];
+    m(row, 3) = dfdt[k];
+    m(row, 4) = f;
+    m(row, 5) = v > 0.0 ? f : 0.0;
+    m(row, 6) = -sa * w;
+    m(row, 7) = sv * w;
+    m(row, 8) = i_max > 0.0 ? f * std::fabs(in.current_a[k]) / i_max : 0.0;
+    m(row, 9) = acc[k];
+  }
+  return m;
+}
+
+Eigen::VectorXd residual_at(const SignatureInput& in, std::span<const std::size_t> index) {
+  Eigen::VectorXd r(static_cast<Eigen::Index>(index.size()));
+  for (std::size_t j = 0; j < index.size(); ++j) r(static_cast<Eigen::Index>(j)) = in.residual_n[index[j]];
+  return r;
+}
+
+/// Least squares on the columns `cols` of `a_train`; share of the held-out
+/// power removed, and the coefficients. Columns that do not vary are dropped.
+double held_out_share(const Eigen::MatrixXd& a_train, const Eigen::VectorXd& r_train, const Eigen::MatrixXd& a_test,
+                      const Eigen::VectorXd& r_test, const std::vector<Eigen::Index>& cols, Eigen::VectorXd& coef) {
+  std::vector<Eigen::Index> used;
+  for (const Eigen::Index c : cols) {
+    if (a_train.col(c).norm() > 0.0) used.push_back(c);
+  }
+  coef = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(cols.size()));
+  const double power = r_test.squaredNorm();
+  if (used.empty() || power <= 0.0) return 0.0;
+  Eigen::MatrixXd at(a_train.rows(), static_cast<Eigen::Index>(used.size()));
+  Eigen::MatrixXd ae(a_test.rows(), static_cast<Eigen::Index>(used.size()));
+  for (std::size_t j = 0; j < used.size(); ++j) {
+    // Columns scaled to unit RMS on the training samples: the solve is then well conditioned.
+    const double s = a_train.col(used[j]).norm() / std::sqrt(static_cast<double>(a_train.rows()));
+    at.col(static_cast<Eigen::Index>(j)) = a_train.col(used[j]) / s;
+    ae.col(static_cast<Eigen::Index>(j)) = a_test.col(used[j]) / s;
+  }
+  const Eigen::VectorXd beta = at.colPivHouseholderQr().solve(r_train);
+  const double after = (r_test - ae * beta).squaredNorm();
+  for (std::size_t j = 0; j < used.size(); ++j) {
+    const auto it = std::find(cols.begin(), cols.end(), used[j]);
+    const double s = a_train.col(used[j]).norm() / std::sqrt(static_cast<double>(a_train.rows()));
+    coef(it - cols.begin()) = beta(static_cast<Eigen::Index>(j)) / s;
+  }
+  return 1.0 - after / power;
+}
+
+}  // namespace
+
+SignatureAnalysis analyse_residual(const SignatureInput& in, std::span<const std::size_t> train,
+                                   std::span<const std::size_t> held_out) {
+  SignatureAnalysis out;
+  if (in.time_s.size() < 3 || train.empty() || held_out.empty()) return out;
+  const std::vector<double> dfdt = derivative(in.time_s, in.model_force_n);
+  const std::vector<double> acc = derivative(in.time_s, in.vel_m_s);
+  const Eigen::MatrixXd a_train = signals(in, train, dfdt, acc);
+  const Eigen::MatrixXd a_test = signals(in, held_out, dfdt, acc);
+  const Eigen::VectorXd r_train = residual_at(in, train);
+  const Eigen::VectorXd r_test = residual_at(in, held_out);
+  Eigen::VectorXd coef;
+  std::vector<Eigen::Index> all;
+  for (std::size_t j = 0; j < kCount; ++j) {
+    all.push_back(static_cast<Eigen::Index>(j));
+    SignatureStat s;
+    s.name = kSignatures[j].name;
+    s.looks_like = kSignatures[j].looks_like;
+    s.held_out_share = held_out_share(a_train, r_train, a_test, r_test, {static_cast<Eigen::Index>(j)}, coef);
+    s.coefficient = coef(0);
+    out.signatures.push_back(std::move(s));
+  }
+  out.structured_share = held_out_share(a_train, r_train, a_test, r_test, all, coef);
+  std::stable_sort(out.signatures.begin(), out.signatures.end(),
+                   [](const SignatureStat& a, const SignatureStat& b) { return a.held_out_share > b.held_out_share; });
+  return out;
+}
+
+}  // namespace mrd::discrepancy

@@ -1,0 +1,64 @@
+#pragma once
+/// What a force residual looks like: the residual is regressed, on the
+/// samples the fits use, onto simple signals that each stand for one kind of
+/// model error, and every regression is judged on the held-out samples. The
+/// share of the held-out residual power a signature removes says how much
+/// of the residual has that shape; all signatures together give the share
+/// that is structure rather than noise (noise, white or coloured, is
+/// uncorrelated with every signature, so its held-out share is near zero).
+///
+/// Signatures (x, v, a: rod motion; F: model force; TF: Eq. 4.4's factor):
+/// <pre>
+///   offset               1                          a constant force
+///   drift                t                          a slow drift over the record
+///   stiffness            x                          a force proportional to displacement
+///   lag                  dF/dt                      the measured force late (or early) against the model
+///   force_scale          F                          the model too strong or too weak
+///   asymmetry            F·[v > 0]                  extension and compression differ
+///   low_velocity_loop    −sgn(a)·w(v)               a loop at low velocity (pre-yield hysteresis)
+///   transition_shape     sgn(v)·w(v)                the force rising with velocity otherwise than Eq. 4.4
+///   current_law          F·i/i_max                  the force depending on current otherwise than the law
+///   inertia              a                          a force in phase with acceleration (mass, compressibility)
+///   w(v) = max(0, 1 − |v| / (3 v_band))
+/// </pre>
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace mrd::discrepancy {
+
+struct SignatureStat {
+  std::string name;
+  std::string looks_like;      ///< one sentence
+  double held_out_share = 0.0;  ///< share of the held-out residual power it removes (≤ 0: none)
+  double coefficient = 0.0;    ///< fitted on the training samples (unit: N per unit of the signal)
+};
+
+struct SignatureAnalysis {
+  std::vector<SignatureStat> signatures;  ///< largest held-out share first
+  /// Held-out share of the residual power removed by all signatures together.
+  double structured_share = 0.0;
+};
+
+/// Inputs at the record's samples.
+struct SignatureInput {
+  std::span<const double> time_s;
+  std::span<const double> disp_m;
+  std::span<const double> vel_m_s;
+  std::span<const double> current_a;
+  std::span<const double> model_force_n;
+  std::span<const double> residual_n;  ///< measured − model
+  double low_velocity_band_m_s = 0.01;
+};
+
+/// Fits on `train` and judges on `held_out` (sample indices).
+[[nodiscard]] SignatureAnalysis analyse_residual(const SignatureInput& in, std::span<const std::size_t> train,
+                                                 std::span<const std::size_t> held_out);
+
+/// A residual counts as structured when the signatures together remove at
+/// least this share of its held-out power.
+inline constexpr double kStructuredShare = 0.15;
+
+}  // namespace mrd::discrepancy
