@@ -1,0 +1,197 @@
+// The baseline forms, the baseline range check, the held-out split and the
+// residual signatures, against hand calculations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "host_sim/discrepancy/baseline.hpp"
+#include "host_sim/discrepancy/baseline_check.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/discrepancy/signatures.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
+#include "mrd/units.hpp"
+#include "test_normals.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+
+// Y(2.5 A) of Table 4.1 by hand: 170 + (4.1 − 170)·e^{−0.7·2.5} = 170 − 165.9·0.173774 = 141.171 kN.
+TEST(DiscrepancyBaseline, ThesisForceScaleIsTable41AtTheRating) {
+  EXPECT_NEAR(thesis_baseline().force_scale_n(), 141.171e3, 5.0);
+  EXPECT_NEAR(thesis_force_scale_n(), 141.171e3, 5.0);
+  // With PR = 0.5 the limit halves (Eq. 5.10): 85 + (4.1 − 85)·0.173774 = 70.942 kN.
+  EXPECT_NEAR(thesis_baseline().yield_n.at(2.5, 0.5), 70.942e3, 5.0);
+}
+
+// ż = (v/x_y)(1 − z²) while loading, v/x_y while unloading (β = γ = ½, n = 2).
+TEST(DiscrepancyBaseline, BoucWenStepIsTheClosedForm) {
+  // Loading from 0 over v·dt/x_y = 0.5: tanh(0.5) = 0.462117.
+  EXPECT_NEAR(bouc_wen_step(0.0, 0.05, 0.01, 0.001), 0.462117, 1e-6);
+  // Loading from 0.462117 over another 0.5: tanh(1.0) = 0.761594 (steps compose).
+  EXPECT_NEAR(bouc_wen_step(0.462117157, 0.05, 0.01, 0.001), 0.761594, 1e-6);
+  // Unloading is linear: 0.8 − 0.3 = 0.5.
+  EXPECT_NEAR(bouc_wen_step(0.8, -0.03, 0.01, 0.001), 0.5, 1e-12);
+  // Through zero: 0.2 − 0.7 leaves 0.5 of loading the other way: −tanh(0.5).
+  EXPECT_NEAR(bouc_wen_step(0.2, -0.07, 0.01, 0.001), -0.462117, 1e-6);
+  // Far loading saturates below 1.
+  const double z = bouc_wen_step(0.0, 1.0, 1.0, 0.001);
+  EXPECT_LT(z, 1.0);
+  EXPECT_GT(z, 0.999999);
+}
+
+// A Bouc–Wen baseline at constant velocity, long after a reversal: z → 1, so
+// F = Y + C v + k_0 x, by hand.
+TEST(DiscrepancyBaseline, BoucWenModelForceAtSteadyMotion) {
+  Baseline b;
+  b.law = BaseLaw::bouc_wen;
+  b.yield_n = {500.0, 1500.0, 2.0};
+  b.viscous_ns_m = {2000.0, 8000.0, 1.5};
+  b.yield_disp_m = 0.5e-3;
+  b.stiffness_n_m = 1.0e4;
+  ModelInput in;
+  const double v = 0.05;
+  for (int k = 0; k < 2000; ++k) {
+    in.time_s.push_back(k * 1e-3);
+    in.disp_m.push_back(v * k * 1e-3);
+    in.vel_m_s.push_back(v);
+    in.current_cmd_a.push_back(1.0);
+  }
+  const DamperModel model(in, b);
+  ModelWorkspace ws;
+  std::vector<double> f;
+  model.simulate(EffectSet{}, {}, ws, f);
+  // Y(1 A) = 1500 + (500 − 1500) e^{−2} = 1364.66 N; C(1 A) = 8000 − 6000 e^{−1.5} = 6661.23 N·s/m.
+  const double x = v * 1999e-3;
+  EXPECT_NEAR(f.back(), 1364.665 + 6661.239 * v + 1.0e4 * x, 0.05);
+  // Force scale: Y at the top of the range, a ratio against the thesis's 141.171 kN.
+  b.range.current_max_a = 1.0;
+  EXPECT_NEAR(b.force_scale_n(), 1364.665, 0.01);
+  EXPECT_NEAR(DamperModel(in, b).force_ratio(), 1364.665 / 141.171e3, 1e-5);
+}
+
+TEST(DiscrepancyBaseline, SplitHoldsOutThreeBlocksInTen) {
+  std::vector<double> t;
+  for (int k = 0; k < 4000; ++k) t.push_back(k * 0.01);  // 40 s: blocks of ~1 s
+  const SampleSplit s = split_samples(t);
+  EXPECT_EQ(s.train.size() + s.held_out.size(), t.size());
+  EXPECT_NEAR(static_cast<double>(s.held_out.size()) / 4000.0, 0.3, 0.005);
+  // Blocks 2, 5, 8, 12, …: t in [2, 3) s is held out, [0, 2) is not.
+  for (const std::size_t k : s.held_out) EXPECT_GE(t[k], 1.99);
+  EXPECT_NEAR(t[s.held_out.front()], 2.0, 0.011);
+}
+
+TEST(DiscrepancyBaseline, CheckFlagsAHundredfoldForceAndAFastRecord) {
+  const Baseline b = thesis_baseline();
+  std::vector<double> base{1e5, -1e5, 5e4, -5e4};
+  std::vector<double> settled{2e4, -2e4, 1e4, -1e4};  // ratio 0.2: the floor is 0.1
+  std::vector<double> v{0.1, -0.1, 0.05, -0.05};
+  std::vector<double> i{2.5, 2.5, 2.5, 2.5};
+  std::vector<double> same = base;
+  std::vector<double> small{1e3, -1e3, 5e2, -5e2};
+  EXPECT_FALSE(check_baseline(b, same, base, settled, v, i).mismatch);
+  const BaselineCheck c = check_baseline(b, small, base, settled, v, i);
+  EXPECT_TRUE(c.mismatch);
+  EXPECT_NEAR(c.force_ratio, 0.01, 1e-12);
+  EXPECT_NEAR(c.min_force_ratio, 0.1, 1e-12);
+  // Above 1.5 × 0.2491 m/s (Table 3.1) = 0.37365 m/s.
+  std::vector<double> fast{0.38, -0.1, 0.05, -0.05};
+  EXPECT_TRUE(check_baseline(b, same, base, settled, fast, i).mismatch);
+  std::vector<double> quick{0.37, -0.1, 0.05, -0.05};
+  EXPECT_FALSE(check_baseline(b, same, base, settled, quick, i).mismatch);
+  // 4 A is beyond 1.5 × 2.5 A + 0.05 A.
+  std::vector<double> high{4.0, 2.5, 2.5, 2.5};
+  EXPECT_TRUE(check_baseline(b, same, base, settled, v, high).mismatch);
+}
+
+/// A sine record's inputs and a model force for the signature tests.
+struct SigRecord {
+  std::vector<double> t, x, v, i, f;
+};
+SigRecord sig_record() {
+  SigRecord r;
+  const double w = 2 * units::kPi * 0.7;
+  for (int k = 0; k < 20000; ++k) {
+    const double t = k * 1e-3;
+    r.t.push_back(t);
+    r.x.push_back(0.02 * std::sin(w * t));
+    r.v.push_back(0.02 * w * std::cos(w * t));
+    r.i.push_back(1.0);
+    r.f.push_back(5e4 * std::tanh(r.v.back() / 0.01) + 2e5 * r.v.back());
+  }
+  return r;
+}
+
+TEST(DiscrepancyBaseline, SignaturesSeeNoStructureInNoise) {
+  const SigRecord r = sig_record();
+  test::Normals n(7);
+  std::vector<double> resid(r.t.size());
+  // White plus a 20 ms AR(1) part: coloured noise is still no signature.
+  double c = 0.0;
+  const double a = std::exp(-1e-3 / 0.02);
+  for (auto& e : resid) {
+    c = a * c + std::sqrt(1 - a * a) * 400.0 * n.next();
+    e = 500.0 * n.next() + c;
+  }
+  const SampleSplit s = split_samples(r.t);
+  const SignatureAnalysis sa = analyse_residual({r.t, r.x, r.v, r.i, r.f, resid, 0.01}, s.train, s.held_out);
+  EXPECT_LT(sa.structured_share, 0.02);
+  EXPECT_LT(sa.structured_share, kStructuredShare);
+}
+
+TEST(DiscrepancyBaseline, SignaturesNameAnOffsetAndALag) {
+  const SigRecord r = sig_record();
+  test::Normals n(8);
+  const SampleSplit s = split_samples(r.t);
+  std::vector<double> resid(r.t.size());
+  // 1 kN offset in 500 N of noise: the offset alone removes 1/(1 + 0.25) = 80 % of the power.
+  for (auto& e : resid) e = 1000.0 + 500.0 * n.next();
+  SignatureAnalysis sa = analyse_residual({r.t, r.x, r.v, r.i, r.f, resid, 0.01}, s.train, s.held_out);
+  EXPECT_EQ(sa.signatures.front().name, "offset");
+  EXPECT_NEAR(sa.signatures.front().held_out_share, 0.8, 0.03);
+  // The model force 5 ms late: F(t − τ) − F(t) ≈ −τ dF/dt.
+  for (std::size_t k = 0; k < resid.size(); ++k) {
+    const std::size_t j = k >= 5 ? k - 5 : 0;
+    resid[k] = r.f[j] - r.f[k];
+  }
+  sa = analyse_residual({r.t, r.x, r.v, r.i, r.f, resid, 0.01}, s.train, s.held_out);
+  EXPECT_EQ(sa.signatures.front().name, "lag");
+  EXPECT_GT(sa.signatures.front().held_out_share, 0.9);
+  EXPECT_NEAR(sa.signatures.front().coefficient, -0.005, 0.0005);
+}
+
+}  // namespace
+}  // namespace mrd::discrepancy
+
+namespace mrd::discrepancy {
+namespace {
+
+// A damper outside the catalogue: Table 4.1's laws at 1.5 A, but a smooth
+// tanh(v/v0) transition with v0 = 20 mm/s instead of Eq. 4.4's ramp to 10 mm/s.
+// No effect of the catalogue has that form: the honest answer is unexplained.
+TEST(DiscrepancyVerdict, SmoothTransitionIsUnexplained) {
+  // By hand at 1.5 A: Y = 170 − 165.9 e^{−1.05} = 111.94 kN; C = 365 − 282.5 e^{−1.725} = 314.67 kN·s/m.
+  const double y_n = 170e3 - 165.9e3 * std::exp(-0.7 * 1.5);
+  const double c_ns_m = 365e3 - 282.5e3 * std::exp(-1.15 * 1.5);
+  MeasuredData d;
+  d.source = "tanh";
+  test::Normals n(11);
+  const double w = 2 * units::kPi * 0.5;
+  for (int k = 0; k <= 20000; ++k) {
+    const double t = k * 1e-3;
+    const double v = 0.0254 * w * std::cos(w * t);
+    d.time_s.push_back(t);
+    d.displacement_m.push_back(0.0254 * std::sin(w * t) + 10e-6 * n.next());
+    d.current_cmd_a.push_back(1.5);
+    d.force_n.push_back(std::tanh(v / 0.02) * (y_n + c_ns_m * std::fabs(v)) + 500.0 * n.next());
+  }
+  const DiscrepancyResult r = run_discrepancy(d);
+  EXPECT_EQ(r.verdict, Verdict::unexplained) << verdict_name(r.verdict) << " " << EffectSet{r.effects}.label();
+  EXPECT_TRUE(r.effects.empty());
+  EXPECT_GE(r.signatures_before.structured_share, kStructuredShare);
+  ASSERT_FALSE(r.findings.empty());
+}
+
+}  // namespace
+}  // namespace mrd::discrepancy
