@@ -13,19 +13,31 @@ namespace {
 
 constexpr CommandHelp kDiscrepancyHelp{
     "discrepancy", "Name the physical effect behind a model-measurement gap",
-    R"(Model-discrepancy workflow. Simulates the chapter-4 damper model (Bingham + transition,
-Eq. 4.1-4.4, Table 4.1; coil current by Eq. 4.5 from the commanded current) over the measured
-input, localizes where the force gap concentrates, then tests named effects added to the model:
-  idle_settling  participant ratio from a fitted SQ (Eq. 5.6-5.12)   sq [0-1]
-  backlash       free play in the mounting (§5.2 Case 3)              free_play_m [0-0.01]
-  gas_spring     accumulator stiffness (§3.1)                         stiffness_n_m [0-5e6]
-  thermal_fade   yield/viscosity falling with dissipated energy       yield_coeff_per_k, viscous_coeff_per_k
-  time_delay     transport delay of the measured force                delay_s [0-0.1]
-  coil_lag       coil time constants of Eq. 4.5 scaled                tau_scale [1-10]
-  force_offset   load-cell zero offset                                offset_n [-3e4-3e4]
-Each is fitted (Ceres, bounded least squares), scored by delta BIC with the effective sample
-count of the residual, checked for physical plausibility, and the best one is added; repeated
+    R"(Model-discrepancy workflow. Simulates a baseline damper model over the measured input (the
+thesis's chapter-4 model: Bingham + transition, Eq. 4.1-4.4, Table 4.1, coil current by Eq. 4.5;
+or a model calibrated to your damper by 'mrd calibrate', passed with --baseline), checks that the
+record lies inside what the baseline describes, localizes where the force gap concentrates, then
+tests named effects added to the model:
+  idle_settling        participant ratio from a fitted SQ (Eq. 5.6-5.12)     sq [0-1]
+  backlash             free play in the mounting (5.2 Case 3)                 free_play_m [0-0.01]
+  gas_spring           accumulator stiffness (3.1)                            stiffness_n_m [0-5e6]*
+  thermal_fade         yield/viscosity falling with dissipated energy         yield_coeff_per_k, viscous_coeff_per_k
+  time_delay           transport delay of the measured force                  delay_s [0-0.1]
+  coil_lag             coil time constants of Eq. 4.5 scaled                  tau_scale [1-10]
+  force_offset         load-cell zero offset                                  offset_n [-3e4-3e4]*
+  direction_asymmetry  force x(1+a) in extension, x(1-a) in compression        asymmetry [-0.5-0.5]
+  preyield_hysteresis  yield force building over x_y after reversals           yield_disp_m [0-0.01]
+  (* bounds for the 200 kN damper; they scale with the baseline's force)
+Each is fitted (Ceres, bounded least squares) on 70 % of the record, scored by delta BIC with the
+effective sample count of the residual, checked for physical plausibility, and must also shrink
+the gap on the 30 % held out (of forty equal blocks, the 3rd, 6th and 9th of every ten); the best
+one is added; repeated
 until no candidate earns its parameters, then each effect is checked again without it.
+
+Verdict: baseline_mismatch (force scale, velocity or current far outside the baseline: nothing is
+fitted), none (no effect needed, residual without structure), explained (the effects take at
+least half of the discrepancy found on the held-out part), unexplained (otherwise: where the
+residual concentrates, what it looks like, which candidates were rejected and why).
 
 Input (--measured): CSV with a header of named columns with units, at least
 time_s, displacement_m, current_cmd_A, force_N (units converted: _ms, _mm, _cm, _in, _mA, _kN,
@@ -35,12 +47,23 @@ kept), uniform or non-uniform time. Or a MATLAB .mat file with vectors named lik
 Force sign of Eq. 4.1 (positive when the damper resists positive velocity).
 
 Fields of DIR/summary.json:
-  effects            names added, in order ([] when none earned its parameters)
-  gap_before         normalized RMS force error of the baseline, sqrt(sum(F_meas-F)^2/sum F_meas^2)
+  verdict            none | explained | unexplained | baseline_mismatch
+  findings           sentences behind the verdict (numbers, where, what it looks like, rejections)
+  baseline           name, expected_gap, mismatch, mismatch_reasons, force_ratio (least-squares
+                     measured/baseline) with min_force_ratio and max_force_ratio, record ranges
+  effects            the explanation, in the order added ([] unless explained)
+  gap_before         normalized RMS force error of the baseline, sqrt(sum(F_meas-F)^2/sum F_meas^2),
+                     on the samples the fits saw (70 %), full rate
   gap_after          the same for the updated model (fractions, not %)
+  gap_validation_before, gap_validation_after   the same on the 30 % held out
   gap_reduction      1 - gap_after/gap_before
   parameters         fitted parameters of the named effects (SI units in the key names)
-  candidates         round 1: every effect with score (delta BIC), rss_reduction, gap, parameters,
+  rejected, rejected_parameters   effects fitted but not accepted as the explanation
+  residual_before, residual_after   structured_share and per signature (offset, drift, stiffness,
+                     lag, force_scale, asymmetry, low_velocity_loop, transition_shape,
+                     current_law, inertia) the share of the held-out residual power it removes
+  candidates         round 1: every effect with score (delta BIC), rss_reduction,
+                     held_out_reduction, gap, parameters, flags (parameters at a bound),
                      plausible, verdict
   rounds             every round: model so far, candidates (round 2 also alternative pairs of
                      round-1 effects), chosen ("none" ends the search), model_after
