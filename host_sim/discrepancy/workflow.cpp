@@ -356,7 +356,7 @@ void add_traces_and_regions(DiscrepancyResult& res, const DamperModel& model, co
 
 DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOptions& opt) {
   DiscrepancyResult res;
-  const DamperModel model(model_input(data, opt.smoothing_half_window_s));
+  const DamperModel model(model_input(data, opt.smoothing_half_window_s), opt.baseline);
   res.velocity_derived = model.input().velocity_derived;
   const FitData fd = make_fit_data(model, data.force_n, opt.fit_samples);
   res.fit_samples = fd.index.size();
