@@ -467,16 +467,21 @@ double dominant_frequency_hz(std::span<const double> time_s, std::span<const dou
   if (!(band > 0.0)) return 0.0;
   int state = 0;
   std::size_t crossings = 0;
-  for (const double x : displacement_m) {
-    const double y = x - mean;
+  double first_s = 0.0, last_s = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double y = displacement_m[k] - mean;
     const int s = y > band ? 1 : (y < -band ? -1 : 0);
     if (s != 0 && s != state) {
-      if (state != 0) ++crossings;
+      if (state != 0) {
+        if (crossings == 0) first_s = time_s[k];
+        last_s = time_s[k];
+        ++crossings;
+      }
       state = s;
     }
   }
-  const double duration_s = time_s.back() - time_s.front();
-  return duration_s > 0.0 ? static_cast<double>(crossings) / (2.0 * duration_s) : 0.0;
+  // Crossings are half a period apart: (crossings − 1) half periods between the first and the last.
+  return crossings >= 2 && last_s > first_s ? static_cast<double>(crossings - 1) / (2.0 * (last_s - first_s)) : 0.0;
 }
 
 ValidityRange validity_range(std::span<const MeasuredData> records, double smoothing_half_window_s) {

@@ -103,7 +103,9 @@ struct CalibrationResult {
                                            double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
 
 /// Dominant frequency of a displacement record, Hz: crossings of its mean
-/// with a hysteresis of 10 % of its half range, over twice the duration.
+/// (with a hysteresis of 10 % of its half range) are half a period apart;
+/// the half periods between the first and the last crossing over their
+/// time. 0 with fewer than two crossings.
 [[nodiscard]] double dominant_frequency_hz(std::span<const double> time_s, std::span<const double> displacement_m);
 
 }  // namespace mrd::discrepancy

@@ -71,6 +71,13 @@ void plot_record(const std::filesystem::path& png, const MeasuredData& data, con
   if (!res.ok) problems.push_back(png.filename().string() + ": " + res.reason);
 }
 
+/// Appends " text |" (a Markdown table cell).
+void cell(std::string& md, std::string_view text) {
+  md += ' ';
+  md += text;
+  md += " |";
+}
+
 std::string markdown(const CalibrationResult& r, const HeldOut& h, bool plots) {
   std::string md = "# Damper calibration\n\n";
   md += "Chosen law: **" + std::string(base_law_name(r.best().baseline.law)) + "** (" + r.choice_reason + ").\n\n";
@@ -85,18 +92,18 @@ std::string markdown(const CalibrationResult& r, const HeldOut& h, bool plots) {
           io::format_number("%.0f", f.n_eff) + ".\n\n";
   }
   md += "## Gap per record (normalized RMS of model - measured force)\n\n| record |";
-  for (const LawFit& f : r.fits) md += " " + std::string(base_law_name(f.baseline.law)) + " |";
+  for (const LawFit& f : r.fits) cell(md, base_law_name(f.baseline.law));
   md += "\n|---|";
   for (std::size_t i = 0; i < r.fits.size(); ++i) md += "---|";
   md += "\n";
   for (std::size_t i = 0; i < r.sources.size(); ++i) {
     md += "| " + r.sources[i] + " |";
-    for (const LawFit& f : r.fits) md += " " + pct(f.record_gaps[i]) + " |";
+    for (const LawFit& f : r.fits) cell(md, pct(f.record_gaps[i]));
     md += "\n";
   }
   for (std::size_t i = 0; i < h.sources.size(); ++i) {
     md += "| " + h.sources[i] + " (held out) |";
-    for (std::size_t l = 0; l < r.fits.size(); ++l) md += " " + pct(h.gaps[l][i]) + " |";
+    for (std::size_t l = 0; l < r.fits.size(); ++l) cell(md, pct(h.gaps[l][i]));
     md += "\n";
   }
   const ValidityRange& v = r.best().baseline.range;
