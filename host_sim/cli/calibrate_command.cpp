@@ -39,7 +39,6 @@ struct CalibrateCliOptions {
   std::vector<std::string> check;
   std::string out_dir;
   std::string law = "auto";
-  double smoothing_half_window_s = discrepancy::kDefaultSmoothingHalfWindow_s;
   bool no_plots = false;
 };
 
@@ -48,16 +47,11 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
   add_out_option(app, o.out_dir, "Folder for damper.toml, summary.json, report.md and plots");
   app.add_option("--law", o.law, "bingham, bouc_wen or auto (both, lower BIC)")->capture_default_str();
   app.add_option("--check", o.check, "Records not fitted: the calibrated models' gap on each is reported");
-  app.add_option("--smoothing-half-window-s", o.smoothing_half_window_s,
-                 "Half window of the quartic fit that derives velocity from displacement, s")
-      ->capture_default_str();
   app.add_flag("--no-plots", o.no_plots, "Skip the PNG plots");
 }
 
 discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
-  require_finite_at_least("--smoothing-half-window-s", o.smoothing_half_window_s, 0.0);
   discrepancy::CalibrateOptions opt;
-  opt.smoothing_half_window_s = o.smoothing_half_window_s;
   if (o.law == "bingham") {
     opt.law = discrepancy::BaseLaw::bingham;
   } else if (o.law == "bouc_wen") {

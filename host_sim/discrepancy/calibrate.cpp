@@ -567,6 +567,15 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
                         io::format_number("%.1f", c.bic) + " against " + io::format_number("%.1f", o.bic) + " for " +
                         base_law_name(o.baseline.law) + ", delta " + io::format_number("%.1f", o.bic - c.bic) + ")";
   }
+  for (const LawFit& f : res.fits) {
+    for (const ParamEstimate& q : f.params) {
+      if (q.at_bound)
+        res.notes.push_back(std::string(base_law_name(f.baseline.law)) + ": " + q.name + " = " +
+                            io::format_number("%.4g", q.value) +
+                            " ended on its search bound (not identified by these records; its sigma is not "
+                            "meaningful)");
+    }
+  }
   for (auto& f : res.fits) {
     f.baseline.range = validity_range(records, options.smoothing_half_window_s);
     f.baseline.expected_gap = *std::max_element(f.record_gaps.begin(), f.record_gaps.end());
