@@ -49,6 +49,7 @@ Command add_sim_command(CLI::App& parent);
 Command add_sweep_command(CLI::App& parent);
 Command add_study_command(CLI::App& parent);
 Command add_discrepancy_command(CLI::App& parent);
+Command add_calibrate_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_schedule_command(CLI::App& parent);
 

@@ -3,6 +3,7 @@
 
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/discrepancy/baseline_file.hpp"
 #include "host_sim/discrepancy/discrepancy_report.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "host_sim/discrepancy/workflow.hpp"
@@ -81,6 +82,7 @@ struct DiscrepancyCliOptions {
   std::string measured;
   std::string out_dir;
   std::string effects;
+  std::string baseline;
   std::size_t max_effects = 3;
   double min_delta_bic = 10.0;
   double min_improvement = 0.05;
@@ -102,6 +104,7 @@ discrepancy::DiscrepancyOptions discrepancy_options(const DiscrepancyCliOptions&
   opt.min_delta_bic = o.min_delta_bic;
   opt.min_rss_reduction = o.min_improvement;
   opt.threads = o.threads;
+  if (!o.baseline.empty()) opt.baseline = discrepancy::read_baseline_file(o.baseline).baseline;
   return opt;
 }
 
@@ -129,6 +132,7 @@ void print_summary(const discrepancy::MeasuredData& data, const discrepancy::Dis
 void add_options(CLI::App& app, DiscrepancyCliOptions& o) {
   app.add_option("--measured", o.measured, "Measured record: CSV or .mat (see below)")->required();
   add_out_option(app, o.out_dir, "Folder for summary.json, fit.csv, plots and report.md");
+  app.add_option("--baseline", o.baseline, "damper.toml from `mrd calibrate` (default: the thesis damper)");
   app.add_option("--effects", o.effects, "Catalogue to test, comma-separated (default: all)");
   app.add_option("--max-effects", o.max_effects, "Most effects to add")->capture_default_str();
   app.add_option("--min-delta-bic", o.min_delta_bic, "Smallest delta BIC that earns an effect")->capture_default_str();

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   commands.push_back(mrd::cli::add_sweep_command(app));
   commands.push_back(mrd::cli::add_study_command(app));
   commands.push_back(mrd::cli::add_discrepancy_command(app));
+  commands.push_back(mrd::cli::add_calibrate_command(app));
   commands.push_back(mrd::cli::add_synth_command(app));
   commands.push_back(mrd::cli::add_schedule_command(app));
 

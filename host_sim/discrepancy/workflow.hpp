@@ -70,7 +70,10 @@
 #include <vector>
 
 #include "host_sim/discrepancy/baseline.hpp"
+<<<<<<< HEAD
 #include "host_sim/discrepancy/baseline_check.hpp"
+=======
+>>>>>>> calibrate
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "host_sim/discrepancy/regions.hpp"
@@ -91,6 +94,8 @@ struct DiscrepancyOptions {
   /// Threads for the candidate fits; 0 = hardware concurrency.
   unsigned threads = 0;
   double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s;
+  /// The damper model the record is compared with (`mrd discrepancy --baseline`).
+  Baseline baseline = thesis_baseline();
 };
 
 /// One candidate fit in one round.

@@ -1,0 +1,111 @@
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "host_sim/cli/command.hpp"
+#include "host_sim/cli/options.hpp"
+#include "host_sim/discrepancy/calibrate.hpp"
+#include "host_sim/discrepancy/calibrate_report.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/io/usage_error.hpp"
+
+namespace mrd::cli {
+namespace {
+
+constexpr CommandHelp kCalibrateHelp{
+    "calibrate", "Fit a baseline damper model to characterization records",
+    R"(Fits the chapter-4 damper model to measured records of the user's damper, jointly over all
+records (each record's residual divided by its RMS force), and writes DIR/damper.toml for
+`mrd discrepancy --baseline`. Laws (both with the current laws of Eq. 4.2-4.3,
+value(I) = limit + (at_zero - limit) exp(-rate_per_a |I|)):
+  bingham   F = TF(v) (Y sgn v + C v), Eq. 4.1-4.4                 v_tf_m_s
+  bouc_wen  F = Y z + C v + k0 x, normalized Spencer et al. (1997)  yield_disp_m, stiffness_n_m
+--law auto fits both and keeps the lower BIC. With three or more currents the current laws are
+fitted whole; with two, rate_per_a is held at the thesis value; with one, the laws are constants.
+The coil time constants (Eq. 4.5) and the participant ratio are not identifiable from
+constant-current records: thesis values, marked identified = false.
+Standard errors: sigma^2 (J^T J)^-1 at the optimum, inflated by n/n_eff (effective sample count
+of the residual).
+
+Input (--measured, --check): CSV or .mat records as for `mrd discrepancy`.
+Files: damper.toml; summary.json (chosen_law, choice_reason, records, currents_a, notes, fits:
+law, parameters {value, sigma, fitted, at_bound}, record_gaps, expected_gap, samples,
+rss_normalized, n_eff, bic; held_out: gap per law of the --check records; validity);
+report.md; loops_<n>.png per --measured record (force-velocity and force-displacement).
+Gap: sqrt(sum (F_model - F_meas)^2 / sum F_meas^2), a fraction.)"};
+
+struct CalibrateCliOptions {
+  std::vector<std::string> measured;
+  std::vector<std::string> check;
+  std::string out_dir;
+  std::string law = "auto";
+  bool no_plots = false;
+};
+
+void add_options(CLI::App& app, CalibrateCliOptions& o) {
+  app.add_option("--measured", o.measured, "Characterization records (CSV or .mat)")->required();
+  add_out_option(app, o.out_dir, "Folder for damper.toml, summary.json, report.md and plots");
+  app.add_option("--law", o.law, "bingham, bouc_wen or auto (both, lower BIC)")->capture_default_str();
+  app.add_option("--check", o.check, "Records not fitted: the calibrated models' gap on each is reported");
+  app.add_flag("--no-plots", o.no_plots, "Skip the PNG plots");
+}
+
+discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
+  discrepancy::CalibrateOptions opt;
+  if (o.law == "bingham") {
+    opt.law = discrepancy::BaseLaw::bingham;
+  } else if (o.law == "bouc_wen") {
+    opt.law = discrepancy::BaseLaw::bouc_wen;
+  } else if (o.law != "auto") {
+    throw io::UsageError("--law: expected bingham, bouc_wen or auto, got '" + o.law + "'");
+  }
+  return opt;
+}
+
+struct Outcome {
+  discrepancy::CalibrationResult result;
+  discrepancy::HeldOut held_out;
+};
+
+void print_summary(const Outcome& out) {
+  const auto& r = out.result;
+  std::printf("%-32s", "record");
+  for (const auto& f : r.fits) std::printf("  %10s", discrepancy::base_law_name(f.baseline.law));
+  std::printf("   (gap)\n");
+  for (std::size_t i = 0; i < r.sources.size(); ++i) {
+    std::printf("%-32s", r.sources[i].c_str());
+    for (const auto& f : r.fits) std::printf("  %8.2f %%", 100.0 * f.record_gaps[i]);
+    std::printf("\n");
+  }
+  for (std::size_t i = 0; i < out.held_out.sources.size(); ++i) {
+    std::printf("%-32s", (out.held_out.sources[i] + " (check)").c_str());
+    for (std::size_t l = 0; l < r.fits.size(); ++l) std::printf("  %8.2f %%", 100.0 * out.held_out.gaps[l][i]);
+    std::printf("\n");
+  }
+  for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());
+  std::printf("chosen: %s\n", r.choice_reason.c_str());
+}
+
+void execute(const CalibrateCliOptions& o) {
+  const discrepancy::CalibrateOptions opt = calibrate_options(o);
+  std::vector<discrepancy::MeasuredData> records, checks;
+  for (const auto& p : o.measured) records.push_back(discrepancy::read_measured(p));
+  for (const auto& p : o.check) checks.push_back(discrepancy::read_measured(p));
+  compute_print_write(
+      "calibrate", o.out_dir,
+      [&] {
+        Outcome out{discrepancy::calibrate(records, opt), {}};
+        out.held_out = discrepancy::held_out_gaps(out.result, checks, opt);
+        return out;
+      },
+      print_summary,
+      [&](const std::filesystem::path& dir, const Outcome& out) {
+        return discrepancy::write_calibration_outputs(dir, records, out.result, out.held_out, opt, !o.no_plots);
+      });
+}
+
+}  // namespace
+
+Command add_calibrate_command(CLI::App& parent) { return make_command(parent, kCalibrateHelp, add_options, execute); }
+
+}  // namespace mrd::cli

@@ -1,0 +1,68 @@
+#pragma once
+/// `damper.toml`: a calibrated baseline (baseline.hpp) with its standard
+/// errors, the records it was fitted to and its validity range, written by
+/// `mrd calibrate` and read by `mrd discrepancy --baseline`.
+///
+/// <pre>
+///   [model]          law ("bingham" | "bouc_wen"), name, source_records
+///   [yield_n]        at_zero, limit, rate_per_a (1/A), each with _sigma; fitted = [...]   Eq. 4.2
+///   [viscous_ns_m]   the same for the viscous coefficient, N·s/m                           Eq. 4.3
+///   [bingham]        v_tf_m_s, v_tf_m_s_sigma                                              Eq. 4.4
+///   [bouc_wen]       yield_disp_m, stiffness_n_m, each with _sigma
+///   [coil]           tau_slow_s, tau_fast_s, weight_slow, weight_fast, identified        Eq. 4.5
+///   [participant_ratio]  Table 5.6 coefficients, flow_area_m2, volume_unit_m3, identified
+///   [validity]       current_min_a … frequency_max_hz, expected_gap
+///   [[fit]]          file, law, gap, samples (one per record and law fitted)
+/// </pre>
+/// Only the table of the model's law ([bingham] or [bouc_wen]) may be present.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "host_sim/discrepancy/baseline.hpp"
+#include "host_sim/discrepancy/calibrate.hpp"
+
+namespace mrd::discrepancy {
+
+/// Fit quality of one law on one record.
+struct RecordFit {
+  std::string file;
+  BaseLaw law = BaseLaw::bingham;
+  double gap = 0.0;  ///< normalized_rms_gap at full rate
+  std::size_t samples = 0;
+};
+
+/// Everything damper.toml holds.
+struct BaselineFile {
+  Baseline baseline;
+  BaselineSigmas sigma;
+  CurrentLawFitted yield_fitted, viscous_fitted;
+  bool coil_identified = false;
+  bool pr_identified = false;
+  std::vector<std::string> source_records;
+  std::vector<RecordFit> fits;
+};
+
+/// The file's content for a calibration: its chosen fit, and every law's
+/// per-record quality.
+[[nodiscard]] BaselineFile baseline_file_of(const CalibrationResult& r);
+
+/// TOML text of `f` (numbers written so that they read back exactly).
+[[nodiscard]] std::string baseline_toml(const BaselineFile& f);
+
+/// Parses TOML text. Errors read `origin:LINE: field: what was expected` and
+/// are thrown as io::UsageError: a syntax error, a missing or unknown table
+/// or key, a wrong type, an unknown law, a non-finite number, a negative
+/// value where the quantity is physical, a range whose minimum exceeds its
+/// maximum.
+[[nodiscard]] BaselineFile parse_baseline_toml(const std::string& text, const std::string& origin);
+
+/// Reads a damper.toml file (io::UsageError when it cannot be read or is invalid).
+[[nodiscard]] BaselineFile read_baseline_file(const std::filesystem::path& path);
+
+/// Writes baseline_toml(f) to `path` atomically.
+void write_baseline_file(const BaselineFile& f, const std::filesystem::path& path);
+
+}  // namespace mrd::discrepancy

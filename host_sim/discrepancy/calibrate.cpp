@@ -1,0 +1,586 @@
+#include "host_sim/discrepancy/calibrate.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/io/text.hpp"
+#include "host_sim/io/usage_error.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+
+/// The parameters a calibration can fit.
+enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kSlots };
+
+constexpr std::array<const char*, kSlots> kSlotName{
+    "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
+    "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m"};
+
+/// Search bounds, SI (the fit works on their logarithms).
+constexpr std::array<double, kSlots> kLower{1e-3, 1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7, 1e-2};
+constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9};
+
+double& slot_ref(Baseline& b, Slot s) {
+  switch (s) {
+    case kYa: return b.yield_n.at_zero;
+    case kYb: return b.yield_n.limit;
+    case kYc: return b.yield_n.rate_per_a;
+    case kCa: return b.viscous_ns_m.at_zero;
+    case kCb: return b.viscous_ns_m.limit;
+    case kCc: return b.viscous_ns_m.rate_per_a;
+    case kVtf: return b.v_tf_m_s;
+    case kXy: return b.yield_disp_m;
+    case kK0: return b.stiffness_n_m;
+    default: break;
+  }
+  return b.v_tf_m_s;
+}
+
+/// Which slots are free, and whether a law is a constant (one current).
+struct Layout {
+  std::vector<Slot> free;
+  bool constant_laws = false;  ///< limit tied to at_zero
+
+  Baseline apply(const Baseline& base, const double* theta) const {
+    Baseline b = base;
+    for (std::size_t j = 0; j < free.size(); ++j) slot_ref(b, free[j]) = std::exp(theta[j]);
+    if (constant_laws) {
+      b.yield_n.limit = b.yield_n.at_zero;
+      b.viscous_ns_m.limit = b.viscous_ns_m.at_zero;
+    }
+    return b;
+  }
+};
+
+/// All records' thinned samples and their normalization.
+struct JointData {
+  std::vector<ModelInput> inputs;
+  std::vector<std::span<const double>> force_n;
+  std::vector<std::vector<std::size_t>> index;
+  std::vector<double> rms_force_n;
+  std::size_t total = 0;
+
+  /// (F_model − F_meas)/RMS at every fit sample of every record.
+  bool residuals(const Baseline& b, double* out) const {
+    ModelWorkspace ws;
+    std::size_t at = 0;
+    for (std::size_t r = 0; r < inputs.size(); ++r) {
+      const DamperModel m(inputs[r], b);
+      std::span<double> dst(out + at, index[r].size());
+      m.simulate_at(EffectSet{}, {}, ws, index[r], dst);
+      const double inv = 1.0 / rms_force_n[r];
+      for (std::size_t i = 0; i < index[r].size(); ++i) {
+        dst[i] = (dst[i] - force_n[r][index[r][i]]) * inv;
+        if (!std::isfinite(dst[i])) return false;
+      }
+      at += index[r].size();
+    }
+    return true;
+  }
+};
+
+class JointCost final : public ceres::CostFunction {
+ public:
+  JointCost(const JointData& data, const Layout& layout, const Baseline& base)
+      : data_(data), layout_(layout), base_(base) {
+    set_num_residuals(static_cast<int>(data.total));
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(layout.free.size()));
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* theta = parameters[0];
+    const std::size_t k = layout_.free.size();
+    const std::size_t m = data_.total;
+    if (!data_.residuals(layout_.apply(base_, theta), residuals)) return false;
+    if (jacobians == nullptr || jacobians[0] == nullptr) return true;
+    std::vector<double> tp(theta, theta + k);
+    std::vector<double> rp(m);
+    for (std::size_t j = 0; j < k; ++j) {
+      const double h = tp[j] + kStep > std::log(kUpper[layout_.free[j]]) ? -kStep : kStep;
+      tp[j] = theta[j] + h;
+      if (!data_.residuals(layout_.apply(base_, tp.data()), rp.data())) return false;
+      tp[j] = theta[j];
+      for (std::size_t r = 0; r < m; ++r) jacobians[0][r * k + j] = (rp[r] - residuals[r]) / h;
+    }
+    return true;
+  }
+
+ private:
+  static constexpr double kStep = 1e-6;  ///< in ln(value): a relative step
+  const JointData& data_;
+  const Layout& layout_;
+  Baseline base_;
+};
+
+struct LocalResult {
+  std::vector<double> theta;
+  double cost = 0.0;
+  int iterations = 0;
+  bool converged = false;
+};
+
+LocalResult local_fit(const JointData& data, const Layout& layout, const Baseline& base, std::vector<double> theta) {
+  LocalResult out;
+  out.theta = std::move(theta);
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  problem.AddResidualBlock(new JointCost(data, layout, base), nullptr, out.theta.data());
+  for (std::size_t j = 0; j < layout.free.size(); ++j) {
+    problem.SetParameterLowerBound(out.theta.data(), static_cast<int>(j), std::log(kLower[layout.free[j]]));
+    problem.SetParameterUpperBound(out.theta.data(), static_cast<int>(j), std::log(kUpper[layout.free[j]]));
+  }
+  ceres::Solver::Options so;
+  so.minimizer_type = ceres::TRUST_REGION;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = 100;
+  so.function_tolerance = 1e-10;
+  so.gradient_tolerance = 1e-12;
+  so.parameter_tolerance = 1e-9;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  so.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  out.cost = summary.final_cost;
+  out.iterations = static_cast<int>(summary.iterations.size());
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  return out;
+}
+
+double sum_squares(std::span<const double> r) {
+  double s = 0.0;
+  for (const double v : r) s += v * v;
+  return s;
+}
+
+/// Least-squares solution of A p = y (columns of A given), by the normal equations.
+std::vector<double> least_squares(const std::vector<std::vector<double>>& cols, const std::vector<double>& y) {
+  const std::size_t k = cols.size();
+  Eigen::MatrixXd a(y.size(), k);
+  for (std::size_t j = 0; j < k; ++j)
+    for (std::size_t i = 0; i < y.size(); ++i) a(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = cols[j][i];
+  const Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size()));
+  const Eigen::VectorXd p = a.colPivHouseholderQr().solve(yy);
+  return {p.data(), p.data() + k};
+}
+
+/// Per current: Y, C (and k) of F ≈ Y sgn v + C v (+ k x) on the samples
+/// above 30 % of their record's peak velocity.
+struct CurrentPoint {
+  double current_a = 0.0;
+  double yield_n = 0.0;
+  double viscous_ns_m = 0.0;
+  double stiffness_n_m = 0.0;
+};
+
+long current_key(double current_a) { return std::lround(current_a * 1000.0); }
+
+std::vector<CurrentPoint> regress_per_current(const JointData& d, bool with_stiffness) {
+  std::map<long, std::array<std::vector<double>, 4>> groups;  // sgn v, v, x, F
+  for (std::size_t r = 0; r < d.inputs.size(); ++r) {
+    const ModelInput& in = d.inputs[r];
+    double vmax = 0.0;
+    for (const std::size_t k : d.index[r]) vmax = std::max(vmax, std::fabs(in.vel_m_s[k]));
+    for (const std::size_t k : d.index[r]) {
+      const double v = in.vel_m_s[k];
+      if (std::fabs(v) < 0.3 * vmax) continue;
+      auto& g = groups[current_key(in.current_cmd_a[k])];
+      g[0].push_back(v > 0.0 ? 1.0 : -1.0);
+      g[1].push_back(v);
+      g[2].push_back(in.disp_m[k]);
+      g[3].push_back(d.force_n[r][k]);
+    }
+  }
+  std::vector<CurrentPoint> pts;
+  for (const auto& [key, g] : groups) {
+    if (g[3].size() < 10) continue;
+    std::vector<std::vector<double>> cols{g[0], g[1]};
+    if (with_stiffness) cols.push_back(g[2]);
+    const std::vector<double> p = least_squares(cols, g[3]);
+    pts.push_back({static_cast<double>(key) / 1000.0, p[0], p[1], with_stiffness ? p[2] : 0.0});
+  }
+  return pts;
+}
+
+/// Current law through points (I_j, value_j): for three or more currents the
+/// best of a grid of rates with at_zero and limit by least squares; for two,
+/// `rate_fixed`; for one, a constant.
+CurrentLaw law_through(const std::vector<CurrentPoint>& pts, double CurrentPoint::*field, double rate_fixed,
+                       double floor) {
+  std::vector<double> x, y;
+  for (const auto& p : pts) {
+    x.push_back(std::fabs(p.current_a));
+    y.push_back(std::max(p.*field, floor));
+  }
+  if (y.size() == 1) return {y[0], y[0], rate_fixed};
+  const auto fit_rate = [&](double rate, double& sse) {
+    std::vector<double> e(x.size()), one_minus(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      e[i] = std::exp(-rate * x[i]);
+      one_minus[i] = 1.0 - e[i];
+    }
+    const std::vector<double> p = least_squares({e, one_minus}, y);
+    CurrentLaw law{std::max(p[0], floor), std::max(p[1], floor), rate};
+    sse = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) sse += std::pow(law.at(x[i]) - y[i], 2);
+    return law;
+  };
+  double best_sse = 0.0;
+  CurrentLaw best = fit_rate(rate_fixed, best_sse);
+  if (y.size() >= 3) {
+    for (const double rate : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0}) {
+      double sse = 0.0;
+      const CurrentLaw law = fit_rate(rate, sse);
+      if (sse < best_sse) {
+        best_sse = sse;
+        best = law;
+      }
+    }
+  }
+  return best;
+}
+
+double clamp_slot(double v, Slot s) { return std::clamp(v, kLower[s] * 1.01, kUpper[s] / 1.01); }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Prepared {
+  JointData data;
+  std::vector<double> vmax_m_s;      ///< per record
+  std::vector<double> half_range_m;  ///< per record
+  std::vector<double> currents_a;    ///< distinct currents with ≥ 2 % of the samples
+};
+
+Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& opt) {
+  Prepared p;
+  std::map<long, std::size_t> count;
+  std::size_t all = 0;
+  for (const MeasuredData& rec : records) {
+    ModelInput in = model_input(rec, opt.smoothing_half_window_s);
+    const std::size_t n = rec.size();
+    const std::size_t stride = std::max<std::size_t>(1, opt.samples_per_record > 0 ? n / opt.samples_per_record : 1);
+    std::vector<std::size_t> idx;
+    for (std::size_t k = 0; k < n; k += stride) idx.push_back(k);
+    double ss = 0.0, vmax = 0.0;
+    for (const double f : rec.force_n) ss += f * f;
+    for (const double v : in.vel_m_s) vmax = std::max(vmax, std::fabs(v));
+    const auto [lo, hi] = std::minmax_element(in.disp_m.begin(), in.disp_m.end());
+    for (const double c : rec.current_cmd_a) ++count[current_key(c)];
+    all += n;
+    p.data.rms_force_n.push_back(ss > 0.0 ? std::sqrt(ss / static_cast<double>(n)) : 1.0);
+    p.data.total += idx.size();
+    p.data.index.push_back(std::move(idx));
+    p.data.force_n.push_back(rec.force_n);
+    p.vmax_m_s.push_back(vmax);
+    p.half_range_m.push_back(n > 0 ? 0.5 * (*hi - *lo) : 0.0);
+    p.data.inputs.push_back(std::move(in));
+  }
+  for (const auto& [key, c] : count)
+    if (static_cast<double>(c) >= 0.02 * static_cast<double>(all)) p.currents_a.push_back(static_cast<double>(key) / 1000.0);
+  return p;
+}
+
+/// Standard errors of the free parameters (in ln value), from σ² (JᵀJ)⁻¹ n/n_eff.
+std::vector<double> log_sigmas(const JointData& d, const Layout& layout, const Baseline& base,
+                               const std::vector<double>& theta, double rss, double n_eff) {
+  const std::size_t k = theta.size();
+  const std::size_t m = d.total;
+  std::vector<double> res(m), jac(m * k);
+  JointCost cost(d, layout, base);
+  const double* params[] = {theta.data()};
+  double* jacs[] = {jac.data()};
+  std::vector<double> sig(k, 0.0);
+  if (m <= k || !cost.Evaluate(params, res.data(), jacs)) return sig;
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> j(
+      jac.data(), static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(k));
+  const Eigen::MatrixXd jtj = j.transpose() * j;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jtj, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::VectorXd s = svd.singularValues();
+  Eigen::VectorXd inv_s = Eigen::VectorXd::Zero(s.size());
+  for (Eigen::Index i = 0; i < s.size(); ++i)
+    if (s(i) > 1e-12 * s(0)) inv_s(i) = 1.0 / s(i);
+  const Eigen::MatrixXd cov_unit = svd.matrixV() * inv_s.asDiagonal() * svd.matrixU().transpose();
+  const double sigma2 = rss / static_cast<double>(m - k);
+  const double inflation = static_cast<double>(m) / std::max(n_eff, 1.0);
+  for (std::size_t i = 0; i < k; ++i) {
+    const double c = cov_unit(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) * sigma2 * inflation;
+    sig[i] = c > 0.0 ? std::sqrt(c) : 0.0;
+  }
+  return sig;
+}
+
+LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
+  const JointData& d = p.data;
+  const std::size_t n_currents = p.currents_a.size();
+  const Baseline thesis = thesis_baseline();
+
+  Layout layout;
+  layout.constant_laws = n_currents <= 1;
+  LawFit fit;
+  fit.yield_fitted = {true, n_currents >= 2, n_currents >= 3};
+  fit.viscous_fitted = fit.yield_fitted;
+  layout.free = {kYa};
+  if (fit.yield_fitted.limit) layout.free.push_back(kYb);
+  if (fit.yield_fitted.rate_per_a) layout.free.push_back(kYc);
+  layout.free.push_back(kCa);
+  if (fit.viscous_fitted.limit) layout.free.push_back(kCb);
+  if (fit.viscous_fitted.rate_per_a) layout.free.push_back(kCc);
+  if (law == BaseLaw::bingham) {
+    layout.free.push_back(kVtf);
+  } else {
+    layout.free.push_back(kXy);
+    layout.free.push_back(kK0);
+  }
+
+  // Base: the thesis's coil and participant ratio (not identifiable here),
+  // current laws from the per-current regression.
+  Baseline base = thesis;
+  base.name = opt.name;
+  base.law = law;
+  base.range = {};
+  const std::vector<CurrentPoint> pts = regress_per_current(d, law == BaseLaw::bouc_wen);
+  double y_max = 1.0, c_max = 1.0;
+  for (const auto& q : pts) {
+    y_max = std::max(y_max, std::fabs(q.yield_n));
+    c_max = std::max(c_max, std::fabs(q.viscous_ns_m));
+  }
+  if (!pts.empty()) {
+    base.yield_n = law_through(pts, &CurrentPoint::yield_n, thesis.yield_n.rate_per_a, 1e-2 * y_max);
+    base.viscous_ns_m = law_through(pts, &CurrentPoint::viscous_ns_m, thesis.viscous_ns_m.rate_per_a, 1e-2 * c_max);
+  }
+  const double vmax = median(p.vmax_m_s);
+  const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
+  std::vector<double> ks;
+  for (const auto& q : pts)
+    if (q.stiffness_n_m > 0.0) ks.push_back(q.stiffness_n_m);
+  const double k_start = ks.empty() ? 1e-2 * y_max / std::max(amp_min, 1e-6) : median(ks);
+
+  // Starts: the transition velocity or the yield displacement on a grid.
+  std::vector<Baseline> starts;
+  for (const double f : {0.02, 0.1, 0.3}) {
+    Baseline s = base;
+    if (law == BaseLaw::bingham) {
+      s.v_tf_m_s = f * vmax;
+    } else {
+      s.yield_disp_m = f * amp_min;
+      s.stiffness_n_m = k_start;
+    }
+    starts.push_back(s);
+  }
+
+  LocalResult best;
+  bool have = false;
+  for (const Baseline& s : starts) {
+    std::vector<double> theta;
+    Baseline sc = s;
+    for (const Slot slot : layout.free) theta.push_back(std::log(clamp_slot(slot_ref(sc, slot), slot)));
+    const LocalResult r = local_fit(d, layout, base, std::move(theta));
+    if (!have || r.cost < best.cost) {
+      best = r;
+      have = true;
+    }
+  }
+
+  fit.baseline = layout.apply(base, best.theta.data());
+  fit.iterations = best.iterations;
+  fit.converged = best.converged;
+  fit.samples = d.total;
+
+  std::vector<double> res(d.total);
+  d.residuals(fit.baseline, res.data());
+  fit.rss = sum_squares(res);
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < d.inputs.size(); ++r) {
+    fit.n_eff += effective_sample_count(std::span<const double>(res).subspan(at, d.index[r].size()));
+    at += d.index[r].size();
+  }
+
+  const std::vector<double> sl = log_sigmas(d, layout, base, best.theta, fit.rss, fit.n_eff);
+  std::array<double, kSlots> sigma{};
+  std::array<bool, kSlots> fitted{}, at_bound{};
+  for (std::size_t j = 0; j < layout.free.size(); ++j) {
+    const Slot s = layout.free[j];
+    const double v = std::exp(best.theta[j]);
+    sigma[s] = v * sl[j];
+    fitted[s] = true;
+    at_bound[s] = best.theta[j] <= std::log(kLower[s]) + 1e-3 || best.theta[j] >= std::log(kUpper[s]) - 1e-3;
+  }
+  if (layout.constant_laws) {
+    sigma[kYb] = sigma[kYa];
+    sigma[kCb] = sigma[kCa];
+  }
+  fit.sigma.yield_n = {sigma[kYa], sigma[kYb], sigma[kYc]};
+  fit.sigma.viscous_ns_m = {sigma[kCa], sigma[kCb], sigma[kCc]};
+  fit.sigma.v_tf_m_s = sigma[kVtf];
+  fit.sigma.yield_disp_m = sigma[kXy];
+  fit.sigma.stiffness_n_m = sigma[kK0];
+
+  std::vector<Slot> shown{kYa, kYb, kYc, kCa, kCb, kCc};
+  if (law == BaseLaw::bingham) {
+    shown.push_back(kVtf);
+  } else {
+    shown.push_back(kXy);
+    shown.push_back(kK0);
+  }
+  for (const Slot s : shown)
+    fit.params.push_back({kSlotName[s], slot_ref(fit.baseline, s), sigma[s], fitted[s], at_bound[s]});
+  return fit;
+}
+
+}  // namespace
+
+std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const MeasuredData> records,
+                                  double smoothing_half_window_s) {
+  std::vector<double> gaps;
+  ModelWorkspace ws;
+  std::vector<double> force;
+  for (const MeasuredData& rec : records) {
+    const DamperModel m(model_input(rec, smoothing_half_window_s), baseline);
+    m.simulate(EffectSet{}, {}, ws, force);
+    gaps.push_back(normalized_rms_gap(rec.force_n, force));
+  }
+  return gaps;
+}
+
+double dominant_frequency_hz(std::span<const double> time_s, std::span<const double> displacement_m) {
+  const std::size_t n = displacement_m.size();
+  if (n < 3 || time_s.size() != n) return 0.0;
+  double mean = 0.0;
+  for (const double x : displacement_m) mean += x;
+  mean /= static_cast<double>(n);
+  const auto [lo, hi] = std::minmax_element(displacement_m.begin(), displacement_m.end());
+  const double band = 0.1 * 0.5 * (*hi - *lo);
+  if (!(band > 0.0)) return 0.0;
+  int state = 0;
+  std::size_t crossings = 0;
+  double first_s = 0.0, last_s = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double y = displacement_m[k] - mean;
+    const int s = y > band ? 1 : (y < -band ? -1 : 0);
+    if (s != 0 && s != state) {
+      if (state != 0) {
+        if (crossings == 0) first_s = time_s[k];
+        last_s = time_s[k];
+        ++crossings;
+      }
+      state = s;
+    }
+  }
+  // Crossings are half a period apart: (crossings − 1) half periods between the first and the last.
+  return crossings >= 2 && last_s > first_s ? static_cast<double>(crossings - 1) / (2.0 * (last_s - first_s)) : 0.0;
+}
+
+ValidityRange validity_range(std::span<const MeasuredData> records, double smoothing_half_window_s) {
+  ValidityRange v;
+  bool first = true;
+  for (const MeasuredData& rec : records) {
+    if (rec.size() == 0) continue;
+    const ModelInput in = model_input(rec, smoothing_half_window_s);
+    const auto [ilo, ihi] = std::minmax_element(rec.current_cmd_a.begin(), rec.current_cmd_a.end());
+    const auto [xlo, xhi] = std::minmax_element(in.disp_m.begin(), in.disp_m.end());
+    double vmax = 0.0, fmax = 0.0;
+    for (const double x : in.vel_m_s) vmax = std::max(vmax, std::fabs(x));
+    for (const double f : rec.force_n) fmax = std::max(fmax, std::fabs(f));
+    const double amp = 0.5 * (*xhi - *xlo);
+    const double freq = dominant_frequency_hz(rec.time_s, in.disp_m);
+    if (first) {
+      v.current_min_a = *ilo;
+      v.current_max_a = *ihi;
+      v.amplitude_min_m = v.amplitude_max_m = amp;
+      v.frequency_min_hz = v.frequency_max_hz = freq;
+      first = false;
+    }
+    v.current_min_a = std::min(v.current_min_a, *ilo);
+    v.current_max_a = std::max(v.current_max_a, *ihi);
+    v.velocity_max_m_s = std::max(v.velocity_max_m_s, vmax);
+    v.force_peak_n = std::max(v.force_peak_n, fmax);
+    v.amplitude_min_m = std::min(v.amplitude_min_m, amp);
+    v.amplitude_max_m = std::max(v.amplitude_max_m, amp);
+    v.frequency_min_hz = std::min(v.frequency_min_hz, freq);
+    v.frequency_max_hz = std::max(v.frequency_max_hz, freq);
+  }
+  return v;
+}
+
+CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options) {
+  if (records.empty()) throw io::UsageError("calibrate: expected at least one measured record");
+  CalibrationResult res;
+  const Prepared p = prepare(records, options);
+  res.currents_a = p.currents_a;
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    res.sources.push_back(records[r].source);
+    res.record_samples.push_back(p.data.index[r].size());
+  }
+  if (p.currents_a.size() <= 1) {
+    res.notes.push_back("one current in the records: yield_n and viscous_ns_m are constants (limit = at_zero), "
+                        "rate_per_a held at the thesis value");
+  } else if (p.currents_a.size() == 2) {
+    res.notes.push_back("two currents in the records: rate_per_a held at the thesis value (Table 4.1)");
+  }
+  res.notes.push_back("coil (Eq. 4.5) and participant ratio (Eq. 5.6-5.11): thesis values, assumed (constant-current "
+                      "records do not identify them)");
+
+  std::vector<BaseLaw> laws;
+  if (options.law) {
+    laws.push_back(*options.law);
+  } else {
+    laws = {BaseLaw::bingham, BaseLaw::bouc_wen};
+  }
+  for (const BaseLaw law : laws) {
+    LawFit f = fit_law(p, law, options);
+    f.record_gaps = baseline_gaps(f.baseline, records, options.smoothing_half_window_s);
+    res.fits.push_back(std::move(f));
+  }
+
+  // BIC with a common effective sample count (the smaller of the laws'), so
+  // that the laws are judged on the same evidence.
+  double n_eff = res.fits.front().n_eff;
+  for (const auto& f : res.fits) n_eff = std::min(n_eff, f.n_eff);
+  for (auto& f : res.fits) {
+    std::size_t k = 0;
+    for (const auto& q : f.params) k += q.fitted ? 1 : 0;
+    f.bic = bic(f.rss, f.samples, n_eff, k);
+  }
+  res.chosen = 0;
+  for (std::size_t i = 1; i < res.fits.size(); ++i)
+    if (res.fits[i].bic < res.fits[res.chosen].bic) res.chosen = i;
+  if (res.fits.size() == 1) {
+    res.choice_reason = std::string("law given: ") + base_law_name(res.fits[0].baseline.law);
+  } else {
+    const LawFit& c = res.fits[res.chosen];
+    const LawFit& o = res.fits[1 - res.chosen];
+    res.choice_reason = std::string(base_law_name(c.baseline.law)) + ": lower BIC (" +
+                        io::format_number("%.1f", c.bic) + " against " + io::format_number("%.1f", o.bic) + " for " +
+                        base_law_name(o.baseline.law) + ", delta " + io::format_number("%.1f", o.bic - c.bic) + ")";
+  }
+  for (const LawFit& f : res.fits) {
+    for (const ParamEstimate& q : f.params) {
+      if (q.at_bound)
+        res.notes.push_back(std::string(base_law_name(f.baseline.law)) + ": " + q.name + " = " +
+                            io::format_number("%.4g", q.value) +
+                            " ended on its search bound (not identified by these records; its sigma is not "
+                            "meaningful)");
+    }
+  }
+  for (auto& f : res.fits) {
+    f.baseline.range = validity_range(records, options.smoothing_half_window_s);
+    f.baseline.expected_gap = *std::max_element(f.record_gaps.begin(), f.record_gaps.end());
+  }
+  return res;
+}
+
+}  // namespace mrd::discrepancy

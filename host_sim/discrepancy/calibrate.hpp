@@ -1,0 +1,111 @@
+#pragma once
+/// Calibrating a baseline (baseline.hpp) to the user's damper from
+/// characterization records: a joint bounded least-squares fit of the
+/// Bingham model (Eq. 4.1–4.4) and of the normalized Bouc–Wen model with the
+/// exponential current laws of Eq. 4.2–4.3, standard errors from the
+/// Jacobian, the choice between the two by BIC, and the validity range the
+/// records cover.
+///
+/// Joint fit: every record's residual (F_model − F_meas) is divided by that
+/// record's RMS force, so that records weigh alike whatever their force
+/// level; each record is thinned to about `samples_per_record` samples (as
+/// make_fit_data). Positive parameters are fitted as logarithms (Ceres LM,
+/// forward differences), from several starts built from a linear regression
+/// F ≈ Y sgn v + C v (+ k x) per current.
+///
+/// What constant-current records identify: the current laws from the spread
+/// of the currents (three or more currents: at_zero, limit and rate_per_a;
+/// two: rate_per_a fixed at the thesis value; one: a constant value). The
+/// coil time constants (Eq. 4.5) and the participant ratio (Eq. 5.6–5.11)
+/// are not identifiable and keep the thesis values.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "host_sim/discrepancy/baseline.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+
+namespace mrd::discrepancy {
+
+/// One parameter of a calibrated baseline.
+struct ParamEstimate {
+  std::string name;    ///< e.g. "yield_n.at_zero", "stiffness_n_m"
+  double value = 0.0;  ///< physical, SI
+  double sigma = 0.0;  ///< standard error, SI; 0 when not fitted
+  bool fitted = false;
+  bool at_bound = false;  ///< the fit ended on its search bound
+};
+
+/// Standard errors of a baseline's parameters, SI (0 = not fitted).
+struct BaselineSigmas {
+  CurrentLaw yield_n{0.0, 0.0, 0.0};
+  CurrentLaw viscous_ns_m{0.0, 0.0, 0.0};
+  double v_tf_m_s = 0.0;
+  double yield_disp_m = 0.0;
+  double stiffness_n_m = 0.0;
+};
+
+/// Which parameters of the current laws were fitted.
+struct CurrentLawFitted {
+  bool at_zero = true;
+  bool limit = true;
+  bool rate_per_a = true;
+};
+
+/// The fit of one law to all records.
+struct LawFit {
+  Baseline baseline;
+  BaselineSigmas sigma;
+  CurrentLawFitted yield_fitted, viscous_fitted;
+  std::vector<ParamEstimate> params;  ///< every parameter of the law, fitted or held
+  std::vector<double> record_gaps;    ///< normalized_rms_gap per record, full rate
+  std::size_t samples = 0;            ///< residuals in the joint fit
+  double rss = 0.0;                   ///< Σ of the normalized residuals squared (dimensionless)
+  double n_eff = 0.0;                 ///< Σ over records of effective_sample_count(residual)
+  double bic = 0.0;                   ///< with the n_eff common to the laws compared
+  int iterations = 0;
+  bool converged = false;
+};
+
+struct CalibrateOptions {
+  std::optional<BaseLaw> law;  ///< nullopt: fit both, choose the lower BIC
+  std::size_t samples_per_record = 4000;
+  double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s;
+  std::string name = "calibrated";  ///< Baseline::name of the result
+};
+
+struct CalibrationResult {
+  std::vector<LawFit> fits;  ///< one per law fitted (bingham first)
+  std::size_t chosen = 0;    ///< index into fits
+  std::string choice_reason;
+  std::vector<std::string> sources;            ///< record names
+  std::vector<std::size_t> record_samples;     ///< samples per record in the fit
+  std::vector<double> currents_a;              ///< distinct commanded currents found
+  std::vector<std::string> notes;              ///< what was held and why
+  [[nodiscard]] const LawFit& best() const { return fits.at(chosen); }
+};
+
+/// Fits the baseline to `records` jointly. The chosen fit's baseline carries
+/// the validity range of the records and expected_gap = its largest
+/// per-record gap. Throws io::UsageError when there is no record.
+[[nodiscard]] CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options = {});
+
+/// normalized_rms_gap of `baseline` on each record at full rate.
+[[nodiscard]] std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const MeasuredData> records,
+                                                double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
+
+/// Currents (min/max of current_cmd), largest |v| (of model_input), largest
+/// |F|, displacement half ranges and dominant frequencies covered by `records`.
+[[nodiscard]] ValidityRange validity_range(std::span<const MeasuredData> records,
+                                           double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
+
+/// Dominant frequency of a displacement record, Hz: crossings of its mean
+/// (with a hysteresis of 10 % of its half range) are half a period apart;
+/// the half periods between the first and the last crossing over their
+/// time. 0 with fewer than two crossings.
+[[nodiscard]] double dominant_frequency_hz(std::span<const double> time_s, std::span<const double> displacement_m);
+
+}  // namespace mrd::discrepancy

@@ -1,0 +1,176 @@
+#include "host_sim/discrepancy/calibrate_report.hpp"
+
+#include <algorithm>
+
+#include "host_sim/discrepancy/baseline_file.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/io/text.hpp"
+#include "host_sim/report/output_dir.hpp"
+#include "host_sim/report/plot.hpp"
+#include "host_sim/report/summary_json.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+
+using nlohmann::json;
+
+std::vector<double> thin(std::span<const double> v, std::size_t stride, double scale = 1.0) {
+  std::vector<double> out;
+  out.reserve(v.size() / stride + 1);
+  for (std::size_t k = 0; k < v.size(); k += stride) out.push_back(v[k] * scale);
+  return out;
+}
+
+std::string pct(double f) { return io::format_number("%.2f %%", 100.0 * f); }
+std::string g4(double v) { return io::format_number("%.4g", v); }
+
+json fit_json(const LawFit& f, const CalibrationResult& r) {
+  json params = json::object();
+  for (const ParamEstimate& p : f.params)
+    params[p.name] = {{"value", p.value}, {"sigma", p.sigma}, {"fitted", p.fitted}, {"at_bound", p.at_bound}};
+  json gaps = json::array();
+  for (std::size_t i = 0; i < r.sources.size(); ++i) gaps.push_back({{"file", r.sources[i]}, {"gap", f.record_gaps[i]}});
+  return {{"law", base_law_name(f.baseline.law)},
+          {"parameters", params},
+          {"record_gaps", gaps},
+          {"expected_gap", f.baseline.expected_gap},
+          {"samples", f.samples},
+          {"rss_normalized", f.rss},
+          {"n_eff", f.n_eff},
+          {"bic", f.bic},
+          {"iterations", f.iterations},
+          {"converged", f.converged}};
+}
+
+/// loops_<n>.png: measured and calibrated force against velocity, per law.
+void plot_record(const std::filesystem::path& png, const MeasuredData& data, const CalibrationResult& r,
+                 const CalibrateOptions& options, std::vector<std::string>& problems) {
+  const ModelInput in = model_input(data, options.smoothing_half_window_s);
+  const std::size_t ls = std::max<std::size_t>(1, data.size() / 8000);
+  const auto v_mm_s = thin(in.vel_m_s, ls, 1e3);
+  const auto x_mm = thin(in.disp_m, ls, 1e3);
+  report::MultiPlot mp;
+  mp.title = data.source + ": measured and calibrated force";
+  mp.columns = 2;
+  mp.width_px = 1400;
+  mp.height_px = 650;
+  report::PlotSpec fv{"force - velocity", "velocity [mm/s]", "force [kN]", {{"measured", v_mm_s, thin(data.force_n, ls, 1e-3)}}};
+  report::PlotSpec fx{"force - displacement", "displacement [mm]", "force [kN]", {{"measured", x_mm, thin(data.force_n, ls, 1e-3)}}};
+  ModelWorkspace ws;
+  std::vector<double> force;
+  for (const LawFit& f : r.fits) {
+    const DamperModel m(in, f.baseline);
+    m.simulate(EffectSet{}, {}, ws, force);
+    const std::string label = base_law_name(f.baseline.law);
+    fv.series.push_back({label, v_mm_s, thin(force, ls, 1e-3)});
+    fx.series.push_back({label, x_mm, thin(force, ls, 1e-3)});
+  }
+  mp.panels = {fv, fx};
+  const report::PlotResult res = report::plot_png(mp, png);
+  if (!res.ok) problems.push_back(png.filename().string() + ": " + res.reason);
+}
+
+/// Appends " text |" (a Markdown table cell).
+void cell(std::string& md, std::string_view text) {
+  md += ' ';
+  md += text;
+  md += " |";
+}
+
+std::string markdown(const CalibrationResult& r, const HeldOut& h, bool plots) {
+  std::string md = "# Damper calibration\n\n";
+  md += "Chosen law: **" + std::string(base_law_name(r.best().baseline.law)) + "** (" + r.choice_reason + ").\n\n";
+  for (const std::string& n : r.notes) md += "- " + n + "\n";
+  md += "\n## Parameters (value ± standard error)\n\n";
+  for (const LawFit& f : r.fits) {
+    md += "### " + std::string(base_law_name(f.baseline.law)) + "\n\n| parameter | value | sigma | |\n|---|---|---|---|\n";
+    for (const ParamEstimate& p : f.params)
+      md += "| " + p.name + " | " + g4(p.value) + " | " + (p.fitted ? g4(p.sigma) : "-") + " | " +
+            (p.fitted ? (p.at_bound ? "at its search bound" : "") : "held") + " |\n";
+    md += "\nBIC " + io::format_number("%.1f", f.bic) + ", " + std::to_string(f.samples) + " samples, n_eff " +
+          io::format_number("%.0f", f.n_eff) + ".\n\n";
+  }
+  md += "## Gap per record (normalized RMS of model - measured force)\n\n| record |";
+  for (const LawFit& f : r.fits) cell(md, base_law_name(f.baseline.law));
+  md += "\n|---|";
+  for (std::size_t i = 0; i < r.fits.size(); ++i) md += "---|";
+  md += "\n";
+  for (std::size_t i = 0; i < r.sources.size(); ++i) {
+    md += "| " + r.sources[i] + " |";
+    for (const LawFit& f : r.fits) cell(md, pct(f.record_gaps[i]));
+    md += "\n";
+  }
+  for (std::size_t i = 0; i < h.sources.size(); ++i) {
+    md += "| " + h.sources[i] + " (held out) |";
+    for (std::size_t l = 0; l < r.fits.size(); ++l) cell(md, pct(h.gaps[l][i]));
+    md += "\n";
+  }
+  const ValidityRange& v = r.best().baseline.range;
+  md += "\n## Validity range\n\ncurrent " + g4(v.current_min_a) + "-" + g4(v.current_max_a) + " A, |v| up to " +
+        g4(v.velocity_max_m_s) + " m/s, |F| up to " + g4(v.force_peak_n) + " N, half range " + g4(v.amplitude_min_m) +
+        "-" + g4(v.amplitude_max_m) + " m, frequency " + g4(v.frequency_min_hz) + "-" + g4(v.frequency_max_hz) +
+        " Hz; expected gap " + pct(r.best().baseline.expected_gap) + ".\n";
+  if (plots) {
+    md += "\n## Loops\n\n";
+    for (std::size_t i = 0; i < r.sources.size(); ++i)
+      md += "![" + r.sources[i] + "](loops_" + std::to_string(i + 1) + ".png)\n";
+  }
+  return md;
+}
+
+}  // namespace
+
+HeldOut held_out_gaps(const CalibrationResult& r, std::span<const MeasuredData> records,
+                      const CalibrateOptions& options) {
+  HeldOut h;
+  for (const MeasuredData& d : records) h.sources.push_back(d.source);
+  for (const LawFit& f : r.fits) h.gaps.push_back(baseline_gaps(f.baseline, records, options.smoothing_half_window_s));
+  return h;
+}
+
+json calibration_json(const CalibrationResult& r, const HeldOut& h) {
+  json fits = json::array();
+  for (const LawFit& f : r.fits) fits.push_back(fit_json(f, r));
+  json held = json::array();
+  for (std::size_t i = 0; i < h.sources.size(); ++i) {
+    json g = json::object();
+    for (std::size_t l = 0; l < r.fits.size(); ++l) g[base_law_name(r.fits[l].baseline.law)] = h.gaps[l][i];
+    held.push_back({{"file", h.sources[i]}, {"gap", g}});
+  }
+  const ValidityRange& v = r.best().baseline.range;
+  return {{"chosen_law", base_law_name(r.best().baseline.law)},
+          {"choice_reason", r.choice_reason},
+          {"records", r.sources},
+          {"currents_a", r.currents_a},
+          {"notes", r.notes},
+          {"fits", fits},
+          {"held_out", held},
+          {"validity",
+           {{"current_min_a", v.current_min_a},
+            {"current_max_a", v.current_max_a},
+            {"velocity_max_m_s", v.velocity_max_m_s},
+            {"force_peak_n", v.force_peak_n},
+            {"amplitude_min_m", v.amplitude_min_m},
+            {"amplitude_max_m", v.amplitude_max_m},
+            {"frequency_min_hz", v.frequency_min_hz},
+            {"frequency_max_hz", v.frequency_max_hz},
+            {"expected_gap", r.best().baseline.expected_gap}}}};
+}
+
+std::vector<std::string> write_calibration_outputs(const std::filesystem::path& dir,
+                                                   std::span<const MeasuredData> records, const CalibrationResult& r,
+                                                   const HeldOut& held_out, const CalibrateOptions& options,
+                                                   bool plots) {
+  std::vector<std::string> problems;
+  write_baseline_file(baseline_file_of(r), dir / "damper.toml");
+  if (plots) {
+    for (std::size_t i = 0; i < records.size(); ++i)
+      plot_record(dir / ("loops_" + std::to_string(i + 1) + ".png"), records[i], r, options, problems);
+  }
+  report::write_file_atomically(dir / "report.md", markdown(r, held_out, plots));
+  report::write_summary_json(dir, calibration_json(r, held_out));
+  return problems;
+}
+
+}  // namespace mrd::discrepancy

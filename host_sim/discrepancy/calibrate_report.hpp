@@ -1,0 +1,38 @@
+#pragma once
+/// Outputs of `mrd calibrate`: damper.toml, summary.json, report.md and the
+/// measured and calibrated force–velocity loops of every record.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "host_sim/discrepancy/calibrate.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+
+namespace mrd::discrepancy {
+
+/// Records not used in the fit, judged with each law's calibrated baseline.
+struct HeldOut {
+  std::vector<std::string> sources;
+  std::vector<std::vector<double>> gaps;  ///< [law index of CalibrationResult::fits][record]
+};
+
+/// Gaps of every fitted law on `records`.
+[[nodiscard]] HeldOut held_out_gaps(const CalibrationResult& r, std::span<const MeasuredData> records,
+                                    const CalibrateOptions& options);
+
+/// Both laws' parameters (value, sigma, fitted, at_bound), rss, n_eff, BIC,
+/// per-record gaps, the held-out gaps, the choice and why, the notes.
+[[nodiscard]] nlohmann::json calibration_json(const CalibrationResult& r, const HeldOut& held_out);
+
+/// Writes damper.toml, summary.json, report.md and (with `plots`) one
+/// loops_<n>.png per record into `dir` (which must exist). Returns the
+/// reasons of plots that could not be drawn.
+std::vector<std::string> write_calibration_outputs(const std::filesystem::path& dir,
+                                                   std::span<const MeasuredData> records, const CalibrationResult& r,
+                                                   const HeldOut& held_out, const CalibrateOptions& options,
+                                                   bool plots = true);
+
+}  // namespace mrd::discrepancy

@@ -1,0 +1,333 @@
+// Calibration of a baseline: known parameters recovered from records the
+// model itself generated (plus noise) within three reported standard errors,
+// the real laboratory records of ../shared/lab_data (calibrated on two
+// families, judged on the third), and damper.toml written, read back and
+// refused when malformed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "host_sim/discrepancy/baseline_file.hpp"
+#include "host_sim/discrepancy/calibrate.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/io/usage_error.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A sine record at 1 kHz driven through `truth`, with white noise of
+/// `noise_frac` of the RMS force added.
+MeasuredData synth_record(const Baseline& truth, double amplitude_m, double freq_hz, double current_a, double duration_s,
+                          double noise_frac, unsigned seed) {
+  MeasuredData d;
+  d.source = "synthetic";
+  const std::size_t n = static_cast<std::size_t>(duration_s * 1000.0) + 1;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * 1e-3;
+    d.time_s.push_back(t);
+    d.displacement_m.push_back(amplitude_m * std::sin(2.0 * kPi * freq_hz * t));
+    d.current_cmd_a.push_back(current_a);
+    d.force_n.push_back(0.0);
+  }
+  const DamperModel m(model_input(d), truth);
+  ModelWorkspace ws;
+  std::vector<double> f;
+  m.simulate(EffectSet{}, {}, ws, f);
+  double ss = 0.0;
+  for (const double x : f) ss += x * x;
+  const double sd = noise_frac * std::sqrt(ss / static_cast<double>(n));
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sd);
+  for (std::size_t k = 0; k < n; ++k) d.force_n[k] = f[k] + noise(rng);
+  return d;
+}
+
+std::vector<MeasuredData> synth_set(const Baseline& truth) {
+  std::vector<MeasuredData> recs;
+  unsigned seed = 1;
+  for (const double i : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    recs.push_back(synth_record(truth, 0.005, 1.0, i, 3.0, 0.03, seed++));
+    recs.push_back(synth_record(truth, 0.002, 3.0, i, 3.0, 0.03, seed++));
+  }
+  return recs;
+}
+
+/// A small damper: Y 0.1 → 1.5 kN at 1.5 1/A, C 2 → 8 kN·s/m at 1 1/A.
+Baseline small_damper(BaseLaw law) {
+  Baseline b = thesis_baseline();
+  b.law = law;
+  b.yield_n = {100.0, 1500.0, 1.5};
+  b.viscous_ns_m = {2000.0, 8000.0, 1.0};
+  if (law == BaseLaw::bingham) b.v_tf_m_s = 0.005;  // bouc_wen keeps the thesis's low-velocity band
+  if (law == BaseLaw::bouc_wen) {
+    b.yield_disp_m = 3e-4;
+    b.stiffness_n_m = 2.0e4;
+  }
+  return b;
+}
+
+void expect_recovered(const Baseline& truth, const LawFit& fit) {
+  const std::vector<std::pair<const char*, double>> want = {
+      {"yield_n.at_zero", truth.yield_n.at_zero},       {"yield_n.limit", truth.yield_n.limit},
+      {"yield_n.rate_per_a", truth.yield_n.rate_per_a}, {"viscous_ns_m.at_zero", truth.viscous_ns_m.at_zero},
+      {"viscous_ns_m.limit", truth.viscous_ns_m.limit}, {"viscous_ns_m.rate_per_a", truth.viscous_ns_m.rate_per_a},
+      {"v_tf_m_s", truth.v_tf_m_s},                     {"yield_disp_m", truth.yield_disp_m},
+      {"stiffness_n_m", truth.stiffness_n_m}};
+  std::size_t checked = 0;
+  for (const ParamEstimate& p : fit.params) {
+    for (const auto& [name, value] : want) {
+      if (p.name != name) continue;
+      ++checked;
+      EXPECT_TRUE(p.fitted) << name;
+      EXPECT_FALSE(p.at_bound) << name;
+      EXPECT_GT(p.sigma, 0.0) << name;
+      EXPECT_LE(std::fabs(p.value - value), 3.0 * p.sigma) << name << " = " << p.value << " ± " << p.sigma;
+      // A standard error this small is informative: within 20 % of the value.
+      EXPECT_LT(p.sigma, 0.2 * value) << name;
+    }
+  }
+  EXPECT_EQ(checked, fit.params.size());
+}
+
+TEST(Calibrate, RecoversABinghamDamperWithinItsUncertainty) {
+  const Baseline truth = small_damper(BaseLaw::bingham);
+  const std::vector<MeasuredData> recs = synth_set(truth);
+  CalibrateOptions opt;
+  opt.law = BaseLaw::bingham;
+  const CalibrationResult r = calibrate(recs, opt);
+  ASSERT_EQ(r.fits.size(), 1u);
+  EXPECT_EQ(r.currents_a.size(), 5u);
+  expect_recovered(truth, r.best());
+  // 3 % white noise: the normalized gap is about 0.03 on every record.
+  for (const double g : r.best().record_gaps) EXPECT_NEAR(g, 0.03, 0.006);
+}
+
+TEST(Calibrate, RecoversABoucWenDamperAndAutoPrefersIt) {
+  const Baseline truth = small_damper(BaseLaw::bouc_wen);
+  const std::vector<MeasuredData> recs = synth_set(truth);
+  const CalibrationResult r = calibrate(recs);
+  ASSERT_EQ(r.fits.size(), 2u);
+  EXPECT_EQ(r.best().baseline.law, BaseLaw::bouc_wen) << r.choice_reason;
+  expect_recovered(truth, r.best());
+}
+
+TEST(Calibrate, OneCurrentGivesConstantLawsAndSaysSo) {
+  const Baseline truth = small_damper(BaseLaw::bingham);
+  std::vector<MeasuredData> recs{synth_record(truth, 0.005, 1.0, 0.5, 3.0, 0.02, 7)};
+  CalibrateOptions opt;
+  opt.law = BaseLaw::bingham;
+  const CalibrationResult r = calibrate(recs, opt);
+  EXPECT_FALSE(r.best().yield_fitted.rate_per_a);
+  EXPECT_FALSE(r.best().yield_fitted.limit);
+  EXPECT_EQ(r.best().baseline.yield_n.at_zero, r.best().baseline.yield_n.limit);
+  // Y(0.5 A) of the truth: 1500 + (100 − 1500) e^−0.75 = 838.7 N.
+  EXPECT_NEAR(r.best().baseline.yield_n.at_zero, 838.7, 30.0);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.front().find("one current"), std::string::npos);
+}
+
+TEST(Calibrate, ValidityRangeOfSineRecords) {
+  const Baseline truth = small_damper(BaseLaw::bingham);
+  std::vector<MeasuredData> recs{synth_record(truth, 0.005, 1.0, 0.25, 3.0, 0.0, 1),
+                                 synth_record(truth, 0.002, 3.0, 1.0, 3.0, 0.0, 2)};
+  const ValidityRange v = validity_range(recs);
+  EXPECT_DOUBLE_EQ(v.current_min_a, 0.25);
+  EXPECT_DOUBLE_EQ(v.current_max_a, 1.0);
+  EXPECT_NEAR(v.amplitude_min_m, 0.002, 1e-5);
+  EXPECT_NEAR(v.amplitude_max_m, 0.005, 1e-5);
+  // Peak velocities 2π·1·5 mm = 31.4 mm/s and 2π·3·2 mm = 37.7 mm/s.
+  EXPECT_NEAR(v.velocity_max_m_s, 0.0377, 0.0005);
+  EXPECT_NEAR(v.frequency_min_hz, 1.0, 0.1);
+  EXPECT_NEAR(v.frequency_max_hz, 3.0, 0.2);
+}
+
+// ---- real laboratory records ------------------------------------------------
+
+fs::path lab_dir() { return fs::path(MRD_SHARED_DIR) / "lab_data" / "quiroz_utfsm"; }
+
+std::vector<MeasuredData> lab_family(const std::string& family) {
+  std::vector<MeasuredData> out;
+  for (const char* c : {"0p00A", "0p25A", "0p50A", "0p75A", "1p00A"})
+    out.push_back(read_measured(lab_dir() / (family + "_" + c + ".csv")));
+  return out;
+}
+
+TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
+  if (!fs::exists(lab_dir())) GTEST_SKIP() << lab_dir() << " not found";
+  std::vector<MeasuredData> fit = lab_family("2mm_5Hz");
+  for (auto& d : lab_family("25mm_0p25Hz")) fit.push_back(std::move(d));
+  const std::vector<MeasuredData> held = lab_family("5mm_3Hz");
+  const CalibrationResult r = calibrate(fit);
+  ASSERT_EQ(r.fits.size(), 2u);
+  EXPECT_EQ(r.currents_a.size(), 5u);
+
+  // The thesis's 200 kN damper is about 100× too strong for these records
+  // (README): its gap is far above 1.
+  for (const double g : baseline_gaps(thesis_baseline(), held)) EXPECT_GT(g, 10.0);
+
+  // Held-out 5 mm / 3 Hz records. Neither law has the force plateau the
+  // records show just after each reversal, nor one pre-yield length for
+  // 2 mm and 25 mm strokes, so the gap stays far from the noise level.
+  // Measured: Bingham 0.21–0.31, Bouc–Wen 0.26–0.44 (worst of the five).
+  // Bounds: 0.35 and 0.50, to allow for the start values and the thinning.
+  for (const LawFit& f : r.fits) {
+    const double bound = f.baseline.law == BaseLaw::bingham ? 0.35 : 0.50;
+    for (const double g : baseline_gaps(f.baseline, held)) EXPECT_LT(g, bound) << base_law_name(f.baseline.law);
+  }
+
+  // Independent fact (README): forces of about 1.5–1.9 kN at 1 A. The
+  // calibrated model's peak force on the 1 A records it was fitted to is
+  // within 1.3–2.0 kN (the README's "about" widened by 0.2 kN). The held-out
+  // 5 mm / 3 Hz records reach 88 mm/s, beyond the 50 mm/s of the fit, so
+  // their peak is an extrapolation of the viscous law and is not checked.
+  ModelWorkspace ws;
+  std::vector<double> force;
+  for (const std::size_t i : {std::size_t{4}, std::size_t{9}}) {
+    const DamperModel m(model_input(fit[i]), r.best().baseline);
+    m.simulate(EffectSet{}, {}, ws, force);
+    double peak = 0.0;
+    for (const double f : force) peak = std::max(peak, std::fabs(f));
+    EXPECT_GT(peak, 1300.0) << fit[i].source;
+    EXPECT_LT(peak, 2000.0) << fit[i].source;
+  }
+  EXPECT_LT(r.best().baseline.range.velocity_max_m_s, 0.07);
+}
+
+// ---- damper.toml ------------------------------------------------------------
+
+BaselineFile sample_file(BaseLaw law) {
+  BaselineFile f;
+  f.baseline = small_damper(law);
+  f.baseline.name = "lab damper";
+  f.baseline.range = {0.0, 1.0, 0.05, 1700.0, 0.001, 0.0125, 0.25, 5.0};
+  f.baseline.expected_gap = 0.123456789;
+  f.sigma.yield_n = {1.5, 20.0, 0.1};
+  f.sigma.viscous_ns_m = {30.0, 100.0, 0.05};
+  f.sigma.v_tf_m_s = law == BaseLaw::bingham ? 1e-4 : 0.0;
+  f.sigma.yield_disp_m = law == BaseLaw::bouc_wen ? 1e-5 : 0.0;
+  f.sigma.stiffness_n_m = law == BaseLaw::bouc_wen ? 300.0 : 0.0;
+  f.viscous_fitted = {true, true, false};
+  f.source_records = {"a.csv", "b \"quoted\".csv"};
+  f.fits = {{"a.csv", BaseLaw::bingham, 0.1, 4000}, {"a.csv", BaseLaw::bouc_wen, 0.2, 4000}};
+  return f;
+}
+
+TEST(BaselineFile, RoundTripsExactly) {
+  for (const BaseLaw law : {BaseLaw::bingham, BaseLaw::bouc_wen}) {
+    const BaselineFile f = sample_file(law);
+    const BaselineFile g = parse_baseline_toml(baseline_toml(f), "damper.toml");
+    const Baseline& a = f.baseline;
+    const Baseline& b = g.baseline;
+    EXPECT_EQ(b.law, a.law);
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.yield_n.at_zero, a.yield_n.at_zero);
+    EXPECT_EQ(b.yield_n.limit, a.yield_n.limit);
+    EXPECT_EQ(b.yield_n.rate_per_a, a.yield_n.rate_per_a);
+    EXPECT_EQ(b.viscous_ns_m.at_zero, a.viscous_ns_m.at_zero);
+    EXPECT_EQ(b.viscous_ns_m.limit, a.viscous_ns_m.limit);
+    EXPECT_EQ(b.viscous_ns_m.rate_per_a, a.viscous_ns_m.rate_per_a);
+    EXPECT_EQ(b.v_tf_m_s, a.v_tf_m_s);
+    EXPECT_EQ(b.yield_disp_m, a.yield_disp_m);
+    EXPECT_EQ(b.stiffness_n_m, a.stiffness_n_m);
+    EXPECT_EQ(b.coil.tau_slow_s, a.coil.tau_slow_s);
+    EXPECT_EQ(b.coil.tau_fast_s, a.coil.tau_fast_s);
+    EXPECT_EQ(b.pr.b_final, a.pr.b_final);
+    EXPECT_EQ(b.pr.flow_area_m2, a.pr.flow_area_m2);
+    EXPECT_EQ(b.range.current_max_a, a.range.current_max_a);
+    EXPECT_EQ(b.range.velocity_max_m_s, a.range.velocity_max_m_s);
+    EXPECT_EQ(b.range.force_peak_n, a.range.force_peak_n);
+    EXPECT_EQ(b.range.amplitude_min_m, a.range.amplitude_min_m);
+    EXPECT_EQ(b.range.frequency_max_hz, a.range.frequency_max_hz);
+    EXPECT_EQ(b.expected_gap, a.expected_gap);
+    EXPECT_EQ(g.sigma.yield_n.limit, f.sigma.yield_n.limit);
+    EXPECT_EQ(g.sigma.stiffness_n_m, f.sigma.stiffness_n_m);
+    EXPECT_FALSE(g.viscous_fitted.rate_per_a);
+    EXPECT_TRUE(g.viscous_fitted.limit);
+    EXPECT_FALSE(g.coil_identified);
+    EXPECT_EQ(g.source_records, f.source_records);
+    ASSERT_EQ(g.fits.size(), 2u);
+    EXPECT_EQ(g.fits[1].law, BaseLaw::bouc_wen);
+    EXPECT_EQ(g.fits[1].gap, 0.2);
+    EXPECT_EQ(g.fits[1].samples, 4000u);
+  }
+}
+
+/// The error of parsing `text` (empty when it parses).
+std::string error_of(const std::string& text) {
+  try {
+    (void)parse_baseline_toml(text, "damper.toml");
+  } catch (const io::UsageError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+/// baseline_toml of the sample with `from` replaced by `to` (once).
+std::string edited(const std::string& from, const std::string& to, BaseLaw law = BaseLaw::bingham) {
+  std::string t = baseline_toml(sample_file(law));
+  const auto at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) t.replace(at, from.size(), to);
+  return t;
+}
+
+/// Line number (1-based) of the first line of `text` that starts with `key`.
+int line_of(const std::string& text, const std::string& key) {
+  int line = 1;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    if (text.compare(pos, key.size(), key) == 0) return line;
+    pos = text.find('\n', pos);
+    if (pos == std::string::npos) break;
+    ++pos;
+    ++line;
+  }
+  return -1;
+}
+
+TEST(BaselineFile, RefusesBadFieldsNamingFileLineAndField) {
+  struct Case {
+    std::string from, to, key, field, problem;
+  };
+  const std::vector<Case> cases = {
+      {"law = \"bingham\"", "law = \"spring\"", "law = ", "model.law", "expected \"bingham\" or \"bouc_wen\""},
+      {"at_zero = 100.0", "at_zero = -100.0", "at_zero = ", "yield_n.at_zero", "expected a number >= 0"},
+      {"at_zero = 100.0", "at_zero = nan", "at_zero = ", "yield_n.at_zero", "expected a finite number"},
+      {"v_tf_m_s = 0.005", "v_tf_m_s = \"fast\"", "v_tf_m_s = ", "bingham.v_tf_m_s", "expected a number"},
+      {"current_max_a = 1.0", "current_max_a = inf", "current_max_a", "validity.current_max_a", "finite"},
+      {"tau_fast_s = 0.03", "tau_fast_s = 0.03\ntau_fastest_s = 0.01", "tau_fastest_s", "coil.tau_fastest_s",
+       "unknown key"},
+  };
+  for (const Case& c : cases) {
+    const std::string text = edited(c.from, c.to);
+    const std::string e = error_of(text);
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    EXPECT_EQ(e.rfind("damper.toml:" + std::to_string(line_of(text, c.key)) + ": " + c.field + ": ", 0), 0u)
+        << c.field << " -> " << e;
+    EXPECT_NE(e.find(c.problem), std::string::npos) << e;
+  }
+}
+
+TEST(BaselineFile, RefusesMissingTablesAndTheOtherLawsTable) {
+  const std::string no_coil = edited("[coil]", "[coil_x]");
+  EXPECT_NE(error_of(no_coil).find("coil_x: unknown table"), std::string::npos) << error_of(no_coil);
+  std::string t = baseline_toml(sample_file(BaseLaw::bingham));
+  const auto at = t.find("\n[validity]");
+  const auto end = t.find("\n[[fit]]");
+  t.erase(at, end - at);
+  EXPECT_EQ(error_of(t), "damper.toml:1: [validity]: missing table");
+  const std::string both = baseline_toml(sample_file(BaseLaw::bingham)) + "\n[bouc_wen]\nyield_disp_m = 1e-4\n";
+  EXPECT_NE(error_of(both).find("bouc_wen: not allowed with model.law = \"bingham\""), std::string::npos)
+      << error_of(both);
+  EXPECT_NE(error_of("[model\n").find("damper.toml:1: "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mrd::discrepancy
