@@ -70,10 +70,7 @@
 #include <vector>
 
 #include "host_sim/discrepancy/baseline.hpp"
-<<<<<<< HEAD
 #include "host_sim/discrepancy/baseline_check.hpp"
-=======
->>>>>>> calibrate
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "host_sim/discrepancy/regions.hpp"
@@ -82,7 +79,6 @@
 namespace mrd::discrepancy {
 
 struct DiscrepancyOptions {
-  Baseline baseline = thesis_baseline();
   std::vector<Effect> catalogue{kAllEffects.begin(), kAllEffects.end()};
   /// "Very strong" evidence on the Kass–Raftery scale.
   double min_delta_bic = 10.0;
