@@ -17,15 +17,17 @@ struct SizeRange {
   double lo, hi;
 };
 
+/// Sizes stay inside physical limits, below the workflow's parameter bounds
+/// (a size that cannot reach the drawn ENR stops at the top of its range).
 SizeRange size_range(Effect e) {
   switch (e) {
     case Effect::idle_settling: return {1e-5, 1.0};          // SQ
-    case Effect::backlash: return {1e-7, 0.010};             // total free play, m
-    case Effect::gas_spring: return {1.0, 5.0e6};            // N/m
-    case Effect::thermal_fade: return {1e-8, 0.03};          // yield coefficient, 1/K
-    case Effect::time_delay: return {1e-7, 0.1};             // s
-    case Effect::coil_lag: return {1e-5, 9.0};               // tau scale − 1
-    case Effect::force_offset: return {0.1, 30.0e3};         // |F_0|, N
+    case Effect::backlash: return {1e-7, 0.006};             // total free play, m
+    case Effect::gas_spring: return {1.0, 3.0e6};            // N/m (0.06 L of gas at 5.17 MPa)
+    case Effect::thermal_fade: return {1e-8, 0.015};         // yield coefficient, 1/K (viscous ≤ 3× that)
+    case Effect::time_delay: return {1e-7, 0.06};            // s
+    case Effect::coil_lag: return {1e-5, 5.0};               // tau scale − 1
+    case Effect::force_offset: return {0.1, 15.0e3};         // |F_0|, N: 6 % of a 250 kN load cell
     case Effect::tanh_transition: return {0.0, 0.0};         // drawn, not tuned
     case Effect::direction_asymmetry: return {1e-6, 0.5};    // |a|
     case Effect::force_lowpass: return {1e-7, 0.05};         // s
@@ -80,10 +82,12 @@ Motion draw_motion(Rng& rng, double duration_s, std::string& text) {
     text = fmt("sine %.1f mm %.2f Hz", a * 1e3, f);
     return m;
   }
+  // Amplitudes ∝ f^(−slope): from flat (velocity-rich) to 1/f (displacement-rich).
   const int count = 12 + static_cast<int>(rng.uniform() * 19.0);
+  const double slope = rng.uniform(0.0, 1.0);
   for (int i = 0; i < count; ++i) {
     const double f = rng.uniform(0.1, 3.0);
-    m.sines.push_back({rng.uniform(0.5, 1.5) / f, f, rng.uniform(0.0, 2.0 * std::numbers::pi)});
+    m.sines.push_back({rng.uniform(0.5, 1.5) * std::pow(f, -slope), f, rng.uniform(0.0, 2.0 * std::numbers::pi)});
   }
   double ss = 0.0, vpeak = 0.0;
   const int n = static_cast<int>(duration_s * 1000.0);
@@ -96,8 +100,8 @@ Motion draw_motion(Rng& rng, double duration_s, std::string& text) {
   double scale = rms_target / std::sqrt(ss / n);
   scale = std::min(scale, kVelocityLimit_m_s / (vpeak));
   for (auto& s : m.sines) s.amplitude_m *= scale;
-  text = fmt("random %d sines 0.1-3 Hz, %.1f mm rms, %.0f mm/s peak", count, std::sqrt(ss / n) * scale * 1e3,
-             vpeak * scale * 1e3);
+  text = fmt("random %.0f sines 0.1-3 Hz, %.1f mm rms", count, std::sqrt(ss / n) * scale * 1e3) +
+         fmt(", %.0f mm/s peak, slope %.2f", vpeak * scale * 1e3, slope);
   return m;
 }
 
@@ -174,7 +178,7 @@ EffectParams without(EffectParams p, Effect e) {
     case Effect::idle_settling: p.settling_quotient = null.settling_quotient; break;
     case Effect::backlash:
       p.free_play_m = null.free_play_m;
-      p.contact_length_m = null.contact_length_m;
+      p.contact_fraction = null.contact_fraction;
       break;
     case Effect::gas_spring:
       p.gas_stiffness_n_m = null.gas_stiffness_n_m;
@@ -255,8 +259,8 @@ Case generate(const Spec& spec) {
     EffectParams& p = sc.effects;
     switch (spec.effects[i]) {
       case Effect::backlash:
-        if (rng.chance(0.5)) p.contact_length_m = rng.log_uniform(0.05e-3, 0.3e-3);
-        effects_text += p.contact_length_m > 0.0 ? fmt(" backlash smooth (contact %.2f mm)", p.contact_length_m * 1e3)
+        if (rng.chance(0.5)) p.contact_fraction = rng.log_uniform(0.02, 0.2);
+        effects_text += p.contact_fraction > 0.0 ? fmt(" backlash smooth (contact %.3f of the play)", p.contact_fraction)
                                                  : std::string(" backlash hard");
         break;
       case Effect::gas_spring:

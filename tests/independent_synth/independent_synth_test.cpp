@@ -100,20 +100,29 @@ TEST(IndependentDamper, ParticipantRatioFollowsChapter5) {
   EXPECT_NEAR(r.force_channel_n[at(r, 5.0)], fc + c0 * 0.1, 1.0);
 }
 
-TEST(IndependentDamper, HardPlayHoldsTheRodUntilTheActuatorCrossesHalfOfIt) {
-  // The rod starts centred in 2 mm of play; at 0.1 m/s the actuator reaches the
-  // contact after 1 mm, i.e. 10 ms: no force before, the full 176.077 kN after.
-  EffectParams e;
-  e.free_play_m = 0.002;
-  const FineRun r = simulate(ramp(0.1, 2.5, e));
-  EXPECT_EQ(r.force_channel_n[at(r, 0.005)], 0.0);
-  EXPECT_NEAR(r.force_channel_n[at(r, 0.02)], 176.077e3, 5.0);
-  EXPECT_NEAR(r.rod_disp_m[at(r, 0.5)], 0.05 - 0.001, 1e-9);
-  // Smooth play: the same rod position to within a few contact lengths.
-  e.contact_length_m = 0.1e-3;
-  const FineRun s = simulate(ramp(0.1, 2.5, e));
-  EXPECT_NEAR(s.rod_disp_m[at(s, 0.5)], 0.05 - 0.001, 0.5e-3);
-  EXPECT_LT(s.force_channel_n[at(s, 0.005)], 1e3);
+TEST(IndependentDamper, HardPlayHoldsTheRodAfterAReversalUntilTheActuatorCrossesIt) {
+  // x_a = 50 mm sin(π t), 2 mm of play (x_d within x_a ± 1 mm), the rod starting in contact.
+  // Pushed up, x_d = x_a − 1 mm: 49 mm at the reversal (0.5 s). Going down, the actuator meets
+  // the rod again at x_a = 48 mm: sin(π t) = 0.96, t = (π − asin 0.96)/π = (3.14159 − 1.28700)/π
+  // = 0.59033 s. No force in between; at 0.6 s v = 50π cos(0.6π) mm/s = −48.54 mm/s,
+  // F = −(141.171 + 0.349062 · 48.54) kN = −158.115 kN, and x_d = x_a + 1 mm.
+  Scenario s;
+  s.motion.sines = {{0.05, 0.5, 0.0}};
+  s.current.levels_a = {2.5};
+  s.effects.free_play_m = 0.002;
+  s.duration_s = 1.0;
+  const FineRun r = simulate(s);
+  EXPECT_NEAR(r.force_channel_n[at(r, 0.3)], 141.171e3 + 0.349062e6 * 0.05 * 3.14159265 * std::cos(0.3 * 3.14159265),
+              10.0);
+  EXPECT_EQ(r.force_channel_n[at(r, 0.52)], 0.0);
+  EXPECT_EQ(r.force_channel_n[at(r, 0.585)], 0.0);
+  EXPECT_NEAR(r.force_channel_n[at(r, 0.6)], -158.115e3, 20.0);
+  EXPECT_NEAR(r.rod_disp_m[at(r, 0.6)] - 0.05 * std::sin(0.6 * 3.14159265), 0.001, 1e-9);
+  // Smooth play (contact length 5 % of the play): the same rod position to within a few contact lengths.
+  s.effects.contact_fraction = 0.05;
+  const FineRun m = simulate(s);
+  EXPECT_NEAR(m.rod_disp_m[at(m, 0.6)] - 0.05 * std::sin(0.6 * 3.14159265), 0.001, 0.5e-3);
+  EXPECT_LT(std::abs(m.force_channel_n[at(m, 0.55)]), 1e3);
 }
 
 TEST(IndependentDamper, GasSpringDelayAndFilter) {
@@ -195,7 +204,12 @@ TEST(IndependentSynth, EffectsAreSizedOverTheWholeRangeWithoutRedraws) {
     spec.seed = seed;
     spec.duration_s = 4.0;
     const Case c = generate(spec);
-    EXPECT_NEAR(c.enr[0], c.target_enr[0], 0.01 * c.target_enr[0]);
+    // On target, or short of it with the offset at the top of its range (15 kN).
+    if (std::abs(c.params.force_offset_n) < 15.0e3 * (1.0 - 1e-9)) {
+      EXPECT_NEAR(c.enr[0], c.target_enr[0], 0.01 * c.target_enr[0]);
+    } else {
+      EXPECT_LT(c.enr[0], c.target_enr[0]);
+    }
     below_1 += c.enr[0] < 1.0;
     above_16 += c.enr[0] > 16.0;
   }
@@ -223,12 +237,13 @@ TEST(IndependentSynth, RecordsStayWithinTheDampersRange) {
     Spec spec;
     spec.seed = seed;
     const Case c = generate(spec);
+    // Velocity over 10 ms: LVDT noise of 20 µm adds √2 · 20 µm / 10 ms = 2.8 mm/s RMS (5σ: 14 mm/s).
     double vmax = 0.0;
-    for (std::size_t k = 1; k < c.displacement_m.size(); ++k) {
-      vmax = std::max(vmax, std::abs(c.displacement_m[k] - c.displacement_m[k - 1]) * 1000.0);
+    for (std::size_t k = 10; k < c.displacement_m.size(); ++k) {
+      vmax = std::max(vmax, std::abs(c.displacement_m[k] - c.displacement_m[k - 10]) / 0.010);
     }
-    // Table 3.1: 0.2491 m/s (the difference quotient adds up to 2 · 20 µm · 1 kHz · √2 of noise).
-    EXPECT_LT(vmax, kMaxVelocity_m_s + 0.06) << c.description;
+    // Table 3.1: 0.2491 m/s.
+    EXPECT_LT(vmax, kMaxVelocity_m_s + 0.014) << c.description;
     for (const double i : c.current_cmd_a) {
       EXPECT_GE(i, 0.0);
       EXPECT_LE(i, 2.5);

@@ -104,7 +104,8 @@ FineRun simulate(const Scenario& s) {
   const double filter_gain = e.force_filter_s > 0.0 ? 1.0 - std::exp(-h / e.force_filter_s) : 1.0;
   const double cooling = e.cooling_time_s > 0.0 ? std::exp(-h / e.cooling_time_s) : 1.0;
 
-  double xd = s.motion.displacement_m(0.0);
+  // The rod starts against the side of the play the actuator is moving towards.
+  double xd = s.motion.displacement_m(0.0) - half_play * sgn(s.motion.velocity_m_s(0.0));
   double volume_l = 0.0;
   double temp_k = 0.0;
   double channel_n = e.force_offset_n;
@@ -119,14 +120,13 @@ FineRun simulate(const Scenario& s) {
 
     // Rod motion.
     double vd = va;
-    if (play && e.contact_length_m > 0.0) {
-      vd = smooth_rod_velocity(xa, va, xd, half_play, e.contact_length_m);
+    if (play && e.contact_fraction > 0.0) {
+      vd = smooth_rod_velocity(xa, va, xd, half_play, e.contact_fraction * e.free_play_m);
     } else if (play) {
-      // Play operator: the rod moves only when the actuator pushes it.
+      // Play operator: the rod moves only when the actuator pushes it, and then at its velocity.
+      const double before = xd;
       xd = std::clamp(xd, xa - half_play, xa + half_play);
-      const double r = xa - xd;
-      const bool engaged = (r >= half_play * (1.0 - 1e-12) && va > 0.0) || (r <= -half_play * (1.0 - 1e-12) && va < 0.0);
-      vd = engaged ? va : 0.0;
+      vd = xd != before || j == 0 ? va : 0.0;
     } else if (compliant) {
       // Backward Euler on the spring: F_d(v) + c v = k (x_a − x_d − h v) + c v_a, monotone in v.
       const double k = e.series_stiffness_n_m, c = e.series_damping_n_s_m;
@@ -160,17 +160,20 @@ FineRun simulate(const Scenario& s) {
                  ? temp_k * cooling + power_w * e.cooling_time_s * (1.0 - cooling) / e.heat_capacity_j_per_k
                  : temp_k + power_w * h / e.heat_capacity_j_per_k;
     coil.advance(s.current, t, t + h);
-    if (play && e.contact_length_m > 0.0) {
-      // RK4 on the rod position.
-      auto rate = [&](double ts, double x) {
-        return smooth_rod_velocity(s.motion.displacement_m(ts), s.motion.velocity_m_s(ts), x, half_play,
-                                   e.contact_length_m);
-      };
-      const double k1 = rate(t, xd);
-      const double k2 = rate(t + 0.5 * h, xd + 0.5 * h * k1);
-      const double k3 = rate(t + 0.5 * h, xd + 0.5 * h * k2);
-      const double k4 = rate(t + h, xd + h * k3);
-      xd += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    if (play && e.contact_fraction > 0.0) {
+      // Backward Euler on the rod position with the actuator's exact
+      // displacement over the step (stiff when the contact length is small):
+      // x' = x + Δx_a e(x_a' − x'), monotone in x'. e ≤ 1, so the rod never
+      // outruns the actuator, and an engaged rod follows it exactly.
+      const double xa1 = s.motion.displacement_m(t + h);
+      const double dxa = xa1 - xa;
+      const double contact = e.contact_fraction * e.free_play_m;
+      double lo = std::min(xd, xd + dxa), hi = std::max(xd, xd + dxa);
+      for (int it = 0; it < 60 && hi > lo; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (mid - xd - smooth_rod_velocity(xa1, dxa, mid, half_play, contact) > 0.0 ? hi : lo) = mid;
+      }
+      xd = 0.5 * (lo + hi);
     }
   }
   return run;

@@ -19,9 +19,11 @@ struct EffectParams {
   // idle_settling: settling quotient of Eq. 5.5 as a fraction (0 = fully mixed).
   double settling_quotient = 0.0;
   // backlash: total free play between actuator and rod, m; a contact length
-  // > 0 makes the engagement smooth (tanh of the penetration over it).
+  // > 0 makes the engagement smooth (tanh of the penetration over it), given
+  // as a fraction of the free play. The rod starts against the side the
+  // actuator first moves towards.
   double free_play_m = 0.0;
-  double contact_length_m = 0.0;
+  double contact_fraction = 0.0;
   // gas_spring: F += k x (1 + ε x²), x the rod's displacement.
   double gas_stiffness_n_m = 0.0;
   double gas_nonlinearity_per_m2 = 0.0;
