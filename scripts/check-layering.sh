@@ -12,6 +12,10 @@
 #                    it adapts; never firmware/app or host code.
 #   host_sim/, bench/, fuzz/, tests/
 #                    anything above; host_sim never includes tests/.
+#   tests/independent_synth/
+#                    only its own headers, the standard library and GoogleTest
+#                    (an implementation independent of the project's), except
+#                    the study that runs the workflow on its records.
 #
 # Usage: check-layering.sh [SOURCE_ROOT]   (default: the repository holding this script)
 # Prints one line per violation (file:line: what, and the rule) and exits 1 if
@@ -30,9 +34,9 @@ report() {  # file line include rule
   violations=$((violations + 1))
 }
 
-check_tree() {  # folder quoted-allowed angle-allowed angle-denied rule [main-quoted-allowed]
+check_tree() {  # folder-or-file quoted-allowed angle-allowed angle-denied rule [main-quoted-allowed]
   local dir=$1 quoted=$2 angle=$3 denied=$4 rule=$5 main_quoted=${6:-$2}
-  [[ -d $dir ]] || return 0
+  [[ -e $dir ]] || return 0
   while IFS=: read -r file line text; do
     local inc=$text
     [[ $text =~ include[[:space:]]*([\"<][^\">]*[\">]) ]] && inc=${BASH_REMATCH[1]}
@@ -53,7 +57,7 @@ check_tree() {  # folder quoted-allowed angle-allowed angle-denied rule [main-qu
         ;;
       *) report "$file" "$line" "$inc" "unreadable include" ;;
     esac
-  done < <(grep -rnE '^[[:space:]]*#[[:space:]]*include' "$dir" --include='*.hpp' --include='*.h' --include='*.cpp' || true)
+  done < <(grep -rHnE '^[[:space:]]*#[[:space:]]*include' "$dir" --include='*.hpp' --include='*.h' --include='*.cpp' || true)
 }
 
 # Libraries only the host tools use.
@@ -72,9 +76,14 @@ for platform in firmware/platform/*/; do
     "${platform}: common, firmware/core and its own folder; no firmware/app or host code"
 done
 check_tree host_sim 'mrd/|firmware/|host_sim/' '' '' 'host_sim: never tests/'
+while IFS= read -r file; do
+  [[ $file == */discrepancy_independent_study.cpp ]] && continue
+  check_tree "$file" 'tests/independent_synth/' '' 'Eigen/|unsupported/Eigen|nlohmann/|ceres/|matio|benchmark/|mrd/|firmware/|host_sim/|common/|tests/' \
+    'tests/independent_synth: its own headers, the standard library and GoogleTest only'
+done < <(find tests/independent_synth \( -name '*.hpp' -o -name '*.cpp' \) 2>/dev/null | sort)
 
 if ((violations)); then
   echo "layering: $violations violation(s)" >&2
   exit 1
 fi
-echo "layering: ok (common, firmware/core, firmware/app, firmware/platform, host_sim)"
+echo "layering: ok (common, firmware/core, firmware/app, firmware/platform, host_sim, tests/independent_synth)"

@@ -1,0 +1,366 @@
+#include "independent_synth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "damper_physics.hpp"
+
+namespace indep {
+namespace {
+
+/// The range of one effect's size (the parameter the ENR is tuned with), searched on a log scale.
+struct SizeRange {
+  double lo, hi;
+};
+
+/// Sizes stay inside physical limits, below the workflow's parameter bounds
+/// (a size that cannot reach the drawn ENR stops at the top of its range).
+SizeRange size_range(Effect e) {
+  switch (e) {
+    case Effect::idle_settling: return {1e-5, 1.0};          // SQ
+    case Effect::backlash: return {1e-7, 0.006};             // total free play, m
+    case Effect::gas_spring: return {1.0, 3.0e6};            // N/m (0.06 L of gas at 5.17 MPa)
+    case Effect::thermal_fade: return {1e-8, 0.015};         // yield coefficient, 1/K (viscous ≤ 3× that)
+    case Effect::time_delay: return {1e-7, 0.06};            // s
+    case Effect::coil_lag: return {1e-5, 5.0};               // tau scale − 1
+    case Effect::force_offset: return {0.1, 15.0e3};         // |F_0|, N: 6 % of a 250 kN load cell
+    case Effect::tanh_transition: return {0.0, 0.0};         // drawn, not tuned
+    case Effect::direction_asymmetry: return {1e-6, 0.5};    // |a|
+    case Effect::force_lowpass: return {1e-7, 0.05};         // s
+    case Effect::series_compliance: return {1e-13, 1e-7};    // 1 / k, m/N
+  }
+  return {0.0, 0.0};
+}
+
+/// Per-effect variations of form, fixed before the size is tuned.
+struct Variation {
+  double sign = 1.0;
+  double ratio = 1.0;  // thermal: viscous / yield coefficient; compliance: damping time, s
+};
+
+void set_size(EffectParams& p, Effect e, double size, const Variation& v) {
+  switch (e) {
+    case Effect::idle_settling: p.settling_quotient = size; break;
+    case Effect::backlash: p.free_play_m = size; break;
+    case Effect::gas_spring: p.gas_stiffness_n_m = size; break;
+    case Effect::thermal_fade:
+      p.fade_yield_per_k = size;
+      p.fade_viscous_per_k = size * v.ratio;
+      break;
+    case Effect::time_delay: p.force_delay_s = size; break;
+    case Effect::coil_lag: p.coil_tau_scale = 1.0 + size; break;
+    case Effect::force_offset: p.force_offset_n = v.sign * size; break;
+    case Effect::tanh_transition: break;
+    case Effect::direction_asymmetry: p.extension_gain = v.sign * size; break;
+    case Effect::force_lowpass: p.force_filter_s = size; break;
+    case Effect::series_compliance:
+      p.series_stiffness_n_m = 1.0 / size;
+      p.series_damping_n_s_m = v.ratio / size;
+      break;
+  }
+}
+
+std::string fmt(const char* f, double a, double b = 0.0, double c = 0.0) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, f, a, b, c);
+  return buf;
+}
+
+/// Actuator motion: one sine or band-limited random (0.1–3 Hz), peak velocity within the damper's range.
+Motion draw_motion(Rng& rng, double duration_s, std::string& text) {
+  Motion m;
+  constexpr double kVelocityLimit_m_s = 0.245;  // below Table 3.1's 0.2491 m/s
+  if (rng.chance(0.5)) {
+    const double f = rng.log_uniform(0.2, 2.0);
+    const double a_max = std::min(0.100, kVelocityLimit_m_s / (2.0 * std::numbers::pi * f));
+    const double a = rng.log_uniform(0.005, a_max);
+    m.sines.push_back({a, f, rng.uniform(0.0, 2.0 * std::numbers::pi)});
+    text = fmt("sine %.1f mm %.2f Hz", a * 1e3, f);
+    return m;
+  }
+  // Amplitudes ∝ f^(−slope): from flat (velocity-rich) to 1/f (displacement-rich).
+  const int count = 12 + static_cast<int>(rng.uniform() * 19.0);
+  const double slope = rng.uniform(0.0, 1.0);
+  for (int i = 0; i < count; ++i) {
+    const double f = rng.uniform(0.1, 3.0);
+    m.sines.push_back({rng.uniform(0.5, 1.5) * std::pow(f, -slope), f, rng.uniform(0.0, 2.0 * std::numbers::pi)});
+  }
+  double ss = 0.0, vpeak = 0.0;
+  const int n = static_cast<int>(duration_s * 1000.0);
+  for (int k = 0; k < n; ++k) {
+    const double t = k * 1e-3;
+    ss += m.displacement_m(t) * m.displacement_m(t);
+    vpeak = std::max(vpeak, std::abs(m.velocity_m_s(t)));
+  }
+  const double rms_target = rng.uniform(0.010, 0.050);
+  double scale = rms_target / std::sqrt(ss / n);
+  scale = std::min(scale, kVelocityLimit_m_s / (vpeak));
+  for (auto& s : m.sines) s.amplitude_m *= scale;
+  text = fmt("random %.0f sines 0.1-3 Hz, %.1f mm rms", count, std::sqrt(ss / n) * scale * 1e3) +
+         fmt(", %.0f mm/s peak, slope %.2f", vpeak * scale * 1e3, slope);
+  return m;
+}
+
+/// Commanded current: constant, a few steps, or random steps every 0.5–3 s, levels in 0–2.5 A.
+CurrentProgram draw_current(Rng& rng, double duration_s, bool must_vary, std::string& text) {
+  CurrentProgram c;
+  c.levels_a = {rng.uniform(0.0, 2.5)};
+  const double kind = must_vary ? rng.uniform(1.0 / 3.0, 1.0) : rng.uniform();
+  if (kind < 1.0 / 3.0) {
+    text = fmt("constant %.2f A", c.levels_a[0]);
+    return c;
+  }
+  if (kind < 2.0 / 3.0) {
+    const int steps = 2 + static_cast<int>(rng.uniform() * 3.0);
+    std::vector<double> at;
+    for (int i = 0; i < steps; ++i) at.push_back(rng.uniform(0.5, duration_s - 0.5));
+    std::sort(at.begin(), at.end());
+    for (const double t : at) {
+      c.start_s.push_back(t);
+      c.levels_a.push_back(rng.uniform(0.0, 2.5));
+    }
+    text = fmt("%.0f steps in 0-2.5 A", steps);
+    return c;
+  }
+  for (double t = rng.uniform(0.5, 3.0); t < duration_s; t += rng.uniform(0.5, 3.0)) {
+    c.start_s.push_back(t);
+    c.levels_a.push_back(rng.uniform(0.0, 2.5));
+  }
+  text = fmt("random steps every 0.5-3 s (%.0f)", static_cast<double>(c.start_s.size() - 1));
+  return c;
+}
+
+SensorModel draw_sensors(Rng& rng) {
+  SensorModel s;
+  s.lvdt_noise_m = rng.uniform(5e-6, 20e-6);
+  s.force_white_n = rng.uniform(200.0, 1000.0);
+  s.force_coloured_n = rng.uniform(100.0, 500.0);
+  s.force_correlation_s = rng.uniform(0.010, 0.050);
+  if (rng.chance(0.3)) s.force_drift_n = rng.uniform(-300.0, 300.0);
+  if (rng.chance(0.5)) s.disp_quantum_m = 1e-6;
+  if (rng.chance(0.5)) s.force_quantum_n = 10.0;
+  if (rng.chance(0.3)) s.timing_jitter_s = rng.uniform(5e-6, 20e-6);
+  return s;
+}
+
+double quantize(double x, double q) { return q > 0.0 ? q * std::round(x / q) : x; }
+
+}  // namespace
+
+std::string_view effect_name(Effect e) noexcept {
+  switch (e) {
+    case Effect::idle_settling: return "idle_settling";
+    case Effect::backlash: return "backlash";
+    case Effect::gas_spring: return "gas_spring";
+    case Effect::thermal_fade: return "thermal_fade";
+    case Effect::time_delay: return "time_delay";
+    case Effect::coil_lag: return "coil_lag";
+    case Effect::force_offset: return "force_offset";
+    case Effect::tanh_transition: return "tanh_transition";
+    case Effect::direction_asymmetry: return "direction_asymmetry";
+    case Effect::force_lowpass: return "force_lowpass";
+    case Effect::series_compliance: return "series_compliance";
+  }
+  return "?";
+}
+
+bool in_catalogue(Effect e) noexcept {
+  return std::find(kCatalogueEffects.begin(), kCatalogueEffects.end(), e) != kCatalogueEffects.end();
+}
+
+EffectParams without(EffectParams p, Effect e) {
+  const EffectParams null{};
+  switch (e) {
+    case Effect::idle_settling: p.settling_quotient = null.settling_quotient; break;
+    case Effect::backlash:
+      p.free_play_m = null.free_play_m;
+      p.contact_fraction = null.contact_fraction;
+      break;
+    case Effect::gas_spring:
+      p.gas_stiffness_n_m = null.gas_stiffness_n_m;
+      p.gas_nonlinearity_per_m2 = null.gas_nonlinearity_per_m2;
+      break;
+    case Effect::thermal_fade:
+      p.fade_yield_per_k = null.fade_yield_per_k;
+      p.fade_viscous_per_k = null.fade_viscous_per_k;
+      break;
+    case Effect::time_delay: p.force_delay_s = null.force_delay_s; break;
+    case Effect::coil_lag: p.coil_tau_scale = null.coil_tau_scale; break;
+    case Effect::force_offset: p.force_offset_n = null.force_offset_n; break;
+    case Effect::tanh_transition: p.tanh_velocity_m_s = null.tanh_velocity_m_s; break;
+    case Effect::direction_asymmetry: p.extension_gain = null.extension_gain; break;
+    case Effect::force_lowpass: p.force_filter_s = null.force_filter_s; break;
+    case Effect::series_compliance:
+      p.series_stiffness_n_m = null.series_stiffness_n_m;
+      p.series_damping_n_s_m = null.series_damping_n_s_m;
+      break;
+  }
+  return p;
+}
+
+std::vector<double> noise_free_force(const Scenario& s, const std::vector<double>& t_s) {
+  return sample_force(simulate(s), t_s, s.effects.force_delay_s);
+}
+
+double effect_to_noise_ratio(const std::vector<double>& a, const std::vector<double>& b, double noise_rms) {
+  double ss = 0.0;
+  for (std::size_t k = 0; k < a.size() && k < b.size(); ++k) ss += (a[k] - b[k]) * (a[k] - b[k]);
+  return a.empty() ? 0.0 : std::sqrt(ss / static_cast<double>(a.size())) / noise_rms;
+}
+
+Case generate(const Spec& spec) {
+  for (std::size_t i = 0; i < spec.effects.size(); ++i) {
+    for (std::size_t j = i + 1; j < spec.effects.size(); ++j) {
+      if (spec.effects[i] == spec.effects[j]) throw std::invalid_argument("indep::generate: an effect listed twice");
+    }
+  }
+  Rng rng(spec.seed);
+  Case c;
+  c.effects = spec.effects;
+
+  Scenario sc;
+  sc.duration_s = spec.duration_s;
+  sc.rate_hz = spec.rate_hz;
+  sc.oversample = spec.oversample;
+  std::string motion_text, current_text;
+  sc.motion = draw_motion(rng, spec.duration_s, motion_text);
+  const bool must_vary =
+      std::find(spec.effects.begin(), spec.effects.end(), Effect::coil_lag) != spec.effects.end();
+  sc.current = draw_current(rng, spec.duration_s, must_vary, current_text);
+  c.sensors = draw_sensors(rng);
+  const SensorModel& sm = c.sensors;
+
+  // Sampling instants and the force noise.
+  const auto n = static_cast<std::size_t>(std::llround(spec.duration_s * spec.rate_hz));
+  c.time_s.resize(n);
+  std::vector<double> t_true(n), force_noise(n);
+  const double phi = sm.force_correlation_s > 0.0 ? std::exp(-1.0 / (spec.rate_hz * sm.force_correlation_s)) : 0.0;
+  double ar = sm.force_coloured_n * rng.normal();
+  double ss_noise = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    c.time_s[k] = static_cast<double>(k) / spec.rate_hz;
+    const double jitter = std::clamp(rng.normal(), -3.0, 3.0) * sm.timing_jitter_s;
+    t_true[k] = std::max(0.0, c.time_s[k] + jitter);
+    if (k > 0) ar = phi * ar + std::sqrt(1.0 - phi * phi) * sm.force_coloured_n * rng.normal();
+    force_noise[k] = sm.force_white_n * rng.normal() + ar + sm.force_drift_n * (c.time_s[k] / spec.duration_s - 0.5);
+    ss_noise += force_noise[k] * force_noise[k];
+  }
+  c.force_noise_rms_n = std::sqrt(ss_noise / static_cast<double>(n));
+
+  // Forms of the effects, then their sizes.
+  std::string effects_text;
+  std::vector<Variation> variation(spec.effects.size());
+  for (std::size_t i = 0; i < spec.effects.size(); ++i) {
+    Variation& v = variation[i];
+    EffectParams& p = sc.effects;
+    switch (spec.effects[i]) {
+      case Effect::backlash:
+        if (rng.chance(0.5)) p.contact_fraction = rng.log_uniform(0.02, 0.2);
+        effects_text += p.contact_fraction > 0.0 ? fmt(" backlash smooth (contact %.3f of the play)", p.contact_fraction)
+                                                 : std::string(" backlash hard");
+        break;
+      case Effect::gas_spring:
+        if (rng.chance(0.5)) p.gas_nonlinearity_per_m2 = rng.uniform(0.0, 80.0);
+        effects_text += fmt(" gas_spring eps %.0f/m2", p.gas_nonlinearity_per_m2);
+        break;
+      case Effect::thermal_fade:
+        p.fade_exponential = rng.chance(0.5);
+        v.ratio = rng.log_uniform(0.3, 3.0);
+        p.heat_capacity_j_per_k = rng.uniform(40.0e3, 80.0e3);
+        if (rng.chance(0.5)) p.cooling_time_s = rng.uniform(60.0, 600.0);
+        effects_text += fmt(p.fade_exponential ? " thermal exp (visc/yield %.2f, C %.0f kJ/K, cooling %.0f s)"
+                                               : " thermal linear (visc/yield %.2f, C %.0f kJ/K, cooling %.0f s)",
+                            v.ratio, p.heat_capacity_j_per_k * 1e-3, p.cooling_time_s);
+        break;
+      case Effect::force_offset:
+      case Effect::direction_asymmetry: v.sign = rng.chance(0.5) ? 1.0 : -1.0; break;
+      case Effect::series_compliance: v.ratio = rng.uniform(0.2e-3, 2.0e-3); break;
+      case Effect::tanh_transition:
+        p.tanh_velocity_m_s = rng.log_uniform(1e-3, 20e-3);
+        effects_text += fmt(" tanh v0 %.1f mm/s", p.tanh_velocity_m_s * 1e3);
+        break;
+      default: break;
+    }
+  }
+  c.target_enr.assign(spec.effects.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < spec.effects.size(); ++i) {
+    const Effect e = spec.effects[i];
+    const double target = spec.target_enr > 0.0 ? spec.target_enr : rng.log_uniform(kEnrMin, kEnrMax);
+    const SizeRange r = size_range(e);
+    if (r.hi <= 0.0) continue;
+    c.target_enr[i] = target;
+    Scenario off = sc;
+    off.effects = without(sc.effects, e);
+    const std::vector<double> f_off = noise_free_force(off, t_true);
+    auto enr_at = [&](double size) {
+      Scenario on = sc;
+      set_size(on.effects, e, size, variation[i]);
+      return effect_to_noise_ratio(noise_free_force(on, t_true), f_off, c.force_noise_rms_n);
+    };
+    // Root of g(u) = ln ENR(e^u) − ln target by regula falsi (Illinois); the ENR grows with the size.
+    auto g = [&](double u) { return std::log(std::max(enr_at(std::exp(u)), 1e-300)) - std::log(target); };
+    double lo = std::log(r.lo), hi = std::log(r.hi);
+    double g_lo = g(lo), g_hi = g(hi);
+    double size_log = hi;
+    if (g_hi <= 0.0) {
+      size_log = hi;
+    } else if (g_lo >= 0.0) {
+      size_log = lo;
+    } else {
+      int side = 0;
+      for (int it = 0; it < 40; ++it) {
+        size_log = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+        const double gm = g(size_log);
+        if (std::abs(gm) < 1e-3) break;
+        if (gm > 0.0) {
+          hi = size_log;
+          g_hi = gm;
+          if (side == 1) g_lo *= 0.5;
+          side = 1;
+        } else {
+          lo = size_log;
+          g_lo = gm;
+          if (side == -1) g_hi *= 0.5;
+          side = -1;
+        }
+      }
+    }
+    set_size(sc.effects, e, std::exp(size_log), variation[i]);
+  }
+  c.params = sc.effects;
+
+  // Noise-free truth, its ENR per effect, and the baseline.
+  c.clean_force_n = noise_free_force(sc, t_true);
+  Scenario base = sc;
+  base.effects = EffectParams{};
+  c.baseline_force_n = noise_free_force(base, t_true);
+  for (const Effect e : spec.effects) {
+    Scenario off = sc;
+    off.effects = without(sc.effects, e);
+    c.enr.push_back(effect_to_noise_ratio(c.clean_force_n, noise_free_force(off, t_true), c.force_noise_rms_n));
+  }
+
+  // The record.
+  c.displacement_m.resize(n);
+  c.current_cmd_a.resize(n);
+  c.force_n.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    c.displacement_m[k] = quantize(sc.motion.displacement_m(t_true[k]) + sm.lvdt_noise_m * rng.normal(), sm.disp_quantum_m);
+    c.current_cmd_a[k] = sc.current.at(c.time_s[k]);
+    c.force_n[k] = quantize(c.clean_force_n[k] + force_noise[k], sm.force_quantum_n);
+  }
+  c.description = motion_text + "; " + current_text + ";" + effects_text +
+                  fmt("; noise %.0f N rms (white %.0f, AR %.0f N", c.force_noise_rms_n, sm.force_white_n,
+                      sm.force_coloured_n) +
+                  fmt(" %.0f ms, drift %.0f N)", sm.force_correlation_s * 1e3, sm.force_drift_n) +
+                  fmt(", LVDT %.0f um, jitter %.0f us", sm.lvdt_noise_m * 1e6, sm.timing_jitter_s * 1e6) +
+                  (sm.disp_quantum_m > 0.0 ? ", x quantized 1 um" : "") +
+                  (sm.force_quantum_n > 0.0 ? ", F quantized 10 N" : "");
+  return c;
+}
+
+}  // namespace indep

@@ -1,0 +1,105 @@
+#pragma once
+/// Measured-like records of the 200 kN MR damper with hidden physical
+/// effects, made independently of the project's discrepancy workflow: its own
+/// physics (damper_physics.hpp), continuous-time integration at a multiple of
+/// the output rate (plant.hpp), its own forms of each effect and its own
+/// sensor models. Standard library only.
+///
+/// Each effect is sized to an effect-to-noise ratio
+/// <pre>
+///   ENR = RMS(force with the effect − force without it, all else equal) / RMS(force noise)
+/// </pre>
+/// drawn log-uniform over [kEnrMin, kEnrMax] (from well below detection to
+/// large); a draw is never repeated because an effect came out small.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "plant.hpp"
+
+namespace indep {
+
+enum class Effect {
+  // The seven effects of the workflow's catalogue (same names).
+  idle_settling,
+  backlash,
+  gas_spring,
+  thermal_fade,
+  time_delay,
+  coil_lag,
+  force_offset,
+  // Effects the workflow has no model of.
+  tanh_transition,
+  direction_asymmetry,
+  force_lowpass,
+  series_compliance,
+};
+
+inline constexpr std::array kCatalogueEffects{Effect::idle_settling, Effect::backlash,   Effect::gas_spring,
+                                              Effect::thermal_fade,  Effect::time_delay, Effect::coil_lag,
+                                              Effect::force_offset};
+inline constexpr std::array kOutOfCatalogueEffects{Effect::tanh_transition, Effect::direction_asymmetry,
+                                                   Effect::force_lowpass, Effect::series_compliance};
+
+[[nodiscard]] std::string_view effect_name(Effect e) noexcept;
+[[nodiscard]] bool in_catalogue(Effect e) noexcept;
+
+/// Range of the drawn ENR.
+inline constexpr double kEnrMin = 0.25;
+inline constexpr double kEnrMax = 64.0;
+
+struct Spec {
+  std::vector<Effect> effects;
+  std::uint64_t seed = 1;
+  double duration_s = 20.0;
+  double rate_hz = 1000.0;
+  int oversample = 10;
+  /// ENR every effect is sized to; ≤ 0: drawn per effect, log-uniform in [kEnrMin, kEnrMax].
+  double target_enr = -1.0;
+};
+
+/// Force-channel and displacement sensor models of one record.
+struct SensorModel {
+  double lvdt_noise_m = 0.0;            ///< white, RMS
+  double force_white_n = 0.0;           ///< white, RMS
+  double force_coloured_n = 0.0;        ///< AR(1), stationary RMS
+  double force_correlation_s = 0.0;     ///< AR(1) correlation time
+  double force_drift_n = 0.0;           ///< linear drift over the record, end minus start
+  double disp_quantum_m = 0.0;          ///< 0 = none
+  double force_quantum_n = 0.0;         ///< 0 = none
+  double timing_jitter_s = 0.0;         ///< RMS of sampling instant minus time stamp
+};
+
+struct Case {
+  // The record (SI), time stamps nominal.
+  std::vector<double> time_s, displacement_m, current_cmd_a, force_n;
+  // The truth.
+  std::vector<Effect> effects;
+  std::vector<double> target_enr;       ///< per effect (NaN where the effect has no size to tune)
+  std::vector<double> enr;              ///< per effect, achieved, with the others present
+  EffectParams params;
+  SensorModel sensors;
+  double force_noise_rms_n = 0.0;       ///< RMS of the force noise actually added
+  std::string description;              ///< input, current, variants, sensors in words
+  /// Noise-free force at the samples and the same without any effect, N.
+  std::vector<double> clean_force_n, baseline_force_n;
+};
+
+/// Deterministic for a spec. Throws std::invalid_argument for an effect
+/// listed twice or a combination the plant cannot run (backlash with series
+/// compliance).
+[[nodiscard]] Case generate(const Spec& spec);
+
+/// `p` with effect `e` removed (its parameters at their null values).
+[[nodiscard]] EffectParams without(EffectParams p, Effect e);
+
+/// Noise-free force at the (true) sampling instants `t_s`, delay applied, N.
+[[nodiscard]] std::vector<double> noise_free_force(const Scenario& s, const std::vector<double>& t_s);
+
+/// RMS(a − b) / noise_rms.
+[[nodiscard]] double effect_to_noise_ratio(const std::vector<double>& a, const std::vector<double>& b, double noise_rms);
+
+}  // namespace indep
