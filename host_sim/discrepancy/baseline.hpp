@@ -63,6 +63,10 @@ struct Baseline {
   double v_tf_m_s = 0.010;           ///< Eq. 4.4 transition velocity (bingham); low-velocity band (both)
   double yield_disp_m = 0.0;         ///< x_y (bouc_wen)
   double stiffness_n_m = 0.0;        ///< k_0 (bouc_wen)
+  /// Lag of the force channel behind the motion channels (anti-alias
+  /// filters, conditioning, logger), s: the model force is compared at
+  /// t − force_delay_s. 0 for the thesis model.
+  double force_delay_s = 0.0;
   physics::CurrentDynamicsParams coil{};
   physics::ParticipantRatioParams pr{};
   ValidityRange range;

@@ -44,7 +44,7 @@ BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> m
     c.current_max_a = *hi;
   }
   const ValidityRange& r = baseline.range;
-  if (r.velocity_max_m_s > 0.0 && c.velocity_max_m_s > kRangeFactor * r.velocity_max_m_s) {
+  if (r.velocity_max_m_s > 0.0 && c.velocity_max_m_s > kVelocityRangeFactor * r.velocity_max_m_s) {
     c.mismatch = true;
     c.reasons.push_back("velocity: the record reaches " + format_number("%.4g", c.velocity_max_m_s) +
                         " m/s, the baseline covers up to " + format_number("%.4g", r.velocity_max_m_s) + " m/s");

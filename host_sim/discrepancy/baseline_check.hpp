@@ -20,7 +20,12 @@ namespace mrd::discrepancy {
 /// fade or free play on top).
 inline constexpr double kMaxForceRatio = 4.0;
 inline constexpr double kSettledRatioMargin = 0.5;
-/// Velocity or current beyond the range by this factor (plus the slack below).
+/// Velocity beyond twice the range covered: the viscous law is linear in v
+/// and carries a twofold extrapolation; further, the record tests the law
+/// rather than the damper. Current beyond 1.5 times the range (plus the
+/// slack below): the current laws saturate, and a law fitted up to I
+/// says little of its shape much above I.
+inline constexpr double kVelocityRangeFactor = 2.0;
 inline constexpr double kRangeFactor = 1.5;
 inline constexpr double kCurrentSlack_a = 0.05;
 

@@ -226,6 +226,9 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "stiffness_n_m = " + num(b.stiffness_n_m) + "\n";
     t += "stiffness_n_m_sigma = " + num(f.sigma.stiffness_n_m) + "\n";
   }
+  t += "\n[channels]  # the force channel's lag behind the motion channels\n";
+  t += "force_delay_s = " + num(b.force_delay_s) + "\n";
+  t += "force_delay_s_sigma = " + num(f.sigma.force_delay_s) + "\n";
   t += "\n[coil]  # Eq. 4.5";
   t += f.coil_identified ? "\n" : ": assumed (thesis values), not identified from the records\n";
   t += "tau_slow_s = " + num(b.coil.tau_slow_s) + "\n";
@@ -281,10 +284,10 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
   for (const auto& [k, v] : root) {
     const std::string key(k.str());
     if (key != "model" && key != "yield_n" && key != "viscous_ns_m" && key != "bingham" && key != "bouc_wen" &&
-        key != "coil" && key != "participant_ratio" && key != "validity" && key != "fit")
+        key != "channels" && key != "coil" && key != "participant_ratio" && key != "validity" && key != "fit")
       fail(origin, v.source(), key,
-           "unknown table (expected model, yield_n, viscous_ns_m, bingham or bouc_wen, coil, participant_ratio, "
-           "validity, fit)");
+           "unknown table (expected model, yield_n, viscous_ns_m, bingham or bouc_wen, channels, coil, "
+           "participant_ratio, validity, fit)");
   }
   {
     Table m(table_of(root, "model", origin), "model", origin);
@@ -311,6 +314,14 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       f.sigma.stiffness_n_m = t.number("stiffness_n_m_sigma");
     }
     t.no_unknown_keys();
+  }
+  {
+    Table ch(table_of(root, "channels", origin), "channels", origin);
+    b.force_delay_s = ch.number("force_delay_s");
+    f.sigma.force_delay_s = ch.number("force_delay_s_sigma");
+    if (b.force_delay_s < 0.0 || b.force_delay_s > 0.1)
+      fail(origin, ch.where("force_delay_s"), "channels.force_delay_s", "expected a lag in [0, 0.1] s");
+    ch.no_unknown_keys();
   }
   {
     Table c(table_of(root, "coil", origin), "coil", origin);

@@ -18,15 +18,17 @@ namespace mrd::discrepancy {
 namespace {
 
 /// The parameters a calibration can fit.
-enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kSlots };
+enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kSlots };
 
 constexpr std::array<const char*, kSlots> kSlotName{
     "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
-    "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m"};
+    "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m",
+    "force_delay_s"};
 
 /// Search bounds, SI (the fit works on their logarithms).
-constexpr std::array<double, kSlots> kLower{1e-3, 1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7, 1e-2};
-constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9};
+/// The force-channel lag between 10 µs (none, in effect) and 100 ms.
+constexpr std::array<double, kSlots> kLower{1e-3, 1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7, 1e-2, 1e-5};
+constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1};
 
 double& slot_ref(Baseline& b, Slot s) {
   switch (s) {
@@ -39,6 +41,7 @@ double& slot_ref(Baseline& b, Slot s) {
     case kVtf: return b.v_tf_m_s;
     case kXy: return b.yield_disp_m;
     case kK0: return b.stiffness_n_m;
+    case kDelay: return b.force_delay_s;
     default: break;
   }
   return b.v_tf_m_s;
@@ -345,6 +348,8 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
     layout.free.push_back(kXy);
     layout.free.push_back(kK0);
   }
+  // The force channel's lag: records of one rig share it (filters, logger).
+  layout.free.push_back(kDelay);
 
   // Base: the thesis's coil and participant ratio (not identifiable here),
   // current laws from the per-current regression.
@@ -369,10 +374,14 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
     if (q.stiffness_n_m > 0.0) ks.push_back(q.stiffness_n_m);
   const double k_start = ks.empty() ? 1e-2 * y_max / std::max(amp_min, 1e-6) : median(ks);
 
-  // Starts: the transition velocity or the yield displacement on a grid.
+  // Starts: the transition velocity or the yield displacement on a grid,
+  // the force lag at 1 ms and 10 ms (a lag near a period's fraction has
+  // neighbouring minima on a sine).
   std::vector<Baseline> starts;
-  for (const double f : {0.02, 0.1, 0.3}) {
+  for (const double f : {0.02, 0.1, 0.3})
+    for (const double lag_s : {1e-3, 10e-3}) {
     Baseline s = base;
+    s.force_delay_s = lag_s;
     if (law == BaseLaw::bingham) {
       s.v_tf_m_s = f * vmax;
     } else {
@@ -428,6 +437,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
   fit.sigma.v_tf_m_s = sigma[kVtf];
   fit.sigma.yield_disp_m = sigma[kXy];
   fit.sigma.stiffness_n_m = sigma[kK0];
+  fit.sigma.force_delay_s = sigma[kDelay];
 
   std::vector<Slot> shown{kYa, kYb, kYc, kCa, kCb, kCc};
   if (law == BaseLaw::bingham) {
@@ -436,6 +446,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
     shown.push_back(kXy);
     shown.push_back(kK0);
   }
+  shown.push_back(kDelay);
   for (const Slot s : shown)
     fit.params.push_back({kSlotName[s], slot_ref(fit.baseline, s), sigma[s], fitted[s], at_bound[s]});
   return fit;

@@ -46,6 +46,7 @@ struct BaselineSigmas {
   double v_tf_m_s = 0.0;
   double yield_disp_m = 0.0;
   double stiffness_n_m = 0.0;
+  double force_delay_s = 0.0;
 };
 
 /// Which parameters of the current laws were fitted.

@@ -225,7 +225,7 @@ void DamperModel::simulate_at(const EffectSet& set, std::span<const double> para
                               std::span<const std::size_t> index, std::span<double> force_n) const {
   raw_force(set, params, ws);
   const auto off = set.offset(Effect::time_delay);
-  const double delay_s = off ? std::max(params[*off], 0.0) : 0.0;
+  const double delay_s = std::max(p_.force_delay_s, 0.0) + (off ? std::max(params[*off], 0.0) : 0.0);
   if (delay_s == 0.0) {
     for (std::size_t j = 0; j < index.size(); ++j) force_n[j] = ws.force_n[index[j]];
     return;

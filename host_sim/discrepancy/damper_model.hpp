@@ -18,7 +18,8 @@
 ///   F_b: the bouc_wen form with x_y fitted, on either baseline              (preyield_hysteresis)
 ///   F[k]     = F_b[k] + k_gas x_d[k] + F_0                                   (gas_spring, force_offset)
 ///   E[k+1]   = E[k] + F_b[k] v_d[k] dt_k;   ∫Q += |v_d| A dt_k
-///   F_meas(t) = F(t − τ)   (linear interpolation; before the record, F[0])   (time_delay)
+///   F_meas(t) = F(t − τ − τ_b)   (linear interpolation; before the record, F[0])   (time_delay;
+///              τ_b: the baseline's force_delay_s)
 /// </pre>
 /// Without effects and with the thesis baseline this is
 /// damper_force_n(Table 4.1, i[k], v[k]) with PR = 1.

@@ -53,23 +53,9 @@ std::size_t enr_bin(double enr) {
   return static_cast<std::size_t>(std::upper_bound(kBinEdges.begin(), kBinEdges.end(), enr) - kBinEdges.begin());
 }
 
-// ---- The verdict switch ------------------------------------------------------
-// DiscrepancyResult is to carry a verdict ("none", "explained", "unexplained",
-// "baseline_mismatch"; an enum Verdict named by verdict_name()). Build with
-// -DMRD_DISCREPANCY_HAS_VERDICT to score it; until then the verdict is
-// inferred from the named effects only, and "unexplained" is never seen.
-#if defined(MRD_DISCREPANCY_HAS_VERDICT)
-constexpr bool kHasVerdict = true;
 std::string verdict_of(const mrd::discrepancy::DiscrepancyResult& r) {
   return mrd::discrepancy::verdict_name(r.verdict);
 }
-#else
-constexpr bool kHasVerdict = false;
-std::string verdict_of(const mrd::discrepancy::DiscrepancyResult& r) {
-  return r.effects.empty() ? "none" : "explained";
-}
-#endif
-// -------------------------------------------------------------------------------
 
 /// Case i: clean (2 in 12), each catalogue effect alone (7 in 12), an effect
 /// outside the catalogue (3 in 12, the four in turn).
@@ -169,7 +155,7 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
       clean_fp.add(fp);
       ok = !fp;
     } else if (workflow_knows(c.effects[0])) {
-      ok = named == truth && (!kHasVerdict || verdict == "explained");
+      ok = named == truth && verdict == "explained";
       detect[truth][enr_bin(enr)].add(ok);
       detect_all[enr_bin(enr)].add(ok);
       if (enr >= kDetectionLimitEnr) {
@@ -182,7 +168,7 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
       if (enr >= kDetectionLimitEnr) {
         ooc_none_above.add(none);
         ooc_unexplained_above.add(verdict == "unexplained");
-        ok = kHasVerdict ? verdict == "unexplained" : none;
+        ok = verdict == "unexplained";
       }
     }
     if (!ok) {
@@ -198,7 +184,6 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
   std::printf("\nIndependent discrepancy study: %zu cases, seeds %llu-%llu, detection limit ENR >= %.0f\n", kCases,
               static_cast<unsigned long long>(seed_base), static_cast<unsigned long long>(seed_base + kCases - 1),
               kDetectionLimitEnr);
-  std::printf("verdict field: %s\n", kHasVerdict ? "scored" : "not yet in DiscrepancyResult (inferred from effects)");
   std::printf("\n(a) single catalogue effect: right set named, by ENR\n");
   std::printf("%-20s", "effect");
   for (const char* b : kBinNames) std::printf("%8s", b);
@@ -227,7 +212,7 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
   }
   std::printf("at or above the limit: no catalogue effect %s (%.0f %%); verdict unexplained %s (%.0f %%, needed %.0f %%)\n",
               ooc_none_above.text().c_str(), 100.0 * ooc_none_above.rate(),
-              kHasVerdict ? ooc_unexplained_above.text().c_str() : "n/a", 100.0 * ooc_unexplained_above.rate(),
+              ooc_unexplained_above.text().c_str(), 100.0 * ooc_unexplained_above.rate(),
               100.0 * kMinOutOfCatalogueUnexplainedRate);
   std::printf("\nnamed, per truth:\n");
   for (const auto& [truth, row] : named_for) {
@@ -242,7 +227,7 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
 
   EXPECT_GE(detect_all_above.rate(), kMinRightSetRate) << "right set above ENR " << kDetectionLimitEnr;
   EXPECT_LE(clean_fp.rate(), kMaxFalsePositiveRate) << "false positives on clean records";
-  const double ooc_rate = kHasVerdict ? ooc_unexplained_above.rate() : ooc_none_above.rate();
+  const double ooc_rate = ooc_unexplained_above.rate();
   EXPECT_GE(ooc_rate, kMinOutOfCatalogueUnexplainedRate) << "out-of-catalogue effects unexplained";
 }
 

@@ -95,10 +95,10 @@ TEST(DiscrepancyBaseline, CheckFlagsAHundredfoldForceAndAFastRecord) {
   EXPECT_TRUE(c.mismatch);
   EXPECT_NEAR(c.force_ratio, 0.01, 1e-12);
   EXPECT_NEAR(c.min_force_ratio, 0.1, 1e-12);
-  // Above 1.5 × 0.2491 m/s (Table 3.1) = 0.37365 m/s.
-  std::vector<double> fast{0.38, -0.1, 0.05, -0.05};
+  // Above 2 × 0.2491 m/s (Table 3.1) = 0.4982 m/s.
+  std::vector<double> fast{0.50, -0.1, 0.05, -0.05};
   EXPECT_TRUE(check_baseline(b, same, base, settled, fast, i).mismatch);
-  std::vector<double> quick{0.37, -0.1, 0.05, -0.05};
+  std::vector<double> quick{0.49, -0.1, 0.05, -0.05};
   EXPECT_FALSE(check_baseline(b, same, base, settled, quick, i).mismatch);
   // 4 A is beyond 1.5 × 2.5 A + 0.05 A.
   std::vector<double> high{4.0, 2.5, 2.5, 2.5};
