@@ -106,6 +106,58 @@ double held_out_share(const Eigen::MatrixXd& a_train, const Eigen::VectorXd& r_t
   return 1.0 - after / power;
 }
 
+/// Index of the quantile bin of `x` among `edges` (ascending).
+std::size_t bin_of(double x, const std::vector<double>& edges) {
+  return static_cast<std::size_t>(std::upper_bound(edges.begin(), edges.end(), x) - edges.begin());
+}
+
+/// `count − 1` inner quantile edges of `values` at the samples `index`.
+std::vector<double> quantile_edges(std::span<const double> values, std::span<const std::size_t> index,
+                                   std::size_t count) {
+  std::vector<double> v;
+  v.reserve(index.size());
+  for (const std::size_t k : index) v.push_back(values[k]);
+  std::sort(v.begin(), v.end());
+  std::vector<double> edges;
+  for (std::size_t b = 1; b < count && !v.empty(); ++b) edges.push_back(v[b * v.size() / count]);
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+constexpr std::size_t kVelocityBins = 12;
+constexpr std::size_t kDisplacementBins = 4;
+constexpr std::size_t kCurrentBins = 3;
+
+/// The state map's held-out share (see signatures.hpp).
+double state_map_share(const SignatureInput& in, std::span<const double> acc, std::span<const std::size_t> train,
+                       std::span<const std::size_t> held_out) {
+  const auto ev = quantile_edges(in.vel_m_s, train, kVelocityBins);
+  const auto ex = quantile_edges(in.disp_m, train, kDisplacementBins);
+  const auto ei = quantile_edges(in.current_a, train, kCurrentBins);
+  const auto cell = [&](std::size_t k) {
+    const std::size_t a = acc[k] >= 0.0 ? 1 : 0;
+    return ((bin_of(in.vel_m_s[k], ev) * (kDisplacementBins + 1) + bin_of(in.disp_m[k], ex)) * 2 + a) *
+               (kCurrentBins + 1) +
+           bin_of(in.current_a[k], ei);
+  };
+  const std::size_t cells = (kVelocityBins + 1) * (kDisplacementBins + 1) * 2 * (kCurrentBins + 1);
+  std::vector<double> sum(cells, 0.0);
+  std::vector<double> count(cells, 0.0);
+  for (const std::size_t k : train) {
+    sum[cell(k)] += in.residual_n[k];
+    count[cell(k)] += 1.0;
+  }
+  double power = 0.0;
+  double after = 0.0;
+  for (const std::size_t k : held_out) {
+    const std::size_t c = cell(k);
+    const double mean = count[c] > 0.0 ? sum[c] / count[c] : 0.0;
+    power += in.residual_n[k] * in.residual_n[k];
+    after += (in.residual_n[k] - mean) * (in.residual_n[k] - mean);
+  }
+  return power > 0.0 ? 1.0 - after / power : 0.0;
+}
+
 }  // namespace
 
 SignatureAnalysis analyse_residual(const SignatureInput& in, std::span<const std::size_t> train,
@@ -130,6 +182,12 @@ SignatureAnalysis analyse_residual(const SignatureInput& in, std::span<const std
     out.signatures.push_back(std::move(s));
   }
   out.structured_share = held_out_share(a_train, r_train, a_test, r_test, all, coef);
+  SignatureStat map;
+  map.name = "state_map";
+  map.looks_like = "an error that repeats with the damper's state (velocity, displacement, direction, current)";
+  map.held_out_share = state_map_share(in, acc, train, held_out);
+  out.structured_share = std::max(out.structured_share, map.held_out_share);
+  out.signatures.push_back(std::move(map));
   std::stable_sort(out.signatures.begin(), out.signatures.end(),
                    [](const SignatureStat& a, const SignatureStat& b) { return a.held_out_share > b.held_out_share; });
   return out;

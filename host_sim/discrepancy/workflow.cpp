@@ -132,9 +132,11 @@ namespace {
 /// A model whose RMS force falls below this share of the baseline's has
 /// collapsed: the effect has switched the damper off rather than changed it.
 constexpr double kCollapsedForceShare = 0.25;
-/// The effects that joined must take at least this share of the discrepancy
-/// found (removed + structure left) for the verdict explained.
-constexpr double kExplainedShare = 0.5;
+/// Explained: the structure the effects leave on the held-out samples is at
+/// most kLeftOverNoise of the noise there (the rest of the residual), or at
+/// most kLeftOverRemoved of what they removed.
+constexpr double kLeftOverNoise = 0.25;
+constexpr double kLeftOverRemoved = 0.05;
 /// A held-out gap within this factor of the baseline's expected gap is no discrepancy.
 constexpr double kExpectedGapFactor = 1.25;
 
@@ -516,13 +518,15 @@ void decide_verdict(DiscrepancyResult& res, const Selection& current, const Sele
   }
   const double removed = std::max(p_before - p_after, 0.0);
   const double left = std::max(sa.structured_share, 0.0) * p_after;
-  const double share = removed + left > 0.0 ? removed / (removed + left) : 0.0;
+  const double noise = p_after - left;
   const std::string label = EffectSet{current.set.effects}.label();
-  if (share >= kExplainedShare) {
+  const std::string numbers = "removes " + percent(p_before > 0.0 ? removed / p_before : 0.0) +
+                              " of the held-out residual power; the structure it leaves is " +
+                              percent(noise > 0.0 ? left / noise : 1.0) + " of the noise and " +
+                              percent(removed > 0.0 ? left / removed : 1.0) + " of what it removed";
+  if (left <= kLeftOverNoise * noise || left <= kLeftOverRemoved * removed) {
     res.verdict = Verdict::explained;
-    res.findings.push_back(label + " removes " + percent(p_before > 0.0 ? removed / p_before : 0.0) +
-                           " of the held-out residual power: " + percent(share) +
-                           " of the discrepancy found (removed plus structure left).");
+    res.findings.push_back(label + " " + numbers + ".");
     if (sa.structured_share >= kStructuredShare) describe_residual(res, sa, true);
     return;
   }
@@ -531,10 +535,9 @@ void decide_verdict(DiscrepancyResult& res, const Selection& current, const Sele
   res.rejected_params = res.params;
   res.effects.clear();
   res.params.clear();
-  res.findings.push_back(label + " was fitted but takes only " + percent(share) +
-                         " of the discrepancy found (removed plus structure left, held out), below " +
-                         percent(kExplainedShare) + ": it is not the explanation.");
-  describe_residual(res, sb, false);
+  res.findings.push_back(label + " was fitted and " + numbers + " (limits " + percent(kLeftOverNoise) + " and " +
+                         percent(kLeftOverRemoved) + "): it is not the explanation.");
+  describe_residual(res, sa, true);
   describe_rejections(res);
 }
 

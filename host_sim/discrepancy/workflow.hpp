@@ -16,9 +16,10 @@
 ///   none               no effect joined, and the held-out residual is not
 ///                      structured (signatures.hpp: < kStructuredShare) or
 ///                      within 1.25 × the baseline's expected gap
-///   explained          effects joined and took at least half of the
-///                      discrepancy found: removed / (removed + structure
-///                      left), powers on the held-out samples
+///   explained          effects joined, and the structure they leave on the
+///                      held-out samples (signatures.hpp) is at most 25 % of
+///                      the noise there or at most 5 % of the power they
+///                      removed
 ///   unexplained        otherwise; the effects that joined are then reported
 ///                      as rejected, with what the residual looks like
 /// </pre>
