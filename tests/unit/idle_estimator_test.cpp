@@ -555,6 +555,51 @@ TEST(IdleEstimator, RefusesBadConfiguration) {
   EXPECT_FALSE(est.init(c));
 }
 
+// ------------------------------------------------ the volume counter
+
+// Small ambient motion is not lost against a large running total: with
+// 100 m³ already credited (far more than a decade of ambient motion, 0.02 m³,
+// plus 50 years of earthquakes and mixing), 1000 strokes of 1 µm each add
+// 1000·1e−6 m·0.01062 m² = 1.062e−5 m³ to the counter. The 64-bit counter
+// in 2^−40 m³ (9.1e−13 m³) keeps each 1.06e−11 m³ step within ½ count;
+// the float sample of x (≤ 4e−9 m at 0.03 m) bounds each step's volume by
+// ±4e−11 m³, unbiased over a back-and-forth stroke: 1000 steps ≤ 4e−8 m³
+// in the worst case, 1e−8 is the bound used (errors alternate in sign).
+template <class P>
+void small_motion_counts_on_a_large_total() {
+  using Sample = typename IdleArith<P>::Sample;
+  BasicIdleEstimator<P> est;
+  IdleEstimatorConfig c;
+  c.dead_band_m = 0.0;
+  ASSERT_TRUE(est.init(c));
+  PersistedIdleState s;
+  s.rtc_ms = 1700000000000;
+  s.lifetime_volume = std::llround(100.0 / kVolumeCountM3);
+  sim::MemoryStateStore store;
+  ASSERT_EQ(store.save(encode_state(s)), hal::StoreStatus::kOk);
+  est.boot(store, 0, 1700000000000, true);
+  const double before = IdleArith<P>::vol_to_double(est.lifetime_volume());
+  EXPECT_NEAR(before, 100.0, 1e-9);
+  typename BasicIdleEstimator<P>::Input in;
+  in.rtc_ms = 1700000000000;
+  for (int k = 0; k <= 1000; ++k) {
+    in.tick = static_cast<std::uint64_t>(k);
+    const int up_down = k % 200 < 100 ? k % 200 : 200 - k % 200;  // 0 … 100 … 0: steps of 1 µm
+    in.damper_disp_m = static_cast<Sample>(0.03 + 1e-6 * up_down);
+    est.step(in);
+  }
+  const double added = IdleArith<P>::vol_to_double(est.lifetime_volume()) - before;
+  EXPECT_NEAR(added, 1000.0 * 1e-6 * 0.01062, 1e-8) << P::kName;
+  EXPECT_GT(added, 0.0);
+}
+
+TEST(IdleEstimator, FloatBuildCountsMicrometreStrokesOnAHundredCubicMetres) {
+  small_motion_counts_on_a_large_total<num::Float32Policy>();
+}
+TEST(IdleEstimator, FixedPointBuildCountsMicrometreStrokesOnAHundredCubicMetres) {
+  small_motion_counts_on_a_large_total<num::Fixed32Policy>();
+}
+
 // ------------------------------------------------ no heap in step()
 
 TEST(IdleEstimator, StepDoesNotAllocate) {
