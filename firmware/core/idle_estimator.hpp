@@ -359,7 +359,10 @@ class BasicIdleEstimator {
   void assume_worst(std::uint32_t cause) noexcept;
   void refresh() noexcept;
   void restore_counters(const PersistedIdleState& s) noexcept;
-  std::uint64_t ticks_of_ms(std::uint64_t ms) const noexcept { return ms * 1000u / period_us_; }
+  /// Milliseconds as ticks, saturated (a record's τ may be any 62-bit value).
+  std::uint64_t ticks_of_ms(std::uint64_t ms) const noexcept {
+    return ms < (std::uint64_t{1} << 53) ? ms * 1000u / period_us_ : (std::uint64_t{1} << 63) / period_us_;
+  }
   std::uint64_t ms_of_ticks(std::uint64_t ticks) const noexcept { return ticks * period_us_ / 1000u; }
 
   IdleEstimatorConfig c_{};

@@ -231,7 +231,7 @@ struct FloatingIdleArith {
   /// Wall-clock reading as milliseconds; false when not finite.
   static bool rtc_ms_of(const RtcField& in, std::int64_t& ms) noexcept {
     if constexpr (std::is_same_v<RtcField, RtcSeconds>) {
-      if (!std::isfinite(in.rtc_s)) return false;
+      if (!(std::fabs(in.rtc_s) < 9.0e15)) return false;  // not finite, or beyond int64 ms
       ms = std::llround(in.rtc_s * 1000.0);
       return true;
     } else {

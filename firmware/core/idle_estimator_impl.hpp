@@ -237,15 +237,18 @@ IdleBootReport BasicIdleEstimator<Policy>::boot(hal::StateStore& store, std::uin
 
   if (rep.load == hal::StoreStatus::kOk && rep.decode == DecodeStatus::kOk) {
     restore_counters(s);
-    const std::int64_t offline_ms = rtc_ms - s.rtc_ms;
+    std::int64_t offline_ms = 0;
+    const bool span_ok = !__builtin_sub_overflow(rtc_ms, s.rtc_ms, &offline_ms);
     if (!rtc_seen_) {
       assume_worst(kIdleClockInvalid);
-    } else if (offline_ms < -clock_tolerance_ms_) {
+    } else if (!span_ok || offline_ms < -clock_tolerance_ms_) {
       assume_worst(kIdleClockBackwards);
     } else {
       const std::uint64_t off_ms = offline_ms > 0 ? static_cast<std::uint64_t>(offline_ms) : 0;
       rep.offline_s = static_cast<double>(off_ms) * 1e-3;
-      model_.reset(ticks_of_ms(s.equivalent_idle_ms) + ticks_of_ms(off_ms), 0);  // the time off was idle time
+      const std::uint64_t stored = ticks_of_ms(s.equivalent_idle_ms);
+      const std::uint64_t off = ticks_of_ms(off_ms);
+      model_.reset(stored < model_.max_settling_ticks() ? stored + off : stored, 0);  // the time off was idle time
       episodes_seen_ = model_.episodes_closed();
     }
   } else if (rep.load == hal::StoreStatus::kMissing) {
@@ -289,7 +292,9 @@ void BasicIdleEstimator<Policy>::step(const Input& in) noexcept {
   // Wall clock: only checked here; in-boot time comes from the ticks.
   std::int64_t rtc_ms = 0;
   if (in.rtc_valid && A::rtc_ms_of(in, rtc_ms)) {
-    if (rtc_seen_ && rtc_ms < last_rtc_ms_ - clock_tolerance_ms_) assume_worst(kIdleClockBackwards);
+    const bool back = rtc_ms < last_rtc_ms_ && static_cast<std::uint64_t>(last_rtc_ms_) - static_cast<std::uint64_t>(rtc_ms) >
+                                                   static_cast<std::uint64_t>(clock_tolerance_ms_);
+    if (rtc_seen_ && back) assume_worst(kIdleClockBackwards);
     rtc_seen_ = true;
     last_rtc_ms_ = rtc_ms;
     last_rtc_t_ = t_;
