@@ -41,6 +41,14 @@
 /// corrupt record, an invalid clock at boot, or a clock that went backwards,
 /// the estimator assumes the worst (τ = T_max, fully settled) and sets a flag.
 ///
+/// Numeric builds: the estimator is one template, BasicIdleEstimator<Policy>,
+/// built in double (Float64Policy, the reference: `IdleEstimator`), float
+/// (num::Float32Policy) and fixed point (num::Fixed32Policy), with the
+/// formats of idle_estimator_formats.hpp. Inside, every build counts time in
+/// 64-bit ticks and the wall clock in milliseconds; SettlingModel below is
+/// the same state model in double on a continuous time axis in seconds (the
+/// simulator's truth and the design-time figures).
+///
 /// Rate: step() may run at the control rate or be decimated (every N-th
 /// sample, with the tick still in control ticks). Displacement counted from
 /// coarser samples misses motion between them, never adds any: decimation
@@ -48,6 +56,7 @@
 
 #include <cstdint>
 
+#include "firmware/core/idle_estimator_formats.hpp"
 #include "firmware/core/state_store.hpp"
 #include "mrd/physics/bingham.hpp"
 #include "mrd/physics/participant_ratio.hpp"
@@ -156,7 +165,7 @@ enum IdleFlag : std::uint32_t {
 
 struct IdleEstimatorConfig {
   IdleModelConfig model{};
-  double period_s = 1.0e-3;            ///< duration of one control tick, s
+  double period_s = 1.0e-3;            ///< duration of one control tick, s (a whole number of µs)
   /// Half-width of the play (backlash) operator the displacement passes
   /// through before it is counted: sensor noise and motion smaller than
   /// this earn no mixing credit, and noise cannot keep an episode open.
@@ -167,27 +176,107 @@ struct IdleEstimatorConfig {
   double save_interval_s = 600.0;      ///< save at least this often while running, s
 };
 
-/// One sample for the estimator.
-struct IdleEstimatorInput {
+/// The tick-based state model of SettlingModel (the diagram above) in the
+/// numbers of one build. Times are control ticks and must not decrease.
+template <class Policy>
+class BasicIdleModel {
+ public:
+  using A = IdleArith<Policy>;
+  using Ratio = typename A::Ratio;
+  using Coef = typename A::Coef;
+  using Rate = typename A::Rate;
+  using Volume = typename A::Volume;
+
+  /// Eq. 5.6–5.8 and the rate c_PR/unit of Eq. 5.9 in this build's numbers.
+  struct Coefficients {
+    Ratio a{};
+    Ratio b{};
+    Coef c{};
+    Rate rate{};  ///< c/volume_unit, per m³
+  };
+
+  /// Converts the configuration (design time, in double); false when it is
+  /// unusable or a constant does not fit its format.
+  bool init(const IdleModelConfig& config, double period_s) noexcept;
+  void reset(std::uint64_t equivalent_idle_ticks, std::uint64_t t) noexcept;
+  void assume_settled(std::uint64_t t) noexcept { reset(t_max_, t); }
+  void add_motion(std::uint64_t t0, std::uint64_t t1, Volume volume) noexcept;
+  void advance(std::uint64_t t) noexcept;
+
+  std::uint64_t equivalent_idle_ticks(std::uint64_t t) const noexcept;
+  Ratio participant_ratio(std::uint64_t t) const noexcept;
+  Ratio sq_of_idle(std::uint64_t idle_ticks) const noexcept { return A::sq_of(idle_ticks, t_max_); }
+  Ratio pr_of_idle(std::uint64_t idle_ticks) const noexcept;
+  std::uint64_t idle_of_pr(Ratio pr) const noexcept;
+  Ratio capacity_of_pr(Ratio pr) const noexcept { return cap0_ + A::mul(cap1_, pr); }
+  Ratio predicted_capacity(std::uint64_t t, std::uint64_t horizon_ticks) const noexcept;
+  Coefficients coefficients_at(std::uint64_t t) const noexcept;
+  Volume volume_to_ceiling(std::uint64_t t, Ratio gap_fraction) const noexcept;
+
+  bool episode_open() const noexcept { return open_; }
+  Volume episode_volume() const noexcept { return open_ ? episode_ : A::vol_zero(); }
+  std::uint64_t last_motion_tick() const noexcept { return last_motion_; }
+  std::uint32_t episodes_closed() const noexcept { return episodes_closed_; }
+  std::uint64_t max_settling_ticks() const noexcept { return t_max_; }
+  /// Eq. 5.4, s (host side).
+  double max_settling_time_s() const noexcept { return static_cast<double>(t_max_) * period_s_; }
+
+ private:
+  Coefficients coefficients_of(Ratio sq) const noexcept;
+  void close(std::uint64_t t_close) noexcept;
+
+  double period_s_ = 1.0e-3;
+  std::uint64_t t_max_ = 1;
+  std::uint64_t quiet_close_ = 1;
+  std::uint64_t max_episode_ = 1;
+  // Table 5.6 in this build's numbers: b + (a − b)·exp(−c·SQ) for a_PR, b_PR, c_PR.
+  Ratio b_init_{}, span_init_{};
+  Coef c_init_{};
+  Ratio b_final_{}, span_final_{};
+  Coef c_final_{};
+  Coef b_rise_{}, span_rise_{};
+  Coef c_rise_{};
+  Rate per_unit_{};  ///< 1/volume_unit_m3, per m³
+  Ratio cap0_{}, cap1_{};  ///< capacity = cap0 + cap1·PR (F is affine in PR)
+  // Settled phase.
+  std::uint64_t base_idle_ = 0;
+  std::uint64_t base_t_ = 0;
+  // Episode.
+  bool open_ = false;
+  std::uint64_t open_t_ = 0;
+  std::uint64_t last_motion_ = 0;
+  Volume episode_{};
+  Coefficients coeff_{};
+  Ratio pr_{};
+  std::uint32_t episodes_closed_ = 0;
+};
+
+/// One sample for the estimator. The wall clock is `rtc_s` (double seconds)
+/// in the reference build and `rtc_ms` (integer milliseconds) in the float
+/// and fixed builds.
+template <class Policy>
+struct BasicIdleEstimatorInput : IdleArith<Policy>::RtcInput {
+  using Sample = typename IdleArith<Policy>::Sample;
   std::uint64_t tick = 0;        ///< control ticks since boot
-  double rtc_s = 0.0;            ///< wall clock (e.g. Unix time), s
   bool rtc_valid = true;
-  double damper_disp_m = 0.0;    ///< damper stroke, m
+  Sample damper_disp_m = 0;      ///< damper stroke, m
   bool disp_valid = true;
   bool mixing_active = false;    ///< a mixing cycle is running (credits go to the mixing counter)
 };
 
-/// What the estimator knows after a step.
-struct IdleEstimate {
-  double equivalent_idle_s = 0.0;  ///< τ (as if motion stopped now), s
-  double sq = 0.0;                 ///< SQ of τ, Eq. 5.5
-  double participant_ratio = 1.0;  ///< PR now
-  double capacity_fraction = 1.0;  ///< force capacity relative to fully mixed
-  double time_since_motion_s = 0.0;
+/// What the estimator knows after a step, as the build's boundary numbers
+/// (double in the reference, float in the float and fixed builds).
+template <class Sample>
+struct BasicIdleEstimate {
+  Sample equivalent_idle_s = 0;    ///< τ (as if motion stopped now), s
+  Sample sq = 0;                   ///< SQ of τ, Eq. 5.5
+  Sample participant_ratio = 1;    ///< PR now
+  Sample capacity_fraction = 1;    ///< force capacity relative to fully mixed
+  Sample time_since_motion_s = 0;
   bool episode_open = false;
-  double episode_volume_m3 = 0.0;  ///< displaced in the open episode, m³
-  double lifetime_volume_m3 = 0.0; ///< credited since commissioning, m³
-  double mixing_volume_m3 = 0.0;   ///< of which while mixing, m³
+  Sample episode_volume_m3 = 0;    ///< displaced in the open episode, m³
+  Sample lifetime_volume_m3 = 0;   ///< credited since commissioning, m³
+  Sample mixing_volume_m3 = 0;     ///< of which while mixing, m³
   std::uint32_t mixing_cycles = 0; ///< confirmed mixing cycles since commissioning
   std::uint32_t flags = 0;         ///< IdleFlag bits
 };
@@ -206,24 +295,36 @@ enum class SaveOutcome : std::uint8_t {
   kFailed,          ///< the store reported an error; kIdleSaveFailed is set
 };
 
-class IdleEstimator {
+template <class Policy>
+class BasicIdleEstimator {
  public:
+  using A = IdleArith<Policy>;
+  using Sample = typename A::Sample;
+  using Ratio = typename A::Ratio;
+  using Volume = typename A::Volume;
+  using Disp = typename A::Disp;
+  using Rtc = typename A::Rtc;
+  using Input = BasicIdleEstimatorInput<Policy>;
+  using Estimate = BasicIdleEstimate<Sample>;
+  using Model = BasicIdleModel<Policy>;
+
   /// Returns false for an unusable configuration (see SettlingModel::init,
-  /// plus non-positive period or save interval, negative dead band).
+  /// plus a period that is not a positive whole number of µs, non-positive
+  /// save interval, negative dead band, a constant outside its format).
   bool init(const IdleEstimatorConfig& config) noexcept;
 
   /// Restores the state from `store` (I/O: call before the control loop,
   /// not from it). The time off is the RTC minus the stored stamp and counts
   /// as idle time. Missing or refused record, invalid RTC, or an RTC behind
   /// the stamp: fully settled, with the flag saying why.
-  IdleBootReport boot(hal::StateStore& store, std::uint64_t tick, double rtc_s, bool rtc_valid) noexcept;
+  IdleBootReport boot(hal::StateStore& store, std::uint64_t tick, Rtc rtc, bool rtc_valid) noexcept;
   /// Starts from a known state without a store (commissioning right after
   /// a full mixing, tests, simulation).
-  void boot_with(double equivalent_idle_s, std::uint64_t tick, double rtc_s) noexcept;
+  void boot_with(double equivalent_idle_s, std::uint64_t tick, Rtc rtc) noexcept;
 
   /// One sample: O(1), no heap, no I/O. Without boot(), the first step
   /// boots into the worst case (kIdleNoSavedState).
-  void step(const IdleEstimatorInput& in) noexcept;
+  void step(const Input& in) noexcept;
 
   /// A save is due: save_interval_s passed, an episode closed, a mixing
   /// cycle was confirmed, or the state was reset to the worst case.
@@ -236,42 +337,76 @@ class IdleEstimator {
   /// The mixing scheduler confirmed a cycle: counted and saved soon.
   void note_mixing_confirmed() noexcept;
 
-  const IdleEstimate& estimate() const noexcept { return est_; }
-  /// Capacity after `horizon_s` more without motion.
+  const Estimate& estimate() const noexcept { return est_; }
+  /// Capacity after `horizon_ticks` more without motion (per tick).
+  Ratio predicted_capacity(std::uint64_t horizon_ticks) const noexcept;
+  /// Volume that brings PR within `gap_fraction`·b_PR of b_PR now (per tick).
+  Volume volume_to_ceiling(Ratio gap_fraction) const noexcept;
+  /// Displaced volume credited since commissioning.
+  Volume lifetime_volume() const noexcept { return lifetime_; }
+  /// Host-side forms of the two queries above, in double.
   double predicted_capacity_fraction(double horizon_s) const noexcept;
-  /// Volume that brings PR within `gap_fraction`·b_PR of b_PR now, m³.
   double volume_to_ceiling_m3(double gap_fraction) const noexcept;
-  const SettlingModel& model() const noexcept { return model_; }
-  /// Time since boot on the tick clock, s.
-  double time_s() const noexcept { return t_s_; }
+  const Model& model() const noexcept { return model_; }
+  /// Ticks since boot.
+  std::uint64_t ticks() const noexcept { return t_; }
+  /// Time since boot on the tick clock, s (host side).
+  double time_s() const noexcept { return static_cast<double>(t_) * c_.period_s; }
   const IdleEstimatorConfig& config() const noexcept { return c_; }
 
  private:
   void start(std::uint64_t tick) noexcept;
   void assume_worst(std::uint32_t cause) noexcept;
   void refresh() noexcept;
-  double time_of(std::uint64_t tick) const noexcept;
+  void restore_counters(const PersistedIdleState& s) noexcept;
+  /// Milliseconds as ticks, saturated (a record's τ may be any 62-bit value).
+  std::uint64_t ticks_of_ms(std::uint64_t ms) const noexcept {
+    return ms < (std::uint64_t{1} << 53) ? ms * 1000u / period_us_ : (std::uint64_t{1} << 63) / period_us_;
+  }
+  std::uint64_t ms_of_ticks(std::uint64_t ticks) const noexcept { return ticks * period_us_ / 1000u; }
 
   IdleEstimatorConfig c_{};
-  SettlingModel model_{};
-  IdleEstimate est_{};
+  Model model_{};
+  Estimate est_{};
+  std::uint64_t period_us_ = 1000;
+  Sample period_s_{};
+  Disp dead_band_{};
+  typename A::Area area_{};
+  std::int64_t clock_tolerance_ms_ = 2000;
+  std::uint64_t save_interval_ = 600000;
+  Volume lifetime_{};
+  Volume mixing_{};
   bool booted_ = false;
   std::uint64_t tick0_ = 0;
   std::uint64_t last_tick_ = 0;
-  double t_s_ = 0.0;
+  std::uint64_t t_ = 0;  ///< ticks since boot
   // RTC
   bool rtc_seen_ = false;
-  double last_rtc_s_ = 0.0;
-  double last_rtc_t_s_ = 0.0;
+  std::int64_t last_rtc_ms_ = 0;
+  std::uint64_t last_rtc_t_ = 0;
   // Displacement through the play operator.
   bool anchored_ = false;
-  double play_m_ = 0.0;
-  double prev_sample_t_s_ = 0.0;
+  Disp play_{};
+  std::uint64_t prev_sample_t_ = 0;
   // Persistence.
   bool save_due_ = false;
-  double last_save_t_s_ = 0.0;
+  std::uint64_t last_save_t_ = 0;
   std::uint32_t save_sequence_ = 0;
   std::uint32_t episodes_seen_ = 0;
 };
+
+/// The reference build (double) that the host simulator and the board's
+/// runtime use, and the float and fixed-point builds (instantiated in
+/// idle_estimator.cpp, idle_estimator_float.cpp, idle_estimator_fixed.cpp).
+using IdleEstimator = BasicIdleEstimator<Float64Policy>;
+using IdleEstimatorInput = BasicIdleEstimatorInput<Float64Policy>;
+using IdleEstimate = BasicIdleEstimate<double>;
+
+extern template class BasicIdleModel<Float64Policy>;
+extern template class BasicIdleModel<num::Float32Policy>;
+extern template class BasicIdleModel<num::Fixed32Policy>;
+extern template class BasicIdleEstimator<Float64Policy>;
+extern template class BasicIdleEstimator<num::Float32Policy>;
+extern template class BasicIdleEstimator<num::Fixed32Policy>;
 
 }  // namespace mrd::fw

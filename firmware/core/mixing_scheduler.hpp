@@ -30,8 +30,18 @@
 /// seismic_samples consecutive valid samples. It must run at the control
 /// rate (or at the rate the samples count was chosen for); the rest of the
 /// logic only compares times and may run decimated.
+///
+/// Numeric builds: one template, BasicMixingScheduler<Policy>, built in
+/// double (Float64Policy, the reference: `MixingScheduler`), float and fixed
+/// point with the formats of idle_estimator_formats.hpp. Time is 64-bit
+/// ticks; the configured durations become ticks at init(). The plan's
+/// per-cycle volume, frequency and peaks are designed once at init(); a step
+/// only picks the number of cycles (an integer division in the float and
+/// fixed builds).
 
 #include <cstdint>
+
+#include "firmware/core/idle_estimator_formats.hpp"
 
 namespace mrd::fw {
 
@@ -86,16 +96,22 @@ constexpr const char* mixing_end_reason_name(MixingEndReason r) noexcept {
   return "unknown";
 }
 
-/// A sinusoidal stroke x(t) = A·sin(2πf t) for `cycles` periods.
-struct MixingPlan {
-  double amplitude_m = 0.0;
-  double frequency_hz = 0.0;
+/// A sinusoidal stroke x(t) = A·sin(2πf t) for `cycles` periods, in the
+/// boundary numbers of one build (double or float; the volume in the build's
+/// Volume format).
+template <class Policy>
+struct BasicMixingPlan {
+  using Sample = typename IdleArith<Policy>::Sample;
+  Sample amplitude_m = 0;
+  Sample frequency_hz = 0;
   std::uint32_t cycles = 0;
-  double volume_m3 = 0.0;          ///< displaced volume it produces: cycles·4A·flow area, m³
-  double duration_s = 0.0;         ///< cycles/f, s
-  double peak_velocity_m_s = 0.0;  ///< 2πfA, m/s
-  double peak_accel_m_s2 = 0.0;    ///< (2πf)²A, m/s²
+  typename IdleArith<Policy>::Volume volume_m3{};  ///< displaced volume it produces: cycles·4A·flow area, m³
+  Sample duration_s = 0;           ///< cycles/f, s
+  std::uint64_t duration_ticks = 0;  ///< the same in control ticks (rounded)
+  Sample peak_velocity_m_s = 0;    ///< 2πfA, m/s
+  Sample peak_accel_m_s2 = 0;      ///< (2πf)²A, m/s²
 };
+using MixingPlan = BasicMixingPlan<Float64Policy>;
 
 struct MixingSchedulerConfig {
   double period_s = 1.0e-3;              ///< duration of one tick, s
@@ -132,28 +148,33 @@ struct MixingSchedulerConfig {
 };
 
 /// One tick's inputs. The estimator's values come from
-/// IdleEstimator::predicted_capacity_fraction(forecast_horizon_s()),
-/// volume_to_ceiling_m3(ceiling_gap_fraction) and estimate().lifetime_volume_m3.
-struct MixingSchedulerInput {
+/// BasicIdleEstimator::predicted_capacity(forecast_horizon_ticks()),
+/// volume_to_ceiling(ceiling_gap()) and lifetime_volume() (in the reference
+/// build also as predicted_capacity_fraction(forecast_horizon_s()),
+/// volume_to_ceiling_m3(ceiling_gap_fraction), estimate().lifetime_volume_m3).
+template <class Policy>
+struct BasicMixingSchedulerInput {
+  using A = IdleArith<Policy>;
   std::uint64_t tick = 0;
-  double ground_accel_m_s2 = 0.0;
+  typename A::Sample ground_accel_m_s2 = 0;
   bool ground_accel_valid = true;
-  double base_accel_m_s2 = 0.0;
+  typename A::Sample base_accel_m_s2 = 0;
   bool base_accel_valid = true;
   bool actuator_ready = true;    ///< the actuator answers on the bus and reports no fault
   bool actuator_busy = false;    ///< the actuator reports it is stroking
-  double forecast_capacity_fraction = 1.0;
-  double volume_needed_m3 = 0.0;
-  double measured_volume_m3 = 0.0;  ///< monotone counter of displaced volume, m³
+  typename A::Ratio forecast_capacity_fraction = A::one();
+  typename A::Volume volume_needed_m3{};
+  typename A::Volume measured_volume_m3{};  ///< monotone counter of displaced volume, m³
 };
 
-struct MixingSchedulerOutput {
+template <class Policy>
+struct BasicMixingSchedulerOutput {
   SchedulerState state = SchedulerState::kIdle;
   bool request_active = false;  ///< the actuator shall run `plan` (level); false: stop, damper in control
   bool abort = false;           ///< the request was withdrawn this step (edge)
   bool maintenance_required = false;
   bool shaking = false;         ///< seismic trigger active this step
-  MixingPlan plan{};
+  BasicMixingPlan<Policy> plan{};
   std::uint32_t request_id = 0;  ///< increments with each request
   MixingEndReason reason = MixingEndReason::kNone;
 };
@@ -169,55 +190,101 @@ struct MixingCounters {
 /// The cycle that displaces at least `volume_needed_m3` at the largest
 /// amplitude allowed, at the preferred frequency unless the velocity limit
 /// asks for less: f = min(f_pref, v_max/(2πA)), n = ⌈V/(4A·area)⌉ within
-/// [min_cycles, max_cycles].
+/// [min_cycles, max_cycles]. In double (design time, host side).
 MixingPlan plan_mixing(const MixingSchedulerConfig& config, double volume_needed_m3) noexcept;
 
-class MixingScheduler {
+template <class Policy>
+class BasicMixingScheduler {
  public:
+  using A = IdleArith<Policy>;
+  using Sample = typename A::Sample;
+  using Ratio = typename A::Ratio;
+  using Volume = typename A::Volume;
+  using Accel = typename A::Accel;
+  using Input = BasicMixingSchedulerInput<Policy>;
+  using Output = BasicMixingSchedulerOutput<Policy>;
+  using Plan = BasicMixingPlan<Policy>;
+
   /// Returns false for an unusable configuration (non-positive limits,
-  /// threshold outside (0, 1), min_cycles > max_cycles, …).
+  /// threshold outside (0, 1), min_cycles > max_cycles, a constant outside
+  /// its format, …).
   bool init(const MixingSchedulerConfig& config) noexcept;
   void reset() noexcept;
   /// One tick; O(1), no heap, no I/O.
-  const MixingSchedulerOutput& step(const MixingSchedulerInput& in) noexcept;
+  const Output& step(const Input& in) noexcept;
 
-  /// Forecast horizon the estimator should be asked for, s.
+  /// The plan for `volume_needed` (what step() requests).
+  Plan plan_for(Volume volume_needed) const noexcept;
+
+  /// Forecast horizon the estimator should be asked for, s (host side) and ticks.
   double forecast_horizon_s() const noexcept {
     return c_.actuator_fitted ? c_.lead_time_s : c_.maintenance_lead_time_s;
   }
-  const MixingSchedulerOutput& output() const noexcept { return out_; }
+  std::uint64_t forecast_horizon_ticks() const noexcept { return horizon_; }
+  /// ceiling_gap_fraction in this build's numbers.
+  Ratio ceiling_gap() const noexcept { return gap_; }
+  const Output& output() const noexcept { return out_; }
   const MixingCounters& counters() const noexcept { return counters_; }
   const MixingSchedulerConfig& config() const noexcept { return c_; }
 
  private:
   /// What the transitions of one step look at.
   struct Conditions {
-    bool below = false;        ///< forecast under the threshold
-    bool quiet = false;        ///< no shaking now, none for holdoff_s
-    bool can_watch = false;    ///< an accelerometer is valid
-    double measured_m3 = 0.0;  ///< volume measured since the request, m³
-    double in_state_s = 0.0;   ///< time in the present state, s
+    bool below = false;          ///< forecast under the threshold
+    bool quiet = false;          ///< no shaking now, none for holdoff_s
+    bool can_watch = false;      ///< an accelerometer is valid
+    Volume measured{};           ///< volume measured since the request
+    std::uint64_t in_state = 0;  ///< ticks in the present state
   };
 
-  /// One transition if its condition holds; true when the state changed.
-  bool transition(const MixingSchedulerInput& in, double t_s) noexcept;
-  void from_due(const MixingSchedulerInput& in, const Conditions& c, double t_s) noexcept;
-  void from_requested(const MixingSchedulerInput& in, const Conditions& c, double t_s) noexcept;
-  void from_running(const Conditions& c, double t_s) noexcept;
-  void enter(SchedulerState next, double t_s) noexcept;
-  void raise_maintenance(MixingEndReason why, double t_s) noexcept;
-  void end_cycle(SchedulerState next, MixingEndReason why, double t_s) noexcept;
+  bool transition(const Input& in, std::uint64_t t) noexcept;
+  void from_due(const Input& in, const Conditions& c, std::uint64_t t) noexcept;
+  void from_requested(const Input& in, const Conditions& c, std::uint64_t t) noexcept;
+  void from_running(const Conditions& c, std::uint64_t t) noexcept;
+  void enter(SchedulerState next, std::uint64_t t) noexcept;
+  void raise_maintenance(MixingEndReason why, std::uint64_t t) noexcept;
+  void end_cycle(SchedulerState next, MixingEndReason why, std::uint64_t t) noexcept;
 
   MixingSchedulerConfig c_{};
-  MixingSchedulerOutput out_{};
+  Output out_{};
   MixingCounters counters_{};
+  // The configuration in this build's numbers and in ticks.
+  Ratio threshold_{};
+  Ratio gap_{};
+  Ratio start_fraction_{};
+  Ratio confirm_fraction_{};
+  Accel ground_trigger_{};
+  Accel base_trigger_{};
+  Accel plan_peak_accel_{};
+  Plan unit_plan_{};             ///< one cycle: amplitude, frequency, peaks, volume per cycle
+  std::uint64_t cycle_q16_ = 0;  ///< ticks per cycle, ·2^16
+  std::uint64_t run_limit_q16_ = 0;  ///< ticks per cycle × run_timeout_factor, ·2^16
+  std::uint64_t horizon_ = 0;
+  std::uint64_t start_timeout_ = 0;
+  std::uint64_t run_margin_ = 0;
+  std::uint64_t confirm_hold_ = 0;
+  std::uint64_t holdoff_ = 0;
+  // State.
   std::uint32_t ground_count_ = 0;
   std::uint32_t base_count_ = 0;
   bool shaking_ever_ = false;
-  double last_shaking_s_ = 0.0;
-  double state_since_s_ = 0.0;
-  double volume_at_request_m3_ = 0.0;
+  std::uint64_t last_shaking_ = 0;
+  std::uint64_t state_since_ = 0;
+  Volume volume_at_request_{};
+  Volume start_volume_{};    ///< start_fraction of the plan
+  Volume confirm_volume_{};  ///< confirm_fraction of the plan
+  std::uint64_t run_limit_ = 0;  ///< ticks a running cycle may take
   std::uint32_t failed_in_row_ = 0;
 };
+
+/// The reference build (double) and its types; the float and fixed builds
+/// are instantiated in mixing_scheduler_float.cpp and mixing_scheduler_fixed.cpp.
+using MixingScheduler = BasicMixingScheduler<Float64Policy>;
+using MixingSchedulerInput = BasicMixingSchedulerInput<Float64Policy>;
+using MixingSchedulerOutput = BasicMixingSchedulerOutput<Float64Policy>;
+
+extern template class BasicMixingScheduler<Float64Policy>;
+extern template class BasicMixingScheduler<num::Float32Policy>;
+extern template class BasicMixingScheduler<num::Fixed32Policy>;
 
 }  // namespace mrd::fw

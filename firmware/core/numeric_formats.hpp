@@ -53,6 +53,14 @@ struct Formats<num::Fixed32Policy> {
   using Square = num::Fixed<9, 22>;
 };
 
+/// The double-precision reference build of the idle-time estimator, the
+/// mixing scheduler and the mixing task (host side; their float and fixed
+/// builds use num::Float32Policy and num::Fixed32Policy, with the formats of
+/// firmware/core/idle_estimator_formats.hpp).
+struct Float64Policy {
+  static constexpr const char* kName = "double";
+};
+
 /// True when `v` lies in the range of T (float: finite and within ±FLT_MAX).
 template <class T>
 constexpr bool representable(double v) noexcept {

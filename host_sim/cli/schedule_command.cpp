@@ -24,12 +24,16 @@ the fluid as it is. Policies:
 Without an actuator (--actuator no) every cycle is a maintenance visit: the fixed policy visits
 every interval, the estimator raises a maintenance request --maintenance-days + --lead-hours ahead
 and a technician comes --maintenance-days later (and stays away if the request has cleared).
+--numeric double|float|fixed picks the numeric build of the estimator and scheduler the
+estimator policy runs (double, the reference, by default; float and fixed point are the builds
+for a single-precision microcontroller).
 Capacity: damper force at 2.5 A and 0.1 m/s with the present participant ratio over the same
 force fully mixed (Eq. 5.10-5.12).
 
 Fields of DIR/summary.json:
   years, seed, threshold, actuator, earthquakes_per_year, ambient_median_litres_per_day,
-  lead_hours, maintenance_days     the run's inputs
+  lead_hours, maintenance_days,
+  numeric                          the run's inputs
   earthquakes                      number of earthquakes drawn
   max_settling_time_days           T_max, Eq. 5.4, days
   threshold_idle_days              idle time after which a fully mixed fluid is at the threshold, days
@@ -62,6 +66,7 @@ struct ScheduleCliOptions {
   double ambient_litres_per_day = 0.005;
   double maintenance_days = 7.0;
   double lead_hours = 2.0;
+  std::string numeric = "double";
   std::string out_dir;
 };
 
@@ -80,9 +85,9 @@ TimedSchedule timed_schedule(const schedule::ScheduleOptions& options) {
 
 void print_summary(const TimedSchedule& t) {
   const schedule::ScheduleResult& r = t.result;
-  std::printf("mrd schedule: %.4g years, %zu earthquakes (%.3g per year), threshold %.3g, actuator %s\n",
+  std::printf("mrd schedule: %.4g years, %zu earthquakes (%.3g per year), threshold %.3g, actuator %s, numeric %s\n",
               r.options.world.years, r.world.quake_times_s.size(), r.options.world.earthquakes_per_year,
-              r.options.threshold, r.options.actuator ? "yes" : "no");
+              r.options.threshold, r.options.actuator ? "yes" : "no", schedule::numeric_build_name(r.options.numeric));
   std::printf("  a fully mixed fluid reaches the threshold after %.2f days idle (T_max %.1f days)\n",
               r.threshold_idle_s / 86400.0, r.max_settling_time_s / 86400.0);
   std::printf("  mixing cycle: +-%.1f mm at %.3g Hz, %u cycle(s), %.2f L, %.1f s\n", r.plan.amplitude_m * 1e3,
@@ -110,6 +115,7 @@ schedule::ScheduleOptions schedule_options(const ScheduleCliOptions& o) {
   require_finite_at_least("--maintenance-days", o.maintenance_days, 0.0);
   require_finite_at_least("--lead-hours", o.lead_hours, 0.0);
   require_choice("--actuator", o.actuator, {"yes", "no"});
+  require_choice("--numeric", o.numeric, {"double", "float", "fixed"});
   schedule::ScheduleOptions so;
   so.world.years = o.years;
   so.world.seed = o.seed;
@@ -120,6 +126,7 @@ schedule::ScheduleOptions schedule_options(const ScheduleCliOptions& o) {
   so.actuator = o.actuator == "yes";
   so.maintenance_days = o.maintenance_days;
   so.lead_hours = o.lead_hours;
+  so.numeric = schedule::parse_numeric_build(o.numeric);
   return so;
 }
 
@@ -145,6 +152,9 @@ void add_options(CLI::App& app, ScheduleCliOptions& o) {
   app.add_option("--maintenance-days", o.maintenance_days, "Maintenance request to visit, days (no actuator)")
       ->capture_default_str();
   app.add_option("--lead-hours", o.lead_hours, "Scheduler's forecast horizon with an actuator, h")
+      ->capture_default_str();
+  app.add_option("--numeric", o.numeric,
+                  "Numeric build of the estimator and scheduler: double | float | fixed")
       ->capture_default_str();
   add_out_option(app, o.out_dir, "Folder for summary.json, capacity.csv, earthquakes.csv, capacity.png");
 }

@@ -58,6 +58,7 @@ ScheduleResult run_schedule(const ScheduleOptions& o) {
   r.options = o;
   r.world = make_world(o.world);
   ServiceConfig& c = r.config;
+  c.numeric = o.numeric;
   c.scheduler.capacity_threshold = o.threshold;
   c.scheduler.actuator_fitted = o.actuator;
   c.scheduler.lead_time_s = o.lead_hours * 3600.0;
@@ -103,6 +104,7 @@ nlohmann::json summary_json(const ScheduleResult& r) {
       {"threshold_idle_days", r.threshold_idle_s / kDay_s},
       {"lead_hours", o.lead_hours},
       {"maintenance_days", o.maintenance_days},
+      {"numeric", numeric_build_name(o.numeric)},
       {"mixing_plan",
        {{"amplitude_m", r.plan.amplitude_m},
         {"frequency_hz", r.plan.frequency_hz},

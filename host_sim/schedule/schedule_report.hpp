@@ -18,6 +18,7 @@ struct ScheduleOptions {
   bool actuator = true;
   double maintenance_days = 7.0;      ///< request to visit without an actuator, days
   double lead_hours = 2.0;            ///< forecast horizon with an actuator, h
+  NumericBuild numeric = NumericBuild::kDouble;  ///< build of the estimator policy's mixing task
 };
 
 struct ScheduleResult {

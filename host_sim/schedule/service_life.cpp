@@ -5,8 +5,10 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <type_traits>
 
 #include "firmware/app/mixing_task.hpp"
+#include "firmware/core/numeric_formats.hpp"
 #include "host_sim/excitation/synthetic_motion.hpp"
 #include "mrd/units.hpp"
 #include "host_sim/io/usage_error.hpp"
@@ -28,7 +30,37 @@ double uniform_open0(std::mt19937_64& g) {
   return (static_cast<double>(g() >> 11) + 1.0) * (1.0 / 9007199254740992.0);
 }
 
-/// One policy over one world: the event loop described in the header.
+void set_rtc(fw::RtcSeconds& in, double rtc_s) { in.rtc_s = rtc_s; }
+void set_rtc(fw::RtcMillis& in, double rtc_s) { in.rtc_ms = std::llround(rtc_s * 1e3); }
+
+/// The wall clock in the build's boot argument: s (double) or ms.
+template <class Rtc>
+Rtc rtc_of(double rtc_s) {
+  if constexpr (std::is_same_v<Rtc, double>) {
+    return rtc_s;
+  } else {
+    return std::llround(rtc_s * 1e3);
+  }
+}
+
+/// A build's plan in double, for the simulated actuator.
+template <class Policy>
+fw::MixingPlan reference_plan(const fw::BasicMixingPlan<Policy>& p) {
+  fw::MixingPlan r;
+  r.amplitude_m = static_cast<double>(p.amplitude_m);
+  r.frequency_hz = static_cast<double>(p.frequency_hz);
+  r.cycles = p.cycles;
+  r.volume_m3 = fw::IdleArith<Policy>::vol_to_double(p.volume_m3);
+  r.duration_s = static_cast<double>(p.duration_s);
+  r.duration_ticks = p.duration_ticks;
+  r.peak_velocity_m_s = static_cast<double>(p.peak_velocity_m_s);
+  r.peak_accel_m_s2 = static_cast<double>(p.peak_accel_m_s2);
+  return r;
+}
+
+/// One policy over one world: the event loop described in the header, with
+/// the mixing task in the numeric build `Policy`.
+template <class Policy>
 class Run {
  public:
   Run(const World& w, const ServiceConfig& c, const PolicySpec& p) : w_(w), c_(c), p_(p) {
@@ -42,7 +74,7 @@ class Run {
       app::MixingTaskConfig mc{c.estimator, c.scheduler};
       mc.estimator.dead_band_m = 0.0;  // the world's ambient volume is already the credited volume
       firmware_.init(mc);
-      firmware_.boot_with(0.0, 0, kRtc0_s);
+      firmware_.boot_with(0.0, 0, rtc_of<typename app::BasicMixingTask<Policy>::Rtc>(kRtc0_s));
       period_s_ = mc.estimator.period_s;
     }
     next_fixed_s_ = fixed_ ? p.interval_s : kInf;
@@ -124,15 +156,16 @@ class Run {
 
   /// The board's mixing task on the sampled stroke and ground acceleration.
   void step_firmware(double accel_m_s2, bool mixing) {
-    app::MixingTaskInput in;
+    using Sample = typename fw::IdleArith<Policy>::Sample;
+    app::BasicMixingTaskInput<Policy> in;
     in.tick = static_cast<std::uint64_t>(std::llround(t_ / period_s_));
-    in.rtc_s = kRtc0_s + t_;
-    in.damper_disp_m = x_amb_m_ + x_mix_m_;
-    in.ground_accel_m_s2 = accel_m_s2;
-    in.base_accel_m_s2 = 0.0;
+    set_rtc(in, kRtc0_s + t_);
+    in.damper_disp_m = static_cast<Sample>(x_amb_m_ + x_mix_m_);
+    in.ground_accel_m_s2 = static_cast<Sample>(accel_m_s2);
+    in.base_accel_m_s2 = Sample(0);
     in.actuator_ready = c_.scheduler.actuator_fitted;
     in.actuator_busy = mixing;
-    const fw::MixingSchedulerOutput& o = firmware_.step(in);
+    const auto& o = firmware_.step(in);
     if (o.state == fw::SchedulerState::kRequested && o.request_active && o.request_id != started_id_) {
       pending_request_ = true;
     }
@@ -168,7 +201,7 @@ class Run {
       } else if (pending_request_) {
         pending_request_ = false;
         started_id_ = firmware_.output().request_id;
-        mix(firmware_.output().plan);
+        mix(reference_plan(firmware_.output().plan));
       } else {
         break;
       }
@@ -221,7 +254,7 @@ class Run {
   const ServiceConfig& c_;
   const PolicySpec p_;
   fw::SettlingModel truth_;
-  app::MixingTask firmware_;
+  app::BasicMixingTask<Policy> firmware_;
   PolicyResult r_;
   bool fixed_ = false;
   bool estimator_ = false;
@@ -240,6 +273,22 @@ class Run {
 };
 
 }  // namespace
+
+const char* numeric_build_name(NumericBuild b) noexcept {
+  switch (b) {
+    case NumericBuild::kDouble: return "double";
+    case NumericBuild::kFloat: return "float";
+    case NumericBuild::kFixed: return "fixed";
+  }
+  return "unknown";
+}
+
+NumericBuild parse_numeric_build(const std::string& name) {
+  if (name == "double") return NumericBuild::kDouble;
+  if (name == "float") return NumericBuild::kFloat;
+  if (name == "fixed") return NumericBuild::kFixed;
+  throw io::UsageError("--numeric: expected one of double, float, fixed; got '" + name + "'");
+}
 
 const char* policy_name(PolicyKind kind) noexcept {
   switch (kind) {
@@ -294,7 +343,13 @@ PolicyResult simulate_policy(const World& world, const ServiceConfig& config, co
   if (policy.kind == PolicyKind::kFixedInterval) {
     require(std::isfinite(policy.interval_s) && policy.interval_s > 0.0, "--interval-days: expected an interval > 0");
   }
-  return Run(world, config, policy).go();
+  if (policy.kind != PolicyKind::kEstimator) return Run<fw::Float64Policy>(world, config, policy).go();
+  switch (config.numeric) {
+    case NumericBuild::kFloat: return Run<num::Float32Policy>(world, config, policy).go();
+    case NumericBuild::kFixed: return Run<num::Fixed32Policy>(world, config, policy).go();
+    case NumericBuild::kDouble: break;
+  }
+  return Run<fw::Float64Policy>(world, config, policy).go();
 }
 
 IntervalSearch longest_fixed_interval(const World& world, const ServiceConfig& config) {

@@ -36,6 +36,11 @@
 ///    actuator, a maintenance request brings a technician after
 ///    maintenance_response_s, who runs the planned cycle unless the request
 ///    has cleared by then (motion mixed the fluid meanwhile).
+/// The estimator policy runs the mixing task in the numeric build
+/// ServiceConfig::numeric (double by default; float and fixed point are the
+/// builds for a single-precision microcontroller): the float and fixed
+/// builds take the stroke and accelerations as float and the wall clock in
+/// milliseconds, as a board would give them.
 /// The fixed interval, unless given, is the longest one whose capacity never
 /// falls below the threshold over the whole simulated life (bisection to
 /// search_resolution_s): judged at every moment, not only at the sampled
@@ -88,7 +93,15 @@ struct PolicySpec {
 
 const char* policy_name(PolicyKind kind) noexcept;
 
+/// The numeric build of the firmware's mixing task (estimator policy).
+enum class NumericBuild { kDouble, kFloat, kFixed };
+
+const char* numeric_build_name(NumericBuild b) noexcept;
+/// "double" | "float" | "fixed"; throws io::UsageError naming --numeric otherwise.
+NumericBuild parse_numeric_build(const std::string& name);
+
 struct ServiceConfig {
+  NumericBuild numeric = NumericBuild::kDouble;  ///< build of the estimator policy's mixing task
   fw::IdleEstimatorConfig estimator{};  ///< its dead band is ignored (see above)
   fw::MixingSchedulerConfig scheduler{};
   double step_s = 3600.0;                       ///< event grid, s

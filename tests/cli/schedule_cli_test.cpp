@@ -163,11 +163,25 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"TinyInterval", "--interval-days 0.001", "--interval-days"},
                       BadCase{"NegativeRate", "--earthquakes-per-year -1", "--earthquakes-per-year"},
                       BadCase{"ActuatorMaybe", "--actuator maybe", "--actuator"},
+                      BadCase{"NumericQuad", "--numeric quad", "--numeric"},
+                      BadCase{"NumericEmpty", "--numeric ''", "--numeric"},
                       BadCase{"SeedNotANumber", "--seed abc", "abc"},
                       BadCase{"NegativeSeed", "--seed -1", "--seed"},
                       BadCase{"NegativeAmbient", "--ambient-litres-per-day -0.1", "--ambient-litres-per-day"},
                       BadCase{"UnknownOption", "--frobnicate", "frobnicate"}),
     [](const auto& p) { return std::string(p.param.name); });
+
+// --numeric picks the build the estimator policy runs and is recorded in
+// summary.json; the fixed-point build keeps the threshold like the double one.
+TEST_F(ScheduleCli, NumericBuildIsUsedAndRecorded) {
+  const auto r = run_mrd("schedule --years 2 --seed 1 --interval-days 5 --numeric fixed --out " + out_.path().string(),
+                         scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("numeric fixed"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  EXPECT_EQ(j["numeric"], "fixed");
+  EXPECT_TRUE(j["estimator_meets_threshold"].get<bool>());
+}
 
 TEST_F(ScheduleCli, UnwritableOutIsAnError) {
   const auto file = out_.path() / "a-file";

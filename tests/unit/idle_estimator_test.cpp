@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <new>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include "firmware/platform/sim/memory_state_store.hpp"
@@ -38,6 +39,8 @@ constexpr double kRtc0 = 1.7e9;    // wall clock at the test's boot, s
 constexpr double kYear = units::kSecondsPerYear;
 
 double t_max_s() { return physics::max_settling_time_s(physics::SettlingParams{}); }
+/// T_max as the estimator counts it: Eq. 5.4 rounded up to whole 1 ms ticks.
+double t_max_tick_s() { return std::ceil(t_max_s() / kDt) * kDt; }
 
 /// Steps an estimator with a running tick and an RTC that follows it.
 class Rig {
@@ -86,29 +89,56 @@ struct EpisodeCase {
   int history;  // 0: Table 5.1 case-1 sine, 1: random velocity
 };
 
-class SingleEpisode : public ::testing::TestWithParam<EpisodeCase> {};
+void set_rtc(RtcSeconds& in, double rtc_s) { in.rtc_s = rtc_s; }
+void set_rtc(RtcMillis& in, double rtc_s) { in.rtc_ms = std::llround(rtc_s * 1e3); }
 
-// One idle-then-excite episode: the estimator, fed the damper displacement,
-// gives the participant ratio physics::MrDamper computes from the velocity
-// (Eq. 5.5–5.9), sample for sample. MrDamper integrates |v|·A·T with v held
-// over the step; the displacement it implies moves by v·T per step, so the
-// two agree up to rounding.
-TEST_P(SingleEpisode, ReproducesMrDamper) {
-  const auto& c = GetParam();
+/// Largest |PR − MrDamper's PR| and |capacity − its capacity| over one
+/// idle-then-excite episode of 30 s at 1 kHz, and the volume difference at
+/// the end, for one numeric build of the estimator.
+struct EpisodeErrors {
+  double pr = 0.0;
+  double first_pr = 0.0;
+  double capacity = 0.0;
+  double volume_m3 = 0.0;
+  bool open = false;
+};
+
+template <class P>
+EpisodeErrors run_episode(const EpisodeCase& c) {
+  using Sample = typename IdleArith<P>::Sample;
   const double idle_s = c.idle_years * kYear;
-  Rig rig;
-  rig.boot_with(idle_s);
+  BasicIdleEstimator<P> est;
+  IdleEstimatorConfig config;
+  config.dead_band_m = 0.0;
+  config.period_s = kDt;
+  EXPECT_TRUE(est.init(config));
+  typename BasicIdleEstimator<P>::Rtc rtc0{};
+  if constexpr (std::is_same_v<typename IdleArith<P>::Rtc, double>) {
+    rtc0 = kRtc0;
+  } else {
+    rtc0 = std::llround(kRtc0 * 1e3);
+  }
+  est.boot_with(idle_s, 0, rtc0);
 
   physics::MrDamperParams dp;
   physics::MrDamper damper(dp, kDt, physics::settling_quotient(idle_s, t_max_s()));
   damper.reset(physics::settling_quotient(idle_s, t_max_s()), 2.5);
+  const physics::BinghamParams b;
+  const double f1 = physics::damper_force_n(b, 2.5, 0.1, 1.0);
 
   std::mt19937 rng(11);
   std::normal_distribution<double> kick(0.0, 0.02);
   double x_m = 0.0, v_m_s = 0.0;
-  rig.sample(x_m);
-  EXPECT_DOUBLE_EQ(rig.est.estimate().participant_ratio, damper.participant_ratio());
-  double worst = 0.0;
+  typename BasicIdleEstimator<P>::Input in;
+  const auto sample = [&](std::uint64_t tick) {
+    in.tick = tick;
+    set_rtc(in, kRtc0 + static_cast<double>(tick) * kDt);
+    in.damper_disp_m = static_cast<Sample>(x_m);
+    est.step(in);
+  };
+  sample(0);
+  EpisodeErrors e;
+  e.first_pr = std::fabs(static_cast<double>(est.estimate().participant_ratio) - damper.participant_ratio());
   for (int n = 0; n < 30000; ++n) {
     const double t = n * kDt;
     if (c.history == 0) {
@@ -118,17 +148,63 @@ TEST_P(SingleEpisode, ReproducesMrDamper) {
     }
     damper.step(2.5, v_m_s);
     x_m += v_m_s * kDt;
-    rig.next(x_m);
-    worst = std::max(worst, std::fabs(rig.est.estimate().participant_ratio - damper.participant_ratio()));
+    sample(static_cast<std::uint64_t>(n + 1));
+    const double pr = damper.participant_ratio();
+    e.pr = std::max(e.pr, std::fabs(static_cast<double>(est.estimate().participant_ratio) - pr));
+    // Capacity: damper force at 2.5 A and 0.1 m/s with this PR over PR = 1.
+    e.capacity = std::max(e.capacity, std::fabs(static_cast<double>(est.estimate().capacity_fraction) -
+                                                physics::damper_force_n(b, 2.5, 0.1, pr) / f1));
   }
-  EXPECT_LT(worst, 1e-12);
-  EXPECT_TRUE(rig.est.estimate().episode_open);
-  EXPECT_NEAR(rig.est.estimate().episode_volume_m3, damper.displaced_volume_m3(), 1e-12);
-  // Capacity: damper force at 2.5 A and 0.1 m/s with this PR over PR = 1.
-  const double pr = damper.participant_ratio();
-  const physics::BinghamParams b;
-  EXPECT_NEAR(rig.est.estimate().capacity_fraction,
-              physics::damper_force_n(b, 2.5, 0.1, pr) / physics::damper_force_n(b, 2.5, 0.1, 1.0), 1e-12);
+  e.open = est.estimate().episode_open;
+  e.volume_m3 = std::fabs(static_cast<double>(est.estimate().episode_volume_m3) - damper.displaced_volume_m3());
+  return e;
+}
+
+class SingleEpisode : public ::testing::TestWithParam<EpisodeCase> {};
+
+// One idle-then-excite episode: the estimator, fed the damper displacement,
+// gives the participant ratio physics::MrDamper computes from the velocity
+// (Eq. 5.5–5.9), sample for sample. MrDamper integrates |v|·A·T with v held
+// over the step; the displacement it implies moves by v·T per step, so the
+// two agree up to the numbers of each build. Tolerances, from the formats
+// (PR = b + (a − b)e^−x; |∂PR/∂SQ| ≤ 7·0.9 + 4.5·0.395 + 0.9·x·e^−x·3.65 ≤ 9.3;
+// |∂PR/∂x|·|x| ≤ 0.9/e = 0.33 per relative error of x):
+//  - double: T_max is a whole number of 1 ms ticks (rounded by ≤ 0.5 ms of
+//    2.69e7 s: SQ off by ≤ 1.9e−11 relative) → PR ≤ 9.3·1.9e−11 = 1.8e−10;
+//    the rest is double rounding (< 1e−13). Bound 5e−10.
+//  - float: the displacement crosses as float (x ≤ 0.6 m: ≤ 3e−8 m a
+//    sample, so the displaced volume is off by ≤ 6e−8 m·A per direction
+//    change and, being a sum of |Δx|, by ≤ 2^−24 relative per step); SQ, the
+//    three exponentials and Eq. 5.9 each carry ≤ 4 float roundings
+//    (2^−24 = 6e−8 relative): SQ error 2.4e−7 → PR 2.2e−6 worst case; x
+//    relative error 6 roundings = 3.6e−7 → 0.33·3.6e−7 = 1.2e−7; affine
+//    sums ≤ 2 roundings of 1 = 1.2e−7. Bound 3e−6.
+//  - fixed: SQ in Q1.30 (≤ 2^−31 + the tick rounding above); c·SQ to Q5.26
+//    (½ LSB 7.5e−9, plus c in Q3.28: 1.9e−9) → a_PR, b_PR by ≤ 0.9·(7.5e−9 +
+//    1.9e−9 + exp's 3.8e−9) + 3 roundings of Q1.30 (1.4e−9) = 1.3e−8; c_PR
+//    by 5.474·1.32e−8 = 7.2e−8 (0.5 relative·e−6 at c = 0.142), rate c/unit
+//    in Q13.18 (½ LSB 1.9e−6 per 142 /m³ = 1.3e−8): x relative ≤ 5.2e−7
+//    → 0.33·5.2e−7 = 1.7e−7; the float crossing of x as for float (the
+//    Disp grid is 3.7e−9 m, finer than float's 3e−8 m at 0.3 m) adds
+//    ≤ 0.33·(2^−24) per step of relative volume; exp(−x) ≤ 3.8e−9.
+//    Bound 1e−6 (float input dominates).
+// The capacity is affine in PR with slope 0.93 (Table 4.1 at 2.5 A and
+// 0.1 m/s), plus one rounding: same bounds.
+template <class P>
+void expect_episode(const EpisodeCase& c, double tol_pr, double tol_volume_m3) {
+  const EpisodeErrors e = run_episode<P>(c);
+  EXPECT_LT(e.first_pr, tol_pr) << P::kName;
+  EXPECT_LT(e.pr, tol_pr) << P::kName;
+  EXPECT_LT(e.capacity, tol_pr) << P::kName;
+  EXPECT_LT(e.volume_m3, tol_volume_m3) << P::kName;
+  EXPECT_TRUE(e.open) << P::kName;
+}
+
+TEST_P(SingleEpisode, ReproducesMrDamperInDouble) { expect_episode<Float64Policy>(GetParam(), 5e-10, 1e-12); }
+// Volume: float's 2^−24 of up to 0.05 m³ an episode = 3e−9 m³.
+TEST_P(SingleEpisode, ReproducesMrDamperInFloat) { expect_episode<num::Float32Policy>(GetParam(), 3e-6, 1e-8); }
+TEST_P(SingleEpisode, ReproducesMrDamperInFixedPoint) {
+  expect_episode<num::Fixed32Policy>(GetParam(), 1e-6, 1e-8);
 }
 
 INSTANTIATE_TEST_SUITE_P(IdleTimes, SingleEpisode,
@@ -176,7 +252,7 @@ TEST(IdleEstimator, IdleTimeSaturatesAtMaxSettlingTime) {
   rig.boot_with(0.0);
   rig.sample(0.0);
   rig.idle_for(5.0 * kYear);
-  EXPECT_DOUBLE_EQ(rig.est.estimate().equivalent_idle_s, t_max_s());
+  EXPECT_DOUBLE_EQ(rig.est.estimate().equivalent_idle_s, t_max_tick_s());
   EXPECT_DOUBLE_EQ(rig.est.estimate().sq, 1.0);
 }
 
@@ -312,7 +388,7 @@ TEST(IdleEstimator, ClockBackwardsWhileRunningMeansFullySettled) {
   in.tick = ++rig.tick;
   in.rtc_s = kRtc0 + rig.t() - 3600.0;  // NTP set the clock back an hour
   rig.est.step(in);
-  EXPECT_EQ(rig.est.estimate().equivalent_idle_s, t_max_s());
+  EXPECT_EQ(rig.est.estimate().equivalent_idle_s, t_max_tick_s());
   EXPECT_TRUE(rig.est.estimate().flags & kIdleClockBackwards);
   EXPECT_TRUE(rig.est.estimate().flags & kIdleAssumedSettled);
   EXPECT_TRUE(rig.est.save_due());
@@ -335,7 +411,7 @@ TEST(IdleEstimator, StepWithoutBootAssumesTheWorst) {
   IdleEstimator est;
   ASSERT_TRUE(est.init({}));
   est.step(IdleEstimatorInput{});
-  EXPECT_EQ(est.estimate().equivalent_idle_s, t_max_s());
+  EXPECT_EQ(est.estimate().equivalent_idle_s, t_max_tick_s());
   EXPECT_TRUE(est.estimate().flags & kIdleNoSavedState);
 }
 
@@ -376,7 +452,8 @@ TEST(IdleEstimator, SavesAtTheIntervalAndOnStateChanges) {
 }
 
 // The saved record restores τ and the counters; the stamp is the last RTC
-// reading advanced by the ticks since.
+// reading advanced by the ticks since. The record holds milliseconds and
+// volume counts of 2^−40 m³: the volume comes back within half a count.
 TEST(IdleEstimator, SaveAndBootRoundTrip) {
   Rig rig;
   rig.boot_with(1000.0);
@@ -388,14 +465,14 @@ TEST(IdleEstimator, SaveAndBootRoundTrip) {
   ASSERT_EQ(rig.est.save(store), SaveOutcome::kSaved);
   PersistedIdleState s;
   ASSERT_EQ(decode_state(store.bytes(), s), DecodeStatus::kOk);
-  EXPECT_NEAR(s.rtc_s, kRtc0 + rig.t(), 1e-6);
+  EXPECT_EQ(s.rtc_ms, std::llround((kRtc0 + rig.t()) * 1e3));
   EXPECT_EQ(s.mixing_cycles, 1u);
 
   IdleEstimator again;
   ASSERT_TRUE(again.init({}));
-  again.boot(store, 0, s.rtc_s, true);
+  again.boot(store, 0, static_cast<double>(s.rtc_ms) * 1e-3, true);
   EXPECT_NEAR(again.estimate().equivalent_idle_s, rig.est.estimate().equivalent_idle_s, 1e-6);
-  EXPECT_EQ(again.estimate().lifetime_volume_m3, rig.est.estimate().lifetime_volume_m3);
+  EXPECT_NEAR(again.estimate().lifetime_volume_m3, rig.est.estimate().lifetime_volume_m3, 0.5 * kVolumeCountM3);
   EXPECT_EQ(again.estimate().mixing_cycles, 1u);
 }
 
@@ -460,7 +537,8 @@ TEST(IdleEstimator, VolumeToCeilingBringsPrWithinTheGap) {
   const double c = 5.474 * std::exp(-3.65 * sq);
   EXPECT_NEAR(v_m3, 1e-3 * std::log((b - a) / (g * b)) / c, 1e-12);
   rig.next(v_m3 / 0.01062);  // one sample moving exactly that volume
-  EXPECT_NEAR(rig.est.estimate().participant_ratio, b - g * b, 1e-12);
+  // SQ of the tick-rounded T_max (see SingleEpisode): within 1e−10.
+  EXPECT_NEAR(rig.est.estimate().participant_ratio, b - g * b, 1e-10);
   EXPECT_NEAR(rig.est.volume_to_ceiling_m3(g), 0.0, 1e-15);
 }
 
@@ -475,6 +553,51 @@ TEST(IdleEstimator, RefusesBadConfiguration) {
   c = {};
   c.model.pr.flow_area_m2 = 0.0;
   EXPECT_FALSE(est.init(c));
+}
+
+// ------------------------------------------------ the volume counter
+
+// Small ambient motion is not lost against a large running total: with
+// 100 m³ already credited (far more than a decade of ambient motion, 0.02 m³,
+// plus 50 years of earthquakes and mixing), 1000 strokes of 1 µm each add
+// 1000·1e−6 m·0.01062 m² = 1.062e−5 m³ to the counter. The 64-bit counter
+// in 2^−40 m³ (9.1e−13 m³) keeps each 1.06e−11 m³ step within ½ count;
+// the float sample of x (≤ 4e−9 m at 0.03 m) bounds each step's volume by
+// ±4e−11 m³, unbiased over a back-and-forth stroke: 1000 steps ≤ 4e−8 m³
+// in the worst case, 1e−8 is the bound used (errors alternate in sign).
+template <class P>
+void small_motion_counts_on_a_large_total() {
+  using Sample = typename IdleArith<P>::Sample;
+  BasicIdleEstimator<P> est;
+  IdleEstimatorConfig c;
+  c.dead_band_m = 0.0;
+  ASSERT_TRUE(est.init(c));
+  PersistedIdleState s;
+  s.rtc_ms = 1700000000000;
+  s.lifetime_volume = std::llround(100.0 / kVolumeCountM3);
+  sim::MemoryStateStore store;
+  ASSERT_EQ(store.save(encode_state(s)), hal::StoreStatus::kOk);
+  est.boot(store, 0, 1700000000000, true);
+  const double before = IdleArith<P>::vol_to_double(est.lifetime_volume());
+  EXPECT_NEAR(before, 100.0, 1e-9);
+  typename BasicIdleEstimator<P>::Input in;
+  in.rtc_ms = 1700000000000;
+  for (int k = 0; k <= 1000; ++k) {
+    in.tick = static_cast<std::uint64_t>(k);
+    const int up_down = k % 200 < 100 ? k % 200 : 200 - k % 200;  // 0 … 100 … 0: steps of 1 µm
+    in.damper_disp_m = static_cast<Sample>(0.03 + 1e-6 * up_down);
+    est.step(in);
+  }
+  const double added = IdleArith<P>::vol_to_double(est.lifetime_volume()) - before;
+  EXPECT_NEAR(added, 1000.0 * 1e-6 * 0.01062, 1e-8) << P::kName;
+  EXPECT_GT(added, 0.0);
+}
+
+TEST(IdleEstimator, FloatBuildCountsMicrometreStrokesOnAHundredCubicMetres) {
+  small_motion_counts_on_a_large_total<num::Float32Policy>();
+}
+TEST(IdleEstimator, FixedPointBuildCountsMicrometreStrokesOnAHundredCubicMetres) {
+  small_motion_counts_on_a_large_total<num::Fixed32Policy>();
 }
 
 // ------------------------------------------------ no heap in step()

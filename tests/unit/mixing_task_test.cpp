@@ -92,5 +92,58 @@ TEST(MixingTask, WithoutAnActuatorASettledFluidNeedsMaintenance) {
   EXPECT_FALSE(o.request_active);
 }
 
+// The float and fixed-point builds of the task on the same settled fluid: the
+// same request and number of cycles as the double build, each cycle the
+// thesis stroke (±76.2 mm at 0.2 Hz: 4·0.0762·0.01062 m³ = 3.237 L, 5 s =
+// 500 ticks at 100 Hz), confirmed from the stroke, counted once.
+template <class P>
+void settled_fluid_is_mixed_once() {
+  using Sample = typename fw::IdleArith<P>::Sample;
+  using A = fw::IdleArith<P>;
+  BasicMixingTask<P> t;
+  ASSERT_TRUE(t.init(config_at(0.01)));
+  const std::int64_t rtc0_ms = 1700000000000;
+  t.boot_with(t.estimator().model().max_settling_time_s(), 0, rtc0_ms);
+  BasicMixingTaskInput<P> in;
+  in.rtc_ms = rtc0_ms;
+  const auto first = t.step(in);
+  const double settled_capacity = static_cast<double>(t.estimator().estimate().capacity_fraction);
+  ASSERT_EQ(first.state, fw::SchedulerState::kRequested) << P::kName;
+  const auto plan = first.plan;
+  MixingTask reference;
+  ASSERT_TRUE(reference.init(config_at(0.01)));
+  reference.boot_with(reference.estimator().model().max_settling_time_s(), 0, kRtc0_s);
+  MixingTaskInput ref_in;
+  ref_in.rtc_s = kRtc0_s;
+  const std::uint32_t cycles = reference.step(ref_in).plan.cycles;
+  EXPECT_EQ(plan.cycles, cycles) << P::kName;
+  EXPECT_NEAR(static_cast<double>(plan.amplitude_m), 0.0762, 1e-7);
+  EXPECT_NEAR(static_cast<double>(plan.frequency_hz), 0.2, 1e-7);
+  EXPECT_NEAR(A::vol_to_double(plan.volume_m3), cycles * 4.0 * 0.0762 * 0.01062, 1e-9);
+  EXPECT_EQ(plan.duration_ticks, 500u * cycles);
+
+  std::uint64_t k = 1;
+  for (; k <= plan.duration_ticks; ++k) {
+    in.tick = k;
+    in.rtc_ms = rtc0_ms + 10 * static_cast<std::int64_t>(k);
+    in.actuator_busy = true;
+    in.damper_disp_m = static_cast<Sample>(0.0762 * std::sin(2.0 * units::kPi * 0.2 * 0.01 * static_cast<double>(k)));
+    ASSERT_NE(t.output().state, fw::SchedulerState::kAborted) << P::kName << " tick " << k;
+    t.step(in);
+  }
+  ASSERT_EQ(t.output().state, fw::SchedulerState::kConfirmed) << P::kName;
+  in.actuator_busy = false;
+  for (std::uint64_t end = k + 1000; k < end; ++k) {
+    in.tick = k;
+    t.step(in);
+  }
+  EXPECT_EQ(t.estimator().estimate().mixing_cycles, 1u);
+  EXPECT_GT(static_cast<double>(t.estimator().estimate().mixing_volume_m3), 0.9 * cycles * 4.0 * 0.0762 * 0.01062);
+  EXPECT_GT(static_cast<double>(t.estimator().estimate().capacity_fraction), settled_capacity + 0.3);
+}
+
+TEST(MixingTask, FloatBuildMixesASettledFluidOnce) { settled_fluid_is_mixed_once<num::Float32Policy>(); }
+TEST(MixingTask, FixedPointBuildMixesASettledFluidOnce) { settled_fluid_is_mixed_once<num::Fixed32Policy>(); }
+
 }  // namespace
 }  // namespace mrd::app

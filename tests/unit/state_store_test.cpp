@@ -10,6 +10,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -29,10 +30,10 @@ namespace fs = std::filesystem;
 
 PersistedIdleState sample_state() {
   PersistedIdleState s;
-  s.equivalent_idle_s = 1.0;
-  s.rtc_s = 1.7e9;
-  s.lifetime_volume_m3 = 0.125;
-  s.mixing_volume_m3 = 0.0625;
+  s.equivalent_idle_ms = 1000;          // 1 s
+  s.rtc_ms = 1700000000000;             // 1.7e9 s
+  s.lifetime_volume = std::int64_t{1} << 37;  // 0.125 m³ in 2^−40 m³
+  s.mixing_volume = std::int64_t{1} << 36;    // 0.0625 m³
   s.mixing_cycles = 7;
   s.save_sequence = 42;
   s.flags = kIdleNoSavedState;
@@ -60,31 +61,32 @@ TEST(StateRecord, RoundTrip) {
   const PersistedIdleState s = sample_state();
   PersistedIdleState back;
   ASSERT_EQ(decode_state(encode_state(s), back), DecodeStatus::kOk);
-  EXPECT_EQ(back.equivalent_idle_s, s.equivalent_idle_s);
-  EXPECT_EQ(back.rtc_s, s.rtc_s);
-  EXPECT_EQ(back.lifetime_volume_m3, s.lifetime_volume_m3);
-  EXPECT_EQ(back.mixing_volume_m3, s.mixing_volume_m3);
+  EXPECT_EQ(back.equivalent_idle_ms, s.equivalent_idle_ms);
+  EXPECT_EQ(back.rtc_ms, s.rtc_ms);
+  EXPECT_EQ(back.lifetime_volume, s.lifetime_volume);
+  EXPECT_EQ(back.mixing_volume, s.mixing_volume);
   EXPECT_EQ(back.mixing_cycles, 7u);
   EXPECT_EQ(back.save_sequence, 42u);
   EXPECT_EQ(back.flags, s.flags);
 }
 
 // The documented layout, byte by byte where it is easy to write down:
-// "MRDI", version 1, size 64, 1.0 = 0x3FF0000000000000 little-endian,
-// and the CRC of bytes 0..59 (computed by zlib) in the last four bytes.
+// "MRDI", version 2, size 64, τ = 1000 ms = 0x03E8 little-endian, the
+// lifetime volume 2^37 counts (byte 28 = 0x20), and the CRC of bytes 0..59 (computed by zlib) in the last four bytes.
 TEST(StateRecord, LayoutAsDocumented) {
   const hal::StateRecord r = encode_state(sample_state());
   EXPECT_EQ(r[0], 'M');
   EXPECT_EQ(r[1], 'R');
   EXPECT_EQ(r[2], 'D');
   EXPECT_EQ(r[3], 'I');
-  EXPECT_EQ(r[4], 1);
+  EXPECT_EQ(r[4], 2);
   EXPECT_EQ(r[5], 0);
   EXPECT_EQ(r[6], 64);
   EXPECT_EQ(r[7], 0);
-  for (int k = 8; k < 14; ++k) EXPECT_EQ(r[k], 0) << k;
-  EXPECT_EQ(r[14], 0xF0);
-  EXPECT_EQ(r[15], 0x3F);
+  EXPECT_EQ(r[8], 0xE8);
+  EXPECT_EQ(r[9], 0x03);
+  for (int k = 10; k < 16; ++k) EXPECT_EQ(r[k], 0) << k;
+  for (int k = 24; k < 32; ++k) EXPECT_EQ(r[k], k == 28 ? 0x20 : 0) << k;
   EXPECT_EQ(r[40], 7);
   EXPECT_EQ(r[44], 42);
   for (int k = 52; k < 60; ++k) EXPECT_EQ(r[k], 0) << k;
@@ -113,6 +115,24 @@ hal::StateRecord with_fixed_crc(hal::StateRecord r) {
   return r;
 }
 
+/// A version-1 record as the double-only estimator wrote it: τ, stamp,
+/// lifetime volume (and half of it as the mixing volume) as binary64, 3 cycles.
+hal::StateRecord version1(double idle_s, double rtc_s, double lifetime_m3) {
+  hal::StateRecord r{};
+  const auto put = [&r](std::size_t at, std::uint64_t v, int bytes) {
+    for (int k = 0; k < bytes; ++k) r[at + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(v >> (8 * k));
+  };
+  put(0, kStateRecordMagic, 4);
+  put(4, 1, 2);
+  put(6, 64, 2);
+  put(8, std::bit_cast<std::uint64_t>(idle_s), 8);
+  put(16, std::bit_cast<std::uint64_t>(rtc_s), 8);
+  put(24, std::bit_cast<std::uint64_t>(lifetime_m3), 8);
+  put(32, std::bit_cast<std::uint64_t>(0.5 * lifetime_m3), 8);
+  put(40, 3, 4);
+  return with_fixed_crc(r);
+}
+
 TEST(StateRecord, RefusalReasons) {
   PersistedIdleState out;
   hal::StateRecord r = encode_state(sample_state());
@@ -120,7 +140,7 @@ TEST(StateRecord, RefusalReasons) {
   EXPECT_EQ(decode_state(with_fixed_crc(r), out), DecodeStatus::kBadMagic);
 
   r = encode_state(sample_state());
-  r[4] = 2;  // version 2 with a valid CRC: a record we do not understand
+  r[4] = 3;  // version 3 with a valid CRC: a record we do not understand
   EXPECT_EQ(decode_state(with_fixed_crc(r), out), DecodeStatus::kBadVersion);
 
   r = encode_state(sample_state());
@@ -132,14 +152,28 @@ TEST(StateRecord, RefusalReasons) {
   EXPECT_EQ(decode_state(r, out), DecodeStatus::kBadCrc);
 
   PersistedIdleState s = sample_state();
-  s.equivalent_idle_s = std::numeric_limits<double>::quiet_NaN();
+  s.lifetime_volume = -1;
   EXPECT_EQ(decode_state(encode_state(s), out), DecodeStatus::kBadValue);
   s = sample_state();
-  s.equivalent_idle_s = -1.0;
+  s.equivalent_idle_ms = ~std::uint64_t{0};
   EXPECT_EQ(decode_state(encode_state(s), out), DecodeStatus::kBadValue);
-  s = sample_state();
-  s.rtc_s = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(decode_state(encode_state(s), out), DecodeStatus::kBadValue);
+  EXPECT_EQ(decode_state(version1(std::numeric_limits<double>::quiet_NaN(), 1.7e9, 0.0), out),
+            DecodeStatus::kBadValue);
+  EXPECT_EQ(decode_state(version1(-1.0, 1.7e9, 0.0), out), DecodeStatus::kBadValue);
+  EXPECT_EQ(decode_state(version1(1.0, std::numeric_limits<double>::infinity(), 0.0), out), DecodeStatus::kBadValue);
+}
+
+// A version-1 record (doubles, s and m³) still boots: converted to ms and
+// 2^−40 m³ counts, rounded to nearest. 86400.0004 s → 86400000 ms;
+// 0.5 m³ → 2^39 counts; 1.7e9 s → 1.7e12 ms.
+TEST(StateRecord, ReadsVersion1) {
+  PersistedIdleState out;
+  ASSERT_EQ(decode_state(version1(86400.0004, 1.7e9, 0.5), out), DecodeStatus::kOk);
+  EXPECT_EQ(out.equivalent_idle_ms, 86400000u);
+  EXPECT_EQ(out.rtc_ms, 1700000000000);
+  EXPECT_EQ(out.lifetime_volume, std::int64_t{1} << 39);
+  EXPECT_EQ(out.mixing_volume, std::int64_t{1} << 38);
+  EXPECT_EQ(out.mixing_cycles, 3u);
 }
 
 // ------------------------------------------------------------ FileStateStore
@@ -269,9 +303,9 @@ class EstimatorBoot : public FileStore {
   /// A healthy record: τ = 1 day, saved at kRtc0.
   void save_healthy() {
     PersistedIdleState s;
-    s.equivalent_idle_s = 86400.0;
-    s.rtc_s = kRtc0;
-    s.lifetime_volume_m3 = 0.5;
+    s.equivalent_idle_ms = 86400000;
+    s.rtc_ms = std::llround(kRtc0 * 1e3);
+    s.lifetime_volume = std::int64_t{1} << 39;  // 0.5 m³
     posix::FileStateStore store(path_.string());
     ASSERT_EQ(store.save(encode_state(s)), hal::StoreStatus::kOk);
   }

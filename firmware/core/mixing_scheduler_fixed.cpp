@@ -1,0 +1,7 @@
+// The fixed build of the mixing scheduler (num::Fixed32Policy). This file is also what
+// the Cortex-M4 cross-compile check builds.
+#include "firmware/core/mixing_scheduler_impl.hpp"
+
+namespace mrd::fw {
+template class BasicMixingScheduler<num::Fixed32Policy>;
+}  // namespace mrd::fw
