@@ -24,6 +24,7 @@ constexpr Signature kSignatures[] = {
     {"transition_shape", "the force rising with velocity near zero otherwise than Eq. 4.4"},
     {"current_law", "the force depending on the current otherwise than the current law"},
     {"inertia", "a force in phase with acceleration (inertia or fluid compressibility)"},
+    {"filter_shape", "a filter rather than a delay: the error follows the model force's curvature"},
 };
 constexpr std::size_t kCount = std::size(kSignatures);
 
@@ -41,7 +42,7 @@ std::vector<double> derivative(std::span<const double> t, std::span<const double
 
 /// Signal `j` at sample k.
 Eigen::MatrixXd signals(const SignatureInput& in, std::span<const std::size_t> index, std::span<const double> dfdt,
-                        std::span<const double> acc) {
+                        std::span<const double> d2fdt2, std::span<const double> acc) {
   const std::size_t n = in.time_s.size();
   const double t0 = in.time_s.front();
   const double span_s = std::max(in.time_s.back() - t0, 1e-9);
@@ -67,6 +68,7 @@ Eigen::MatrixXd signals(const SignatureInput& in, std::span<const std::size_t> i
     m(row, 7) = sv * w;
     m(row, 8) = i_max > 0.0 ? f * std::fabs(in.current_a[k]) / i_max : 0.0;
     m(row, 9) = acc[k];
+    m(row, 10) = d2fdt2[k];
   }
   return m;
 }
@@ -165,9 +167,10 @@ SignatureAnalysis analyse_residual(const SignatureInput& in, std::span<const std
   SignatureAnalysis out;
   if (in.time_s.size() < 3 || train.empty() || held_out.empty()) return out;
   const std::vector<double> dfdt = derivative(in.time_s, in.model_force_n);
+  const std::vector<double> d2fdt2 = derivative(in.time_s, dfdt);
   const std::vector<double> acc = derivative(in.time_s, in.vel_m_s);
-  const Eigen::MatrixXd a_train = signals(in, train, dfdt, acc);
-  const Eigen::MatrixXd a_test = signals(in, held_out, dfdt, acc);
+  const Eigen::MatrixXd a_train = signals(in, train, dfdt, d2fdt2, acc);
+  const Eigen::MatrixXd a_test = signals(in, held_out, dfdt, d2fdt2, acc);
   const Eigen::VectorXd r_train = residual_at(in, train);
   const Eigen::VectorXd r_test = residual_at(in, held_out);
   Eigen::VectorXd coef;

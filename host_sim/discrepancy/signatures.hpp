@@ -19,6 +19,7 @@
 ///   transition_shape     sgn(v)·w(v)                the force rising with velocity otherwise than Eq. 4.4
 ///   current_law          F·i/i_max                  the force depending on current otherwise than the law
 ///   inertia              a                          a force in phase with acceleration (mass, compressibility)
+///   filter_shape         d²F/dt²                    a filter (low-pass, compliance) rather than a pure delay
 ///   w(v) = max(0, 1 − |v| / (3 v_band))
 /// </pre>
 /// And one signature without a form, state_map: the mean residual in each
