@@ -485,7 +485,7 @@ void describe_rejections(DiscrepancyResult& res) {
   if (res.rounds.empty()) return;
   std::string rejected;
   for (const auto& c : res.rounds.front().candidates) {
-    if (c.chosen || c.alternative) continue;
+    if (c.chosen || c.alternative || c.verdict == "earned") continue;
     if (!rejected.empty()) rejected += "; ";
     rejected += std::string(effect_name(c.effect)) + ": " + c.verdict;
   }
