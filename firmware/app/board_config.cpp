@@ -202,6 +202,17 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
 }
 
 BoardConfig load_board_config(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw BoardConfigError(path.string() + ":0: no such board file");
+  if (!std::filesystem::is_regular_file(status)) {
+    throw BoardConfigError(path.string() + ":0: not a regular file (a folder, pipe or device)");
+  }
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxBoardFileBytes) {
+    throw BoardConfigError(path.string() + ":0: larger than the limit of " + std::to_string(kMaxBoardFileBytes) +
+                           " bytes for a board file");
+  }
   std::ifstream in(path);
   if (!in) throw BoardConfigError(path.string() + ":0: cannot open the board file");
   std::stringstream ss;
