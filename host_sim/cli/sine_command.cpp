@@ -76,7 +76,9 @@ void run_thesis_cases(const std::optional<std::filesystem::path>& out) {
   std::printf("Table 5.1 sine tests: model against Table 5.2 (a)\n\n%s", run::thesis_cases_markdown(results).c_str());
   if (!out) return;
   run::write_thesis_cases_outputs(*out, results);
-  std::printf("\nwrote %s/thesis_cases.md and summary.json\n", out->c_str());
+  const auto shown = shown_path(*out);
+  commit_out_dir();
+  std::printf("\nwrote %s/thesis_cases.md and summary.json\n", shown.c_str());
 }
 
 void print_single(const run::SineRun& r) {
@@ -95,8 +97,11 @@ void run_single(const SineOptions& o, const run::SineRigSpec& spec, const std::o
   r.metrics = run::run_sine_rig(spec, {}, {}, out ? &r.record : nullptr);
   print_single(r);
   if (!out) return;
-  warn_plots_not_written("sine", run::write_sine_outputs(*out, r));
-  std::printf("wrote %s/summary.json, sine.csv and plots\n", out->c_str());
+  const auto problems = run::write_sine_outputs(*out, r);
+  const auto shown = shown_path(*out);
+  commit_out_dir();
+  warn_plots_not_written("sine", problems);
+  std::printf("wrote %s/summary.json, sine.csv and plots\n", shown.c_str());
 }
 
 void add_options(CLI::App& app, SineOptions& o) {

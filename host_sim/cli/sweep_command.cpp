@@ -120,7 +120,9 @@ void execute(const SweepOptions& o) {
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   print_timing(spec, rows, wall_s);
   std::vector<std::string> pngs;
-  warn_plots_not_written("sweep", run::write_sweep_report(out, spec, rows, wall_s, &pngs));
+  const auto problems = run::write_sweep_report(out, spec, rows, wall_s, &pngs);
+  commit_out_dir();
+  warn_plots_not_written("sweep", problems);
   std::printf("wrote %s/sweep.csv, summary.json and %zu plots\n", o.out_dir.c_str(), pngs.size());
 }
 
