@@ -29,15 +29,21 @@ struct CommandHelp {
   const char* footer;       ///< after the options in `mrd <name> --help`: fields, units, files
 };
 
+/// Refuses an empty value ("--opt ''") for every option of `app` that takes
+/// one: an empty value is an error, never a default or zero.
+void refuse_empty_values(CLI::App& app);
+
 /// Subcommand `help.name` of `parent` with an Options object that its
-/// action keeps alive: `add_options` registers the options on it, and
-/// `execute` is the action, run once parsing succeeded.
+/// action keeps alive: `add_options` registers the options on it (each
+/// refusing an empty value), and `execute` is the action, run once parsing
+/// succeeded.
 template <class Options>
 Command make_command(CLI::App& parent, const CommandHelp& help, void (*add_options)(CLI::App&, Options&),
                      void (*execute)(const Options&)) {
   auto options = std::make_shared<Options>();
   CLI::App* app = parent.add_subcommand(help.name, help.description);
   add_options(*app, *options);
+  refuse_empty_values(*app);
   app->footer(help.footer);
   return {app, [options, execute] { execute(*options); }};
 }
@@ -68,6 +74,10 @@ std::filesystem::path shown_path(const std::filesystem::path& path);
 
 /// open_out_dir when a folder was given; nullopt for an empty `out_dir`.
 std::optional<std::filesystem::path> open_optional_out_dir(const std::string& out_dir);
+
+/// Prints "mrd <command>: warning: <sentence>" on stderr for each warning
+/// (results beyond the model's validity, run::validity_warnings).
+void print_warnings(const char* command, const std::vector<std::string>& warnings);
 
 /// Prints "mrd <command>: warning: plot not written: <problem>" on stderr
 /// for each problem a writer returned.

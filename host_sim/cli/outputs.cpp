@@ -17,6 +17,10 @@ std::optional<std::filesystem::path> open_optional_out_dir(const std::string& ou
   return open_out_dir(out_dir);
 }
 
+void print_warnings(const char* command, const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::fprintf(stderr, "mrd %s: warning: %s\n", command, w.c_str());
+}
+
 void warn_plots_not_written(const char* command, const std::vector<std::string>& problems) {
   for (const auto& p : problems) {
     std::fprintf(stderr, "mrd %s: warning: plot not written: %s\n", command, report::shown_text(p).c_str());

@@ -57,6 +57,8 @@ void execute(const StudyCliOptions& o) {
   print_motion_notice(r);
   warn_plots_not_written("study", problems);
   print_table(r);
+  std::fflush(stdout);
+  print_warnings("study", run::study_warnings(r));
   std::printf("wrote %s/report.md\n", o.out_dir.c_str());
 }
 
