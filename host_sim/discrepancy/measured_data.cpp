@@ -299,6 +299,9 @@ struct MatCut {
   std::string name;
 };
 
+/// Most values one .mat variable may declare (5e7 doubles, 400 MB).
+constexpr std::size_t kMaxMatElements = 50'000'000;
+
 class MatLayout {
  public:
   explicit MatLayout(std::string bytes) : b_(std::move(bytes)) {}
@@ -455,7 +458,21 @@ MeasuredData read_mat(const fs::path& path) {
   for (;;) {
     MatVar info(Mat_VarReadNextInfo(mat.get()));
     if (!info) break;
-    if (info->name) names.emplace_back(info->name);
+    if (!info->name) continue;
+    // Checked before Mat_VarRead allocates what the variable declares.
+    const std::string w = label + ": variable '" + excerpt(info->name) + "'";
+    if (info->class_type != MAT_C_DOUBLE && info->class_type != MAT_C_SINGLE) {
+      throw UsageError(w + ": expected double or single values");
+    }
+    if (info->isComplex) throw UsageError(w + ": is complex, expected real numbers");
+    if (info->rank != 2 || !info->dims || (info->dims[0] != 1 && info->dims[1] != 1)) {
+      throw UsageError(w + ": expected a vector");
+    }
+    if (info->dims[0] * info->dims[1] > kMaxMatElements) {
+      throw UsageError(w + ": declares " + std::to_string(info->dims[0] * info->dims[1]) +
+                       " values, more than the limit of " + std::to_string(kMaxMatElements));
+    }
+    names.emplace_back(info->name);
   }
   if (names.empty()) throw UsageError(label + ": the .mat file holds no variables");
   RawTable raw;
