@@ -191,8 +191,9 @@ bool is_bare_key_char(char c) {
 /// release build): a table header whose name does not start with a key
 /// character or a quote ("[/gpio]"), and a non-ASCII character outside a
 /// comment (toml++'s whitespace test reaches an unreachable branch for some,
-/// e.g. U+00B5), and arrays and inline tables, which board files do not use
-/// (toml++ asserts on some malformed ones). Board files are ASCII but for
+/// e.g. U+00B5), and arrays, inline tables and multi-line strings, which
+/// board files do not use (toml++ asserts on some malformed ones, and a
+/// string spanning lines would hide what follows from these checks). Board files are ASCII but for
 /// comments, so a line that starts with '[' is a table header. A comment starts
 /// at a '#' with an even number of each quote character before it on its line.
 void check_toml_input(const std::string& text, const std::string& origin) {
@@ -211,12 +212,16 @@ void check_toml_input(const std::string& text, const std::string& origin) {
     std::size_t double_quotes = 0;
     std::size_t single_quotes = 0;
     bool in_header_brackets = header;
-    for (const char c : line) {
+    for (std::size_t j = 0; j < line.size(); ++j) {
+      const char c = line[j];
       const bool quoted = double_quotes % 2 != 0 || single_quotes % 2 != 0;
       if (c == '#' && !quoted) break;
       if (c == '"') ++double_quotes;
       if (c == '\'') ++single_quotes;
       if (static_cast<unsigned char>(c) >= 0x80) fail_at("non-ASCII character outside a comment");
+      if (!quoted && (line.substr(j).starts_with("\"\"\"") || line.substr(j).starts_with("'''"))) {
+        fail_at("multi-line strings are not used in board files");
+      }
       if (in_header_brackets && c != '[' && c != ' ' && c != '\t') in_header_brackets = false;
       if (!quoted && !header && (c == '[' || c == '{')) fail_at("arrays and inline tables are not used in board files");
       if (!quoted && header && !in_header_brackets && c == '{') fail_at("table header: unexpected '{'");

@@ -380,7 +380,6 @@ class MatLayout {
     if (!sub(type, n, data)) return false;  // array flags
     if (n < 8) return false;
     const std::uint32_t cls = u32(data, swap) & 0xFFu;
-    if (cls < 6 || cls > 15) return true;  // not numeric: the reader refuses it by class
     if (!sub(type, n, data) || type != 5 || n % 4 != 0) return false;  // dimensions, miINT32
     std::uint64_t elements = 1;
     for (std::size_t i = 0; i < n / 4; ++i) {
@@ -390,6 +389,7 @@ class MatLayout {
     }
     if (!sub(type, n, data)) return false;  // name
     name.assign(b_.data() + data, static_cast<std::size_t>(n));
+    if (cls < 6 || cls > 15) return true;  // not numeric: the reader refuses it by class
     if (elements == 0) return true;
     if (!sub(type, n, data)) return false;  // real part
     const std::uint64_t bytes_per = type_size(type);
