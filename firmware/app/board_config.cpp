@@ -271,7 +271,7 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
 BoardConfig load_board_config(const std::filesystem::path& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw BoardConfigError(path.string() + ":0: no such board file");
+  if (!std::filesystem::exists(status)) throw BoardConfigError(path.string() + ":0: cannot open the board file");
   if (!std::filesystem::is_regular_file(status)) {
     throw BoardConfigError(path.string() + ":0: not a regular file (a folder, pipe or device)");
   }
