@@ -15,9 +15,9 @@ case $name in
   codec)         sources=(fuzz/codec_fuzz.cpp common/protocol/src/codec.cpp) ;;
   ground_motion) sources=(fuzz/ground_motion_fuzz.cpp host_sim/excitation/ground_motion.cpp host_sim/io/text.cpp) ;;
   measured_csv)  sources=(fuzz/measured_csv_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp)
-                 libs=(-lmatio) ;;
+                 libs=(-lmatio -lz) ;;
   mat)           sources=(fuzz/mat_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp)
-                 libs=(-lmatio) ;;
+                 libs=(-lmatio -lz) ;;
   board_toml)    sources=(fuzz/board_toml_fuzz.cpp firmware/app/board_config.cpp) ;;
   state_record)  sources=(fuzz/state_record_fuzz.cpp) ;;
   *) echo "fuzz: unknown target '$name'" >&2; exit 1 ;;
@@ -41,7 +41,7 @@ fi
 if ((stale)); then
   paths=()
   for s in "${sources[@]}"; do paths+=("$src/$s"); done
-  if ! "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+  if ! "$cxx" -std=c++20 -O1 -gline-tables-only -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
       -I"$src" -I"$src/common/include" "${paths[@]}" "${libs[@]}" -o "$bin" 2>"$work/build.log"; then
     if grep -q -i "fuzzer" "$work/build.log" && grep -q -i -E "cannot find|not found|No such file" "$work/build.log"; then
       echo "fuzz: FAIL: libFuzzer runtime missing (libclang-rt-14-dev, scripts/deps/board.list)"

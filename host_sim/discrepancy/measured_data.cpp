@@ -1,6 +1,7 @@
 #include "host_sim/discrepancy/measured_data.hpp"
 
 #include <matio.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <array>
@@ -297,7 +298,16 @@ std::string read_text(const fs::path& path) { return io::read_regular_file(path,
 struct MatCut {
   std::size_t index = 0;
   std::string name;
+  std::string reason = "declares more bytes than the file holds or sizes that disagree (truncated or corrupt file)";
 };
+
+/// Array classes the reader takes (mxDOUBLE_CLASS to mxUINT64_CLASS); others
+/// (cell, struct, object, char, sparse) are refused before libmatio reads them.
+bool numeric_class(std::uint32_t cls) { return cls >= 6 && cls <= 15; }
+
+std::string not_numeric(std::uint32_t cls) {
+  return "is not a numeric array (MATLAB class " + std::to_string(cls) + "): expected double or single values";
+}
 
 /// Most values one .mat variable may declare (5e7 doubles, 400 MB).
 constexpr std::size_t kMaxMatElements = 50'000'000;
@@ -325,7 +335,6 @@ class MatLayout {
 
   std::optional<MatCut> walk_v5() const {
     constexpr std::size_t kHeader = 128;
-    constexpr std::uint32_t kMiMatrix = 14;
     const bool swap = b_[126] == 'M' && b_[127] == 'I';
     std::size_t pos = kHeader;
     for (std::size_t k = 0; pos < b_.size(); ++k) {
@@ -338,12 +347,18 @@ class MatLayout {
       std::uint64_t n = u32(pos + 4, swap);
       if (type == kMiMatrix) n = (n + 7) / 8 * 8;
       std::string name;
+      std::uint32_t cls = 0;
       if (n > b_.size() - pos - 8) {
-        if (type == kMiMatrix) (void)matrix_sizes_consistent(pos + 8, b_.size() - pos - 8, swap, name);
+        if (type == kMiMatrix) (void)matrix_sizes_consistent(pos + 8, b_.size() - pos - 8, swap, name, cls, true);
         return MatCut{k, name};
       }
-      if (type == kMiMatrix && !matrix_sizes_consistent(pos + 8, static_cast<std::size_t>(n), swap, name)) {
-        return MatCut{k, name};
+      if (type == kMiMatrix) {
+        if (!matrix_sizes_consistent(pos + 8, static_cast<std::size_t>(n), swap, name, cls, true)) {
+          return MatCut{k, name};
+        }
+        if (!numeric_class(cls)) return MatCut{k, name, not_numeric(cls)};
+      } else if (type == kMiCompressed) {
+        if (auto cut = check_compressed_header(pos + 8, static_cast<std::size_t>(n), swap, k)) return cut;
       }
       pos += 8 + static_cast<std::size_t>(n);
     }
@@ -353,7 +368,41 @@ class MatLayout {
   /// Inside an uncompressed miMATRIX element: flags, dimensions, name, then
   /// the real part whose byte count must equal the elements the dimensions
   /// declare times the size of its type.
-  bool matrix_sizes_consistent(std::size_t at, std::size_t size, bool swap, std::string& name) const {
+  static constexpr std::uint32_t kMiMatrix = 14;
+  static constexpr std::uint32_t kMiCompressed = 15;
+
+  /// A compressed variable: inflates the start of its stream (enough for the
+  /// matrix tag, flags, dimensions and name) and checks the class and the
+  /// declared size before libmatio allocates for them.
+  std::optional<MatCut> check_compressed_header(std::size_t at, std::size_t size, bool swap, std::size_t k) const {
+    std::string head(4096, '\0');
+    z_stream z{};
+    if (inflateInit(&z) != Z_OK) return MatCut{k, {}, "cannot be inflated"};
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(b_.data() + at));
+    z.avail_in = static_cast<uInt>(std::min<std::size_t>(size, 1u << 30));
+    z.next_out = reinterpret_cast<Bytef*>(head.data());
+    z.avail_out = static_cast<uInt>(head.size());
+    const int rc = inflate(&z, Z_SYNC_FLUSH);
+    const std::size_t got = head.size() - z.avail_out;
+    inflateEnd(&z);
+    if ((rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR) || got < 8) {
+      return MatCut{k, {}, "holds a compressed variable that does not inflate"};
+    }
+    head.resize(got);
+    const MatLayout inner(std::move(head));
+    if (inner.u32(0, swap) != kMiMatrix) return MatCut{k, {}, "holds a compressed element that is not an array"};
+    std::string name;
+    std::uint32_t cls = 0;
+    // The data of the inflated matrix lies beyond the inflated head: check only its header elements.
+    if (!inner.matrix_sizes_consistent(8, inner.b_.size() - 8, swap, name, cls, false)) {
+      return MatCut{k, name, "has array flags, dimensions or a name that disagree (corrupt file)"};
+    }
+    if (!numeric_class(cls)) return MatCut{k, name, not_numeric(cls)};
+    return std::nullopt;
+  }
+
+  bool matrix_sizes_consistent(std::size_t at, std::size_t size, bool swap, std::string& name, std::uint32_t& cls,
+                               bool with_data) const {
     std::size_t p = at;
     const std::size_t end = at + size;
     const auto sub = [&](std::uint32_t& type, std::uint64_t& n, std::size_t& data) {
@@ -379,7 +428,7 @@ class MatLayout {
     std::size_t data = 0;
     if (!sub(type, n, data)) return false;  // array flags
     if (n < 8) return false;
-    const std::uint32_t cls = u32(data, swap) & 0xFFu;
+    cls = u32(data, swap) & 0xFFu;
     if (!sub(type, n, data) || type != 5 || n % 4 != 0) return false;  // dimensions, miINT32
     std::uint64_t elements = 1;
     for (std::size_t i = 0; i < n / 4; ++i) {
@@ -389,8 +438,9 @@ class MatLayout {
     }
     if (!sub(type, n, data)) return false;  // name
     name.assign(b_.data() + data, static_cast<std::size_t>(n));
-    if (cls < 6 || cls > 15) return true;  // not numeric: the reader refuses it by class
-    if (elements == 0) return true;
+    if (!numeric_class(cls)) return true;  // refused by class by the caller
+    if (elements > kMaxMatElements) return false;
+    if (elements == 0 || !with_data) return true;
     if (!sub(type, n, data)) return false;  // real part
     const std::uint64_t bytes_per = type_size(type);
     return bytes_per != 0 && n == elements * bytes_per;
@@ -449,8 +499,7 @@ MeasuredData read_mat(const fs::path& path) {
   if (const auto cut = MatLayout(io::read_regular_file(path, kMaxMeasuredFileBytes)).first_cut_element()) {
     const std::string which = !cut->name.empty() ? "variable '" + excerpt(cut->name) + "'"
                                                  : "variable number " + std::to_string(cut->index + 1);
-    throw UsageError(label + ": truncated or corrupt .mat file: " + which +
-                     " declares more bytes than the file holds or sizes that disagree");
+    throw UsageError(label + ": " + which + " " + cut->reason);
   }
   MatFile mat(Mat_Open(label.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw UsageError(label + ": not a readable MATLAB .mat file");
