@@ -317,11 +317,16 @@ class MatLayout {
   explicit MatLayout(std::string bytes) : b_(std::move(bytes)) {}
 
   std::optional<MatCut> first_cut_element() const {
-    if (b_.size() >= 128) {
-      const auto v = static_cast<std::uint16_t>(static_cast<unsigned char>(b_[124]) |
-                                                (static_cast<unsigned char>(b_[125]) << 8));
-      if (v == 0x0100 || v == 0x0001) return walk_v5();
-      if (v == 0x0200 || v == 0x0002) return std::nullopt;
+    // As libmatio tells them apart: a level 5 (or HDF5-based 7.3) header ends
+    // in the version and the endian indicator 'IM' (or 'MI'); anything else
+    // is read as level 4.
+    if (b_.size() >= 128 && ((b_[126] == 'I' && b_[127] == 'M') || (b_[126] == 'M' && b_[127] == 'I'))) {
+      const bool swap = b_[126] == 'M';
+      const auto lo = static_cast<unsigned char>(b_[swap ? 125 : 124]);
+      const auto hi = static_cast<unsigned char>(b_[swap ? 124 : 125]);
+      const auto v = static_cast<std::uint16_t>(lo | (hi << 8));
+      if (v == 0x0100) return walk_v5();
+      if (v == 0x0200) return std::nullopt;
     }
     return walk_v4();
   }
@@ -469,7 +474,9 @@ class MatLayout {
       const std::uint64_t name_len = u32(pos + 16, swap);
       static constexpr std::uint64_t kSize[] = {8, 4, 4, 2, 2, 1};
       const std::uint32_t prec = (type / 10) % 10;
-      if (prec > 5 || rows > (std::uint64_t{1} << 31) || cols > (std::uint64_t{1} << 31)) return MatCut{k, {}};
+      if (prec > 5 || rows > (std::uint64_t{1} << 31) || cols > (std::uint64_t{1} << 31) || name_len > 4096) {
+        return MatCut{k, {}};
+      }
       const std::uint64_t bytes = name_len + rows * cols * kSize[prec] * (imag != 0 ? 2 : 1);
       if (bytes > b_.size() - pos - 20) {
         const std::size_t have = std::min<std::size_t>(static_cast<std::size_t>(name_len), b_.size() - pos - 20);
