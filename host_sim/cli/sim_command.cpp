@@ -43,6 +43,10 @@ Fields of DIR/summary.json:
   command_changes_per_s           changes of the current command between consecutive ticks, per s of run
   peak_coil_temperature_rise_k    max coil temperature above ambient, K (i^2 R into a first-order
                                   thermal model: 2 K/W, 20 min; both plants)
+  peak_damper_velocity_m_s        max |base velocity relative to the ground|, m/s
+  warnings                        sentences, one per limit of the model the run exceeds: stroke
+                                  +-0.2921 m and velocity 0.2491 m/s (Table 3.1), current 0-2.5 A
+                                  (Table 4.1), force 200 kN; also printed on stderr
 Files: DIR/timeseries.csv (every step; columns name their units), DIR/timeseries_response.png
 (displacement, force, floor acceleration, current over time, like Fig. 6.9-6.11) and
 DIR/timeseries_loop.png (force against stroke).)"};

@@ -24,7 +24,8 @@ writes DIR/sweep.csv (one row per run: record, control, idle_years, sq, peak_bas
 peak_damper_force_kn, peak_superstructure_accel_m_s2, peak_base_accel_m_s2, peak_current_a,
 final_participant_ratio) and, per control mode, the plots of Fig. 6.12-6.20 (peak base
 displacement, damper force and superstructure acceleration against idle time), plus
-DIR/summary.json (runs, wall time, simulated seconds per wall second, files).
+DIR/summary.json (runs, wall time, simulated seconds per wall second, files, and warnings: how many
+runs exceed the model's stroke, velocity, current or force limits, also printed on stderr).
 Defaults: the four records of Table 6.2 from the shared data folder at 0.1127 g (Table 6.3), every
 control mode this build has, idle 0 to 1 year every 0.05 year. Past the maximum settling time
 (0.853 years, Eq. 5.4) SQ saturates and the curves flatten.)"};
