@@ -3,6 +3,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <toml++/toml.h>
 
 namespace mrd::app {
@@ -180,7 +181,73 @@ ControlTaskConfig BoardConfig::task_config() const noexcept {
   return c;
 }
 
+namespace {
+
+bool is_bare_key_char(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+}
+
+/// Refuses, with the line, what toml++ 3 mishandles (undefined behaviour in a
+/// release build): a table header whose name does not start with a key
+/// character or a quote ("[/gpio]"), and a non-ASCII character outside a
+/// comment (toml++'s whitespace test reaches an unreachable branch for some,
+/// e.g. U+00B5), and arrays, inline tables and multi-line strings, which
+/// board files do not use (toml++ asserts on some malformed ones, and a
+/// string spanning lines would hide what follows from these checks). Board files are ASCII but for
+/// comments, so a line that starts with '[' is a table header. A comment starts
+/// at a '#' with an even number of each quote character before it on its line.
+void check_toml_input(const std::string& text, const std::string& origin) {
+  std::size_t line_no = 0;
+  for (std::size_t pos = 0; pos <= text.size();) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view line(text.data() + pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    const auto fail_at = [&](const std::string& what) {
+      throw BoardConfigError(origin + ":" + std::to_string(line_no) + ": " + what);
+    };
+    std::size_t k = line.find_first_not_of(" \t\r");
+    const bool header = k != std::string_view::npos && line[k] == '[';
+    std::size_t double_quotes = 0;
+    std::size_t single_quotes = 0;
+    bool in_header_brackets = header;
+    for (std::size_t j = 0; j < line.size(); ++j) {
+      const char c = line[j];
+      const bool quoted = double_quotes % 2 != 0 || single_quotes % 2 != 0;
+      if (c == '#' && !quoted) break;
+      if (c == '"') ++double_quotes;
+      if (c == '\'') ++single_quotes;
+      if (static_cast<unsigned char>(c) >= 0x80) fail_at("non-ASCII character outside a comment");
+      if (!quoted && (line.substr(j).starts_with("\"\"\"") || line.substr(j).starts_with("'''"))) {
+        fail_at("multi-line strings are not used in board files");
+      }
+      if (in_header_brackets && c != '[' && c != ' ' && c != '\t') in_header_brackets = false;
+      if (!quoted && !header && (c == '[' || c == '{')) fail_at("arrays and inline tables are not used in board files");
+      if (!quoted && header && !in_header_brackets && c == '{') fail_at("table header: unexpected '{'");
+    }
+    if (!header) continue;
+    // As toml++ reads a header: '[', blanks, an optional second '[' and blanks, then the name.
+    const auto skip_blanks = [&] {
+      while (k < line.size() && (line[k] == ' ' || line[k] == '\t')) ++k;
+    };
+    ++k;
+    skip_blanks();
+    if (k < line.size() && line[k] == '[') {
+      ++k;
+      skip_blanks();
+    }
+    const char n = k < line.size() ? line[k] : '\0';
+    if (!(n == ']' || is_bare_key_char(n) || n == '"' || n == '\'')) {
+      fail_at("table header: expected a table name (letters, digits, _ or -) after '['");
+    }
+  }
+}
+
+}  // namespace
+
 BoardConfig parse_board_config(const std::string& text, const std::string& origin) {
+  check_toml_input(text, origin);
   toml::table root;
   try {
     root = toml::parse(text, origin);
@@ -202,6 +269,17 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
 }
 
 BoardConfig load_board_config(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw BoardConfigError(path.string() + ":0: cannot open the board file");
+  if (!std::filesystem::is_regular_file(status)) {
+    throw BoardConfigError(path.string() + ":0: not a regular file (a folder, pipe or device)");
+  }
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxBoardFileBytes) {
+    throw BoardConfigError(path.string() + ":0: larger than the limit of " + std::to_string(kMaxBoardFileBytes) +
+                           " bytes for a board file");
+  }
   std::ifstream in(path);
   if (!in) throw BoardConfigError(path.string() + ":0: cannot open the board file");
   std::stringstream ss;

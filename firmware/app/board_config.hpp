@@ -58,7 +58,11 @@ struct BoardConfig {
 /// Parses TOML text; `origin` names the file in error messages.
 BoardConfig parse_board_config(const std::string& text, const std::string& origin);
 
-/// Reads and parses `path`.
+/// Largest board file read, bytes.
+inline constexpr std::uintmax_t kMaxBoardFileBytes = 1 << 20;
+
+/// Reads and parses `path`: a regular file (not a folder, pipe or device) of
+/// at most kMaxBoardFileBytes.
 BoardConfig load_board_config(const std::filesystem::path& path);
 
 }  // namespace mrd::app

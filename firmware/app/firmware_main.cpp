@@ -17,6 +17,7 @@
 #include <string>
 
 #include "firmware/app/board_config.hpp"
+#include "firmware/app/option_checks.hpp"
 #include "firmware/app/no_lines_fitted.hpp"
 #include "firmware/app/runtime.hpp"
 #include "firmware/core/controller_config.hpp"
@@ -176,8 +177,10 @@ int main(int argc, char** argv) {
                "Step once per complete set of plant inputs (simulated plant) instead of on the clock");
   app.add_option("--ticks", o.ticks, "Stop after this many control ticks (default: run until SIGTERM)");
   app.add_option("--idle-exit-s", o.idle_exit_s, "Lockstep: stop when no tick completes for this long, s")
-      ->capture_default_str();
-  app.add_option("--report-every-s", o.report_every_s, "Print the summary line this often, s (0: at exit only)");
+      ->capture_default_str()
+      ->check(mrd::app::positive_up_to(mrd::app::kMaxProgramTime_s, "s"));
+  app.add_option("--report-every-s", o.report_every_s, "Print the summary line this often, s (default: at exit only)")
+      ->check(mrd::app::positive_up_to(mrd::app::kMaxProgramTime_s, "s"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -24,7 +24,7 @@ void require_positive(const std::string& option, double value, const std::string
 }
 
 void require_at_most(const std::string& option, double value, double max, const std::string& limit) {
-  if (value > max) throw io::UsageError(option + ": expected at most " + limit);
+  if (!(value <= max)) throw io::UsageError(option + ": expected at most " + limit);
 }
 
 void require_step_s(double step_s, double max_s, const std::string& limit) {

@@ -29,15 +29,21 @@ struct CommandHelp {
   const char* footer;       ///< after the options in `mrd <name> --help`: fields, units, files
 };
 
+/// Refuses an empty value ("--opt ''") for every option of `app` that takes
+/// one: an empty value is an error, never a default or zero.
+void refuse_empty_values(CLI::App& app);
+
 /// Subcommand `help.name` of `parent` with an Options object that its
-/// action keeps alive: `add_options` registers the options on it, and
-/// `execute` is the action, run once parsing succeeded.
+/// action keeps alive: `add_options` registers the options on it (each
+/// refusing an empty value), and `execute` is the action, run once parsing
+/// succeeded.
 template <class Options>
 Command make_command(CLI::App& parent, const CommandHelp& help, void (*add_options)(CLI::App&, Options&),
                      void (*execute)(const Options&)) {
   auto options = std::make_shared<Options>();
   CLI::App* app = parent.add_subcommand(help.name, help.description);
   add_options(*app, *options);
+  refuse_empty_values(*app);
   app->footer(help.footer);
   return {app, [options, execute] { execute(*options); }};
 }
@@ -53,12 +59,26 @@ Command add_calibrate_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_schedule_command(CLI::App& parent);
 
-/// The --out folder, created and checked writable (report::prepare_output_dir;
-/// io::UsageError naming the folder otherwise).
+/// Starts the transaction on the --out folder (report::begin_output) and
+/// returns the staging folder the outputs go to; io::UsageError naming the
+/// folder when it cannot be used. The result replaces the folder as a whole at
+/// commit_out_dir, or at the end of a command that returns normally (`mrd`'s
+/// main commits what is still open); an error or a signal leaves the folder as
+/// it was.
 std::filesystem::path open_out_dir(const std::string& out_dir);
+
+/// Puts every written output folder in place (report::commit_outputs).
+void commit_out_dir();
+
+/// A path inside a staging folder as the user named it (report::shown_path).
+std::filesystem::path shown_path(const std::filesystem::path& path);
 
 /// open_out_dir when a folder was given; nullopt for an empty `out_dir`.
 std::optional<std::filesystem::path> open_optional_out_dir(const std::string& out_dir);
+
+/// Prints "mrd <command>: warning: <sentence>" on stderr for each warning
+/// (results beyond the model's validity, run::validity_warnings).
+void print_warnings(const char* command, const std::vector<std::string>& warnings);
 
 /// Prints "mrd <command>: warning: plot not written: <problem>" on stderr
 /// for each problem a writer returned.
@@ -66,9 +86,10 @@ void warn_plots_not_written(const char* command, const std::vector<std::string>&
 
 /// The steps of a subcommand whose --out is optional, once its options are
 /// checked: opens the folder first (a bad folder fails before any work),
-/// computes, prints the result, and with a folder writes the outputs, warns
-/// about plots not drawn (when `write` returns their problems) and prints
-/// `wrote_format` with the path of summary.json.
+/// computes, prints the result, and with a folder writes the outputs, puts
+/// them in place (commit_out_dir), warns about plots not drawn (when `write`
+/// returns their problems) and prints `wrote_format` with the path of
+/// summary.json.
 template <class Compute, class Print, class Write>
 void compute_print_write(const char* command, const std::string& out_dir, const Compute& compute, const Print& print,
                          const Write& write, const char* wrote_format = "wrote %s\n") {
@@ -78,10 +99,13 @@ void compute_print_write(const char* command, const std::string& out_dir, const 
   if (!out) return;
   if constexpr (std::is_void_v<decltype(write(*out, result))>) {
     write(*out, result);
+    commit_out_dir();
   } else {
-    warn_plots_not_written(command, write(*out, result));
+    const auto problems = write(*out, result);
+    warn_plots_not_written(command, problems);
+    commit_out_dir();
   }
-  std::printf(wrote_format, (*out / "summary.json").c_str());
+  std::printf(wrote_format, (std::filesystem::path(out_dir) / "summary.json").c_str());
 }
 
 }  // namespace mrd::cli

@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "host_sim/cli/command.hpp"
-#include "host_sim/report/output_dir.hpp"
+#include "host_sim/io/usage_error.hpp"
+#include "host_sim/report/output_transaction.hpp"
 
 namespace {
 constexpr int kExitUsage = 2;
@@ -52,10 +53,13 @@ int main(int argc, char** argv) {
     for (const auto& c : commands) {
       if (c.app->parsed()) c.run();
     }
+    mrd::report::commit_outputs();
   } catch (const mrd::io::UsageError& e) {
+    mrd::report::abandon_outputs();
     print_error(e.what());
     return kExitUsage;
   } catch (const std::exception& e) {
+    mrd::report::abandon_outputs();
     print_error(e.what());
     return 1;
   }

@@ -1,25 +1,47 @@
 #include "host_sim/cli/options.hpp"
 
+#include "host_sim/cli/command.hpp"
+
 namespace mrd::cli {
+
+void refuse_empty_values(CLI::App& app) {
+  const CLI::Validator non_empty(
+      [](std::string& value) -> std::string {
+        for (const char c : value) {
+          if (c != ' ' && c != '\t' && c != '\n' && c != '\r') return {};
+        }
+        return "expected a value, got an empty one";
+      },
+      "", "non-empty");
+  for (CLI::Option* opt : app.get_options()) {
+    if (opt->get_type_size() != 0 && opt->get_expected_min() > 0) opt->check(non_empty);
+  }
+}
 
 void add_pga_g_option(CLI::App& app, double& pga_g, const std::string& help) {
   app.add_option("--pga-g", pga_g, help)->capture_default_str();
 }
 
-void check_pga_g(double pga_g) { require_positive("--pga-g", pga_g, "a PGA"); }
+void check_pga_g(double pga_g) {
+  require_positive("--pga-g", pga_g, "a PGA");
+  require_at_most("--pga-g", pga_g, kMaxPga_g, "100 g (no earthquake comes near it)");
+}
 
 void add_idle_years_option(CLI::App& app, double& idle_years, const std::string& help) {
   app.add_option("--idle-years", idle_years, help)->capture_default_str();
 }
 
-void check_idle_years(double idle_years) { require_finite_at_least("--idle-years", idle_years, 0.0); }
+void check_idle_years(double idle_years) {
+  require_finite_at_least("--idle-years", idle_years, 0.0);
+  require_at_most("--idle-years", idle_years, kMaxIdleYears, "1000 years");
+}
 
 void add_step_s_option(CLI::App& app, double& step_s, const std::string& help) {
   app.add_option("--step-s", step_s, help)->capture_default_str();
 }
 
 void add_threads_option(CLI::App& app, unsigned& threads, const std::string& help) {
-  app.add_option("--threads", threads, help)->capture_default_str();
+  app.add_option("--threads", threads, help)->capture_default_str()->check(CLI::Range(0u, kMaxThreads));
 }
 
 CLI::Option* add_out_option(CLI::App& app, std::string& out_dir, const std::string& help) {

@@ -18,7 +18,7 @@ void require_finite_at_least(const std::string& option, double value, double min
 /// naming the option and `what` ("a PGA", "a duration", ...) otherwise.
 void require_positive(const std::string& option, double value, const std::string& what);
 
-/// Checks `value` ≤ `max`; throws io::UsageError "<option>: expected at
+/// Checks `value` ≤ `max` (NaN fails too); throws io::UsageError "<option>: expected at
 /// most <limit>" otherwise (`limit` says the bound in words, e.g. "0.02 s").
 void require_at_most(const std::string& option, double value, double max, const std::string& limit);
 
@@ -30,22 +30,29 @@ void require_step_s(double step_s, double max_s, const std::string& limit);
 /// expected a, b or c, got '<value>'" otherwise.
 void require_choice(const std::string& option, const std::string& value, std::initializer_list<const char*> choices);
 
+/// Largest --pga-g, g, --idle-years (and idle grids), years, and --threads.
+inline constexpr double kMaxPga_g = 100.0;
+inline constexpr double kMaxIdleYears = 1000.0;
+inline constexpr unsigned kMaxThreads = 1024;
+/// Longest simulated run, s (--duration-s of sim and sine).
+inline constexpr double kMaxDuration_s = 1.0e5;
+
 /// --pga-g G, default shown: the PGA motions are scaled to, g.
 void add_pga_g_option(CLI::App& app, double& pga_g, const std::string& help);
 
-/// Checks --pga-g: finite and > 0.
+/// Checks --pga-g: finite, > 0 and at most kMaxPga_g.
 void check_pga_g(double pga_g);
 
 /// --idle-years Y, default shown: an idle time, years.
 void add_idle_years_option(CLI::App& app, double& idle_years, const std::string& help);
 
-/// Checks --idle-years: finite and >= 0.
+/// Checks --idle-years: finite, >= 0 and at most kMaxIdleYears.
 void check_idle_years(double idle_years);
 
 /// --step-s S, default shown: the simulation step, s (checked by require_step_s).
 void add_step_s_option(CLI::App& app, double& step_s, const std::string& help);
 
-/// --threads N, default shown: worker threads, 0 for all cores.
+/// --threads N, default shown: worker threads, 0 for all cores, at most kMaxThreads.
 void add_threads_option(CLI::App& app, unsigned& threads, const std::string& help);
 
 /// --out DIR: the folder of the outputs.

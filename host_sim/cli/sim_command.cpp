@@ -43,6 +43,10 @@ Fields of DIR/summary.json:
   command_changes_per_s           changes of the current command between consecutive ticks, per s of run
   peak_coil_temperature_rise_k    max coil temperature above ambient, K (i^2 R into a first-order
                                   thermal model: 2 K/W, 20 min; both plants)
+  peak_damper_velocity_m_s        max |base velocity relative to the ground|, m/s
+  warnings                        sentences, one per limit of the model the run exceeds: stroke
+                                  +-0.2921 m and velocity 0.2491 m/s (Table 3.1), current 0-2.5 A
+                                  (Table 4.1), force 200 kN; also printed on stderr
 Files: DIR/timeseries.csv (every step; columns name their units), DIR/timeseries_response.png
 (displacement, force, floor acceleration, current over time, like Fig. 6.9-6.11) and
 DIR/timeseries_loop.png (force against stroke).)"};
@@ -54,6 +58,7 @@ struct SimOptions {
   std::string numeric = "float";
   double idle_years = 0.0;
   double duration_s = 0.0;
+  bool duration_given = false;  ///< --duration-s was given (without it: the record's length)
   double step_s = 1.0e-3;
   unsigned seed = 1;
   std::string plant = "thesis";
@@ -71,7 +76,10 @@ plant::PlantKind parse_plant_kind(const std::string& text) {
 run::SimSpec sim_spec(const SimOptions& o) {
   check_pga_g(o.pga_g);
   check_idle_years(o.idle_years);
-  require_finite_at_least("--duration-s", o.duration_s, 0.0);
+  if (o.duration_given) {
+    require_positive("--duration-s", o.duration_s, "a duration");
+    require_at_most("--duration-s", o.duration_s, kMaxDuration_s, "100000 s");
+  }
   require_step_s(o.step_s, 0.02, "0.02 s");
   require_finite_at_least("--offset-mm", o.offset_mm, -292.1);
   require_at_most("--offset-mm", o.offset_mm, 292.1, "292.1 mm");
@@ -109,6 +117,8 @@ void print_summary(const run::SimRun& r) {
   std::printf("  time above rated 2.5 A       %10.3f s\n", c.time_above_rated_s);
   std::printf("  command changes              %10.2f per s\n", c.command_changes_per_s);
   std::printf("  peak coil temperature rise   %10.4f K\n", c.peak_coil_temperature_rise_k);
+  std::fflush(stdout);
+  print_warnings("sim", run::sim_warnings(r));
 }
 
 void add_options(CLI::App& app, SimOptions& o) {
@@ -119,7 +129,9 @@ void add_options(CLI::App& app, SimOptions& o) {
   app.add_option("--numeric", o.numeric, "Numeric build of the firmware control core: float | fixed")
       ->capture_default_str();
   add_idle_years_option(app, o.idle_years, "Idle time before the earthquake, years");
-  app.add_option("--duration-s", o.duration_s, "Simulated time, s (default: the record's length; 40 s synthetic)");
+  app.add_option("--duration-s", o.duration_s,
+                 "Simulated time, s, > 0 (default: the record's length; 40 s synthetic)")
+      ->each([&o](const std::string&) { o.duration_given = true; });
   add_step_s_option(app, o.step_s, "Simulation and control step, s");
   app.add_option("--seed", o.seed, "Seed of the synthetic motion (without --record)")->capture_default_str();
   app.add_option("--plant", o.plant, "thesis | hardware")->capture_default_str();

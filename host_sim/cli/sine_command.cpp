@@ -51,12 +51,14 @@ struct SineOptions {
 /// The single test the options ask for; throws io::UsageError for a bad option.
 run::SineRigSpec sine_spec(const SineOptions& o) {
   require_positive("--amplitude-mm", o.amplitude_mm, "an amplitude");
+  require_at_most("--amplitude-mm", o.amplitude_mm, 292.1, "the actuator's 292.1 mm half-stroke (Table 3.1)");
   require_positive("--freq-hz", o.freq_hz, "a frequency");
+  require_at_most("--freq-hz", o.freq_hz, 100.0, "100 Hz");
   require_finite_at_least("--current-a", o.current_a, -30.0);
   require_at_most("--current-a", o.current_a, 30.0, "the drive's 30 A peak");
   check_idle_years(o.idle_years);
   require_positive("--duration-s", o.duration_s, "a duration");
-  require_at_most("--duration-s", o.duration_s, 1.0e5, "100000 s");
+  require_at_most("--duration-s", o.duration_s, kMaxDuration_s, "100000 s");
   require_step_s(o.step_s, 0.1 / o.freq_hz, "a tenth of the period");
   return {units::mm_to_m(o.amplitude_mm), o.freq_hz, o.current_a, units::years_to_s(o.idle_years), o.duration_s, o.step_s};
 }
@@ -76,7 +78,9 @@ void run_thesis_cases(const std::optional<std::filesystem::path>& out) {
   std::printf("Table 5.1 sine tests: model against Table 5.2 (a)\n\n%s", run::thesis_cases_markdown(results).c_str());
   if (!out) return;
   run::write_thesis_cases_outputs(*out, results);
-  std::printf("\nwrote %s/thesis_cases.md and summary.json\n", out->c_str());
+  const auto shown = shown_path(*out);
+  commit_out_dir();
+  std::printf("\nwrote %s/thesis_cases.md and summary.json\n", shown.c_str());
 }
 
 void print_single(const run::SineRun& r) {
@@ -94,9 +98,14 @@ void run_single(const SineOptions& o, const run::SineRigSpec& spec, const std::o
   run::SineRun r{o.amplitude_mm, o.idle_years, spec, {}, {}};
   r.metrics = run::run_sine_rig(spec, {}, {}, out ? &r.record : nullptr);
   print_single(r);
+  std::fflush(stdout);
+  print_warnings("sine", run::sine_warnings(r));
   if (!out) return;
-  warn_plots_not_written("sine", run::write_sine_outputs(*out, r));
-  std::printf("wrote %s/summary.json, sine.csv and plots\n", out->c_str());
+  const auto problems = run::write_sine_outputs(*out, r);
+  const auto shown = shown_path(*out);
+  commit_out_dir();
+  warn_plots_not_written("sine", problems);
+  std::printf("wrote %s/summary.json, sine.csv and plots\n", shown.c_str());
 }
 
 void add_options(CLI::App& app, SineOptions& o) {

@@ -53,9 +53,12 @@ void execute(const StudyCliOptions& o) {
   const auto out = open_out_dir(o.out_dir);
   const run::StudyResult r = run::run_study(study);
   const auto problems = run::write_study_outputs(out, r);
+  commit_out_dir();
   print_motion_notice(r);
   warn_plots_not_written("study", problems);
   print_table(r);
+  std::fflush(stdout);
+  print_warnings("study", run::study_warnings(r));
   std::printf("wrote %s/report.md\n", o.out_dir.c_str());
 }
 

@@ -8,6 +8,8 @@
 
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/io/text.hpp"
+#include "host_sim/io/usage_error.hpp"
 #include "host_sim/run/controller.hpp"
 #include "host_sim/run/sweep.hpp"
 #include "host_sim/run/sweep_report.hpp"
@@ -22,10 +24,14 @@ writes DIR/sweep.csv (one row per run: record, control, idle_years, sq, peak_bas
 peak_damper_force_kn, peak_superstructure_accel_m_s2, peak_base_accel_m_s2, peak_current_a,
 final_participant_ratio) and, per control mode, the plots of Fig. 6.12-6.20 (peak base
 displacement, damper force and superstructure acceleration against idle time), plus
-DIR/summary.json (runs, wall time, simulated seconds per wall second, files).
+DIR/summary.json (runs, wall time, simulated seconds per wall second, files, and warnings: how many
+runs exceed the model's stroke, velocity, current or force limits, also printed on stderr).
 Defaults: the four records of Table 6.2 from the shared data folder at 0.1127 g (Table 6.3), every
 control mode this build has, idle 0 to 1 year every 0.05 year. Past the maximum settling time
 (0.853 years, Eq. 5.4) SQ saturates and the curves flatten.)"};
+
+/// Most idle times one sweep runs.
+constexpr int kMaxIdlePoints = 10000;
 
 struct SweepOptions {
   std::vector<std::string> records;
@@ -44,8 +50,14 @@ struct SweepOptions {
 run::SweepSpec sweep_spec(const SweepOptions& o) {
   check_pga_g(o.pga_g);
   require_finite_at_least("--idle-from", o.idle_from, 0.0);
+  require_at_most("--idle-from", o.idle_from, kMaxIdleYears, "1000 years");
   require_finite_at_least("--idle-to", o.idle_to, o.idle_from);
+  require_at_most("--idle-to", o.idle_to, kMaxIdleYears, "1000 years");
   require_finite_at_least("--idle-step", o.idle_step, 1e-6);
+  if ((o.idle_to - o.idle_from) / o.idle_step > kMaxIdlePoints) {
+    throw io::UsageError("--idle-step: " + io::format_number("%.6g", o.idle_step) + " years from --idle-from to " +
+                         "--idle-to gives more than " + std::to_string(kMaxIdlePoints) + " idle times");
+  }
   require_step_s(o.step_s, 0.02, "0.02 s");
   run::SweepSpec spec;
   spec.base.step_s = o.step_s;
@@ -119,8 +131,12 @@ void execute(const SweepOptions& o) {
   const auto rows = run::run_sweep(spec, ProgressPrinter{});
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   print_timing(spec, rows, wall_s);
+  std::fflush(stdout);
+  print_warnings("sweep", run::sweep_warnings(rows));
   std::vector<std::string> pngs;
-  warn_plots_not_written("sweep", run::write_sweep_report(out, spec, rows, wall_s, &pngs));
+  const auto problems = run::write_sweep_report(out, spec, rows, wall_s, &pngs);
+  commit_out_dir();
+  warn_plots_not_written("sweep", problems);
   std::printf("wrote %s/sweep.csv, summary.json and %zu plots\n", o.out_dir.c_str(), pngs.size());
 }
 

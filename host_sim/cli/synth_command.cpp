@@ -135,10 +135,12 @@ void execute(const SynthCliOptions& o) {
   const auto out = open_out_dir(o.out_dir);
   const discrepancy::SynthCase c = discrepancy::synthesize(spec);
   const auto format = o.format == "mat" ? discrepancy::RecordFormat::mat : discrepancy::RecordFormat::csv;
-  const auto data_path = discrepancy::write_synth_outputs(out, c, spec, format);
+  const auto data_path = shown_path(discrepancy::write_synth_outputs(out, c, spec, format));
+  const auto summary_path = shown_path(out / "summary.json");
+  commit_out_dir();
   std::printf("effects: %s; %s; %s; %zu samples\n", discrepancy::EffectSet{c.effects}.label().c_str(),
               c.input_description.c_str(), c.current_description.c_str(), c.data.size());
-  std::printf("wrote %s and %s\n", data_path.c_str(), (out / "summary.json").c_str());
+  std::printf("wrote %s and %s\n", data_path.c_str(), summary_path.c_str());
 }
 
 }  // namespace

@@ -1,12 +1,15 @@
 #include "host_sim/discrepancy/measured_data.hpp"
 
 #include <matio.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -181,6 +184,27 @@ HeaderRoles header_roles(const std::vector<std::string>& names, const std::strin
 }
 
 /// Validates and converts a raw table (shared by CSV and .mat).
+/// Refuses a column with a sample beyond `limit` (SI), naming the first one.
+void check_magnitude(const std::vector<double>& v, double limit, const char* unit, const RawTable& raw,
+                     std::size_t col) {
+  for (std::size_t r = 0; r < v.size(); ++r) {
+    if (!(std::abs(v[r]) <= limit)) {
+      throw UsageError(raw.where(r, col) + ": " + num(v[r]) + " " + unit + " is beyond any damper test (limit " +
+                       num(limit) + " " + unit + ")");
+    }
+  }
+}
+
+/// Refuses a column that never changes: a constant or all-zero force or
+/// displacement is a disconnected sensor, not a measurement.
+void check_varies(const std::vector<double>& v, const char* unit, const RawTable& raw, std::size_t col) {
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  if (lo != v.end() && *lo == *hi) {
+    throw UsageError(raw.where_column(col) + ": constant " + num(*lo) + " " + unit +
+                     " in every sample (a disconnected sensor?): nothing to compare a model with");
+  }
+}
+
 MeasuredData build(RawTable&& raw, const std::string& label) {
   const std::size_t ncol = raw.names.size();
   const HeaderRoles h = header_roles(raw.names, raw.file_where, raw.where_column);
@@ -241,6 +265,12 @@ MeasuredData build(RawTable&& raw, const std::string& label) {
   m.current_cmd_a = convert(c_cmd);
   m.force_n = convert(c_force);
   if (c_vel) m.velocity_m_s = convert(*c_vel);
+  check_magnitude(m.force_n, kMaxMeasuredForce_n, "N", raw, c_force);
+  check_magnitude(m.displacement_m, kMaxMeasuredDisplacement_m, "m", raw, c_disp);
+  check_magnitude(m.current_cmd_a, kMaxMeasuredCurrent_a, "A", raw, c_cmd);
+  if (c_vel) check_magnitude(m.velocity_m_s, kMaxMeasuredVelocity_m_s, "m/s", raw, *c_vel);
+  check_varies(m.force_n, "N", raw, c_force);
+  check_varies(m.displacement_m, "m", raw, c_disp);
   for (std::size_t c = 0; c < ncol; ++c) {
     if (roles[c].q == Quantity::extra) m.extra.push_back({raw.names[c], std::move(raw.values[c])});
   }
@@ -257,16 +287,210 @@ std::optional<double> parse_double(std::string_view s) {
   return v;
 }
 
-std::string read_text(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw UsageError(path.string() + ": no such file");
-  if (fs::is_directory(path, ec)) throw UsageError(path.string() + ": is a folder, expected a file");
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw UsageError(path.string() + ": cannot open for reading");
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
+std::string read_text(const fs::path& path) { return io::read_regular_file(path, kMaxMeasuredFileBytes); }
+
+/// The bytes of a .mat file as its data elements declare them: checks that
+/// every element lies within the file, so that a truncated file is refused
+/// before libmatio reads past its end. Returns the 0-based index of the first
+/// element cut short and its name where the bytes hold it, or nullopt when the
+/// file is complete. Level 5 layouts (a 128-byte header, version 0x0100) are
+/// walked; level 4 files too; HDF5-based v7.3 files are left to libmatio.
+struct MatCut {
+  std::size_t index = 0;
+  std::string name;
+  std::string reason = "declares more bytes than the file holds or sizes that disagree (truncated or corrupt file)";
+};
+
+/// Array classes the reader takes (mxDOUBLE_CLASS to mxUINT64_CLASS); others
+/// (cell, struct, object, char, sparse) are refused before libmatio reads them.
+bool numeric_class(std::uint32_t cls) { return cls >= 6 && cls <= 15; }
+
+std::string not_numeric(std::uint32_t cls) {
+  return "is not a numeric array (MATLAB class " + std::to_string(cls) + "): expected double or single values";
 }
+
+/// Most values one .mat variable may declare (5e7 doubles, 400 MB).
+constexpr std::size_t kMaxMatElements = 50'000'000;
+
+class MatLayout {
+ public:
+  explicit MatLayout(std::string bytes) : b_(std::move(bytes)) {}
+
+  std::optional<MatCut> first_cut_element() const {
+    // As libmatio tells them apart: a level 5 (or HDF5-based 7.3) header ends
+    // in the version and the endian indicator 'IM' (or 'MI'); anything else
+    // is read as level 4.
+    if (b_.size() >= 128 && ((b_[126] == 'I' && b_[127] == 'M') || (b_[126] == 'M' && b_[127] == 'I'))) {
+      const bool swap = b_[126] == 'M';
+      const auto lo = static_cast<unsigned char>(b_[swap ? 125 : 124]);
+      const auto hi = static_cast<unsigned char>(b_[swap ? 124 : 125]);
+      const auto v = static_cast<std::uint16_t>(lo | (hi << 8));
+      if (v == 0x0100) return walk_v5();
+      if (v == 0x0200) return std::nullopt;
+    }
+    return walk_v4();
+  }
+
+ private:
+  std::uint32_t u32(std::size_t at, bool swap) const {
+    std::uint32_t v = 0;
+    std::memcpy(&v, b_.data() + at, 4);
+    return swap ? __builtin_bswap32(v) : v;
+  }
+
+  std::optional<MatCut> walk_v5() const {
+    constexpr std::size_t kHeader = 128;
+    const bool swap = b_[126] == 'M' && b_[127] == 'I';
+    std::size_t pos = kHeader;
+    for (std::size_t k = 0; pos < b_.size(); ++k) {
+      if (b_.size() - pos < 8) return MatCut{k, {}};
+      const std::uint32_t type = u32(pos, swap);
+      if ((type >> 16) != 0) {  // small data element: tag and data in 8 bytes
+        pos += 8;
+        continue;
+      }
+      std::uint64_t n = u32(pos + 4, swap);
+      if (type == kMiMatrix) n = (n + 7) / 8 * 8;
+      std::string name;
+      std::uint32_t cls = 0;
+      if (n > b_.size() - pos - 8) {
+        if (type == kMiMatrix) (void)matrix_sizes_consistent(pos + 8, b_.size() - pos - 8, swap, name, cls, true);
+        return MatCut{k, name};
+      }
+      if (type == kMiMatrix) {
+        if (!matrix_sizes_consistent(pos + 8, static_cast<std::size_t>(n), swap, name, cls, true)) {
+          return MatCut{k, name};
+        }
+        if (!numeric_class(cls)) return MatCut{k, name, not_numeric(cls)};
+      } else if (type == kMiCompressed) {
+        if (auto cut = check_compressed_header(pos + 8, static_cast<std::size_t>(n), swap, k)) return cut;
+      }
+      pos += 8 + static_cast<std::size_t>(n);
+    }
+    return std::nullopt;
+  }
+
+  /// Inside an uncompressed miMATRIX element: flags, dimensions, name, then
+  /// the real part whose byte count must equal the elements the dimensions
+  /// declare times the size of its type.
+  static constexpr std::uint32_t kMiMatrix = 14;
+  static constexpr std::uint32_t kMiCompressed = 15;
+
+  /// A compressed variable: inflates the start of its stream (enough for the
+  /// matrix tag, flags, dimensions and name) and checks the class and the
+  /// declared size before libmatio allocates for them.
+  std::optional<MatCut> check_compressed_header(std::size_t at, std::size_t size, bool swap, std::size_t k) const {
+    std::string head(4096, '\0');
+    z_stream z{};
+    if (inflateInit(&z) != Z_OK) return MatCut{k, {}, "cannot be inflated"};
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(b_.data() + at));
+    z.avail_in = static_cast<uInt>(std::min<std::size_t>(size, 1u << 30));
+    z.next_out = reinterpret_cast<Bytef*>(head.data());
+    z.avail_out = static_cast<uInt>(head.size());
+    const int rc = inflate(&z, Z_SYNC_FLUSH);
+    const std::size_t got = head.size() - z.avail_out;
+    inflateEnd(&z);
+    if ((rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR) || got < 8) {
+      return MatCut{k, {}, "holds a compressed variable that does not inflate"};
+    }
+    head.resize(got);
+    const MatLayout inner(std::move(head));
+    if (inner.u32(0, swap) != kMiMatrix) return MatCut{k, {}, "holds a compressed element that is not an array"};
+    std::string name;
+    std::uint32_t cls = 0;
+    // The data of the inflated matrix lies beyond the inflated head: check only its header elements.
+    if (!inner.matrix_sizes_consistent(8, inner.b_.size() - 8, swap, name, cls, false)) {
+      return MatCut{k, name, "has array flags, dimensions or a name that disagree (corrupt file)"};
+    }
+    if (!numeric_class(cls)) return MatCut{k, name, not_numeric(cls)};
+    return std::nullopt;
+  }
+
+  bool matrix_sizes_consistent(std::size_t at, std::size_t size, bool swap, std::string& name, std::uint32_t& cls,
+                               bool with_data) const {
+    std::size_t p = at;
+    const std::size_t end = at + size;
+    const auto sub = [&](std::uint32_t& type, std::uint64_t& n, std::size_t& data) {
+      if (end - p < 8) return false;
+      type = u32(p, swap);
+      if ((type >> 16) != 0) {
+        n = type >> 16;
+        type &= 0xFFFFu;
+        data = p + 4;
+        if (n > 4) return false;
+        p += 8;
+        return true;
+      }
+      n = u32(p + 4, swap);
+      data = p + 8;
+      const std::uint64_t padded = (n + 7) / 8 * 8;
+      if (padded > end - p - 8) return false;
+      p += 8 + static_cast<std::size_t>(padded);
+      return true;
+    };
+    std::uint32_t type = 0;
+    std::uint64_t n = 0;
+    std::size_t data = 0;
+    if (!sub(type, n, data)) return false;  // array flags
+    if (n < 8) return false;
+    cls = u32(data, swap) & 0xFFu;
+    if (!sub(type, n, data) || type != 5 || n % 4 != 0) return false;  // dimensions, miINT32
+    std::uint64_t elements = 1;
+    for (std::size_t i = 0; i < n / 4; ++i) {
+      const std::uint32_t d = u32(data + 4 * i, swap);
+      if (d != 0 && elements > (std::uint64_t{1} << 40) / d) return false;
+      elements *= d;
+    }
+    if (!sub(type, n, data)) return false;  // name
+    name.assign(b_.data() + data, static_cast<std::size_t>(n));
+    if (!numeric_class(cls)) return true;  // refused by class by the caller
+    if (elements > kMaxMatElements) return false;
+    if (elements == 0 || !with_data) return true;
+    if (!sub(type, n, data)) return false;  // real part
+    const std::uint64_t bytes_per = type_size(type);
+    return bytes_per != 0 && n == elements * bytes_per;
+  }
+
+  static std::uint64_t type_size(std::uint32_t mi_type) {
+    switch (mi_type) {
+      case 1: case 2: return 1;   // miINT8, miUINT8
+      case 3: case 4: return 2;   // miINT16, miUINT16
+      case 5: case 6: case 7: return 4;  // miINT32, miUINT32, miSINGLE
+      case 9: case 12: case 13: return 8;  // miDOUBLE, miINT64, miUINT64
+      default: return 0;
+    }
+  }
+
+  std::optional<MatCut> walk_v4() const {
+    std::size_t pos = 0;
+    for (std::size_t k = 0; pos < b_.size(); ++k) {
+      if (b_.size() - pos < 20) return MatCut{k, {}};
+      std::uint32_t type = u32(pos, false);
+      const bool swap = type > 9999;
+      if (swap) type = u32(pos, true);
+      const std::uint64_t rows = u32(pos + 4, swap);
+      const std::uint64_t cols = u32(pos + 8, swap);
+      const std::uint32_t imag = u32(pos + 12, swap);
+      const std::uint64_t name_len = u32(pos + 16, swap);
+      static constexpr std::uint64_t kSize[] = {8, 4, 4, 2, 2, 1};
+      const std::uint32_t prec = (type / 10) % 10;
+      if (prec > 5 || rows > (std::uint64_t{1} << 31) || cols > (std::uint64_t{1} << 31) || name_len > 4096) {
+        return MatCut{k, {}};
+      }
+      const std::uint64_t bytes = name_len + rows * cols * kSize[prec] * (imag != 0 ? 2 : 1);
+      if (bytes > b_.size() - pos - 20) {
+        const std::size_t have = std::min<std::size_t>(static_cast<std::size_t>(name_len), b_.size() - pos - 20);
+        std::string name(b_.data() + pos + 20, have);
+        if (const auto nul = name.find('\0'); nul != std::string::npos) name.resize(nul);
+        return MatCut{k, name};
+      }
+      pos += 20 + static_cast<std::size_t>(bytes);
+    }
+    return std::nullopt;
+  }
+
+  std::string b_;
+};
 
 struct MatFileCloser {
   void operator()(mat_t* m) const noexcept { Mat_Close(m); }
@@ -279,15 +503,32 @@ using MatVar = std::unique_ptr<matvar_t, MatVarFreer>;
 
 MeasuredData read_mat(const fs::path& path) {
   const std::string label = path.string();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw UsageError(label + ": no such file");
+  if (const auto cut = MatLayout(io::read_regular_file(path, kMaxMeasuredFileBytes)).first_cut_element()) {
+    const std::string which = !cut->name.empty() ? "variable '" + excerpt(cut->name) + "'"
+                                                 : "variable number " + std::to_string(cut->index + 1);
+    throw UsageError(label + ": " + which + " " + cut->reason);
+  }
   MatFile mat(Mat_Open(label.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw UsageError(label + ": not a readable MATLAB .mat file");
   std::vector<std::string> names;
   for (;;) {
     MatVar info(Mat_VarReadNextInfo(mat.get()));
     if (!info) break;
-    if (info->name) names.emplace_back(info->name);
+    if (!info->name) continue;
+    // Checked before Mat_VarRead allocates what the variable declares.
+    const std::string w = label + ": variable '" + excerpt(info->name) + "'";
+    if (info->class_type != MAT_C_DOUBLE && info->class_type != MAT_C_SINGLE) {
+      throw UsageError(w + ": expected double or single values");
+    }
+    if (info->isComplex) throw UsageError(w + ": is complex, expected real numbers");
+    if (info->rank != 2 || !info->dims || (info->dims[0] != 1 && info->dims[1] != 1)) {
+      throw UsageError(w + ": expected a vector");
+    }
+    if (info->dims[0] * info->dims[1] > kMaxMatElements) {
+      throw UsageError(w + ": declares " + std::to_string(info->dims[0] * info->dims[1]) +
+                       " values, more than the limit of " + std::to_string(kMaxMatElements));
+    }
+    names.emplace_back(info->name);
   }
   if (names.empty()) throw UsageError(label + ": the .mat file holds no variables");
   RawTable raw;

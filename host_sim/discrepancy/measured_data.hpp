@@ -51,18 +51,30 @@ inline constexpr double kMinDuration_s = 1.0;
 inline constexpr double kMaxMedianStep_s = 0.02;
 inline constexpr double kMaxStep_s = 0.1;
 
+/// Largest measured file read, bytes (an hour at 1 kHz with ten columns is ~400 MiB of CSV).
+inline constexpr std::size_t kMaxMeasuredFileBytes = std::size_t{1} << 30;
+/// Magnitudes beyond any damper test: a record holding one is refused.
+inline constexpr double kMaxMeasuredForce_n = 1e8;
+inline constexpr double kMaxMeasuredDisplacement_m = 10.0;
+inline constexpr double kMaxMeasuredVelocity_m_s = 100.0;
+inline constexpr double kMaxMeasuredCurrent_a = 1000.0;
+
 /// Parses CSV text. `label` names the source in errors, which read
 /// `label:LINE: column 'NAME': what is wrong` (line 1 is the header; `#`
 /// comment lines and blank lines count as lines and are skipped). Throws
 /// io::UsageError for a missing or repeated column, an unknown unit, a
 /// field that is not a finite number, a wrong field count, time that does not
-/// increase, and a record that is too short or too coarsely sampled.
+/// increase, a record that is too short or too coarsely sampled, a force,
+/// displacement, velocity or current beyond the kMaxMeasured* limits, and a
+/// force or displacement that never changes (constant or all zero).
 [[nodiscard]] MeasuredData parse_measured_csv(std::string_view text, const std::string& label);
 
 /// Reads a CSV file, or a MATLAB .mat file (by extension, `.mat`) whose
 /// variables are vectors named like the CSV columns (`time_s`, `force_kN`, …).
 /// Errors for .mat name the variable and, for a bad value, its 1-based index.
-/// Throws io::UsageError.
+/// Only a regular file of at most kMaxMeasuredFileBytes is read; a .mat file
+/// must hold every byte its variables declare (a truncated file is refused,
+/// naming the variable cut short). Throws io::UsageError.
 [[nodiscard]] MeasuredData read_measured(const std::filesystem::path& path);
 
 /// Writes `data` to a MATLAB v5 .mat file with one double vector per column

@@ -46,20 +46,19 @@ std::string excerpt(std::string_view text) { return io::excerpt(text, 60); }
 
 std::string format_number(double value) { return io::format_number("%.9g", value); }
 
-std::string read_whole_file(const fs::path& path) {
-  const std::string file = file_label(path);
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw UsageError(file + ": file not found");
-  if (fs::is_directory(status)) throw UsageError(file + ": is a folder, not a file");
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!f) throw UsageError(file + ": cannot open: " + std::strerror(errno));
-  std::string data;
-  char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) data.append(buf, n);
-  if (std::ferror(f.get()) != 0) throw UsageError(file + ": read error");
-  return data;
+/// Refuses a record whose step makes no run or whose samples are beyond any earthquake.
+void check_record(const GroundMotion& motion, const std::string& file) {
+  if (!(motion.dt_s >= kMinRecordStep_s) || !(motion.dt_s <= kMaxRecordStep_s)) {
+    throw UsageError(file + ": sample step " + format_number(motion.dt_s) + " s is outside " +
+                     format_number(kMinRecordStep_s) + " to " + format_number(kMaxRecordStep_s) + " s");
+  }
+  for (std::size_t i = 0; i < motion.accel_m_s2.size(); ++i) {
+    if (!(std::abs(motion.accel_m_s2[i]) <= kMaxRecordAccel_m_s2)) {
+      throw UsageError(file + ": sample " + std::to_string(i + 1) + ": acceleration " +
+                       format_number(motion.accel_m_s2[i]) + " m/s^2 is beyond the limit of " +
+                       format_number(kMaxRecordAccel_m_s2) + " m/s^2 (about 100 g)");
+    }
+  }
 }
 
 /// Splits text into lines, numbered from 1, without the line break (LF or CRLF).
@@ -266,8 +265,11 @@ double GroundMotion::pga_time_s() const noexcept { return static_cast<double>(pg
 // ---------------------------------------------------------------- readers
 
 GroundMotion read_ground_motion_csv(const fs::path& path) {
-  const std::string file = file_label(path);
-  const std::string data = read_whole_file(path);
+  return parse_ground_motion_csv(io::read_regular_file(path, kMaxGroundMotionFileBytes), file_label(path),
+                                 stem_of(path));
+}
+
+GroundMotion parse_ground_motion_csv(std::string_view data, const std::string& file, const std::string& name) {
   const std::string_view text = strip_bom(data);
   if (trim(text).empty()) throw UsageError(file + ": empty file");
 
@@ -282,7 +284,7 @@ GroundMotion read_ground_motion_csv(const fs::path& path) {
   }
 
   GroundMotion motion;
-  motion.name = stem_of(path);
+  motion.name = name;
   motion.source = file;
   double first_time_s = 0.0;
   double previous_time_s = 0.0;
@@ -323,12 +325,15 @@ GroundMotion read_ground_motion_csv(const fs::path& path) {
     throw UsageError(file + ": expected at least 2 samples after the header, got " + std::to_string(n));
   }
   motion.dt_s = (previous_time_s - first_time_s) / static_cast<double>(n - 1);
+  check_record(motion, file);
   return motion;
 }
 
 GroundMotion read_peer_at2(const fs::path& path) {
-  const std::string file = file_label(path);
-  const std::string data = read_whole_file(path);
+  return parse_peer_at2(io::read_regular_file(path, kMaxGroundMotionFileBytes), file_label(path), stem_of(path));
+}
+
+GroundMotion parse_peer_at2(std::string_view data, const std::string& file, const std::string& name) {
   const std::string_view text = strip_bom(data);
   if (trim(text).empty()) throw UsageError(file + ": empty file");
 
@@ -343,7 +348,7 @@ GroundMotion read_peer_at2(const fs::path& path) {
   const At2Header at2 = parse_at2_npts_dt(header[3], file, 4);
 
   GroundMotion motion;
-  motion.name = stem_of(path);
+  motion.name = name;
   motion.source = file;
   motion.dt_s = at2.dt_s;
   motion.accel_m_s2.reserve(std::min(at2.npts, data.size() / 2 + 1));
@@ -360,6 +365,7 @@ GroundMotion read_peer_at2(const fs::path& path) {
                "header says " + std::to_string(at2.npts) + " values, the file has " +
                    std::to_string(motion.accel_m_s2.size()));
   }
+  check_record(motion, file);
   return motion;
 }
 

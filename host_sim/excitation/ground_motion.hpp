@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mrd::excitation {
@@ -41,11 +42,30 @@ struct GroundMotion {
   double pga_time_s() const noexcept;
 };
 
+/// Largest ground-motion file read, bytes (a 1 kHz hour-long CSV is ~100 MiB).
+inline constexpr std::size_t kMaxGroundMotionFileBytes = std::size_t{256} << 20;
+/// Largest |acceleration| a record may hold, m/s² (about 100 g; the
+/// strongest recorded ground motions stay below 5 g).
+inline constexpr double kMaxRecordAccel_m_s2 = 1000.0;
+/// Sample steps a record may have, s.
+inline constexpr double kMinRecordStep_s = 1e-6;
+inline constexpr double kMaxRecordStep_s = 1.0;
+
+/// Parses the shared CSV format from `text` (see read_ground_motion_csv);
+/// `file` names the source in messages, `name` becomes the record's name.
+GroundMotion parse_ground_motion_csv(std::string_view text, const std::string& file, const std::string& name);
+
+/// Parses a PEER NGA `.AT2` file's text (see read_peer_at2).
+GroundMotion parse_peer_at2(std::string_view text, const std::string& file, const std::string& name);
+
 /// Reads the shared CSV format (see the file comment). Tolerates a UTF-8
 /// byte-order mark, a trailing CR on each line (CRLF files), whitespace
 /// around fields and blank lines. Requires at least two samples and times that
 /// increase with a uniform step: every step must equal the first one within
 /// 1e-6 of it plus 1e-9 s. The stored step is (t_last − t_first)/(N − 1).
+/// Both readers accept only a regular file of at most
+/// kMaxGroundMotionFileBytes, a step within [kMinRecordStep_s,
+/// kMaxRecordStep_s] and samples within ±kMaxRecordAccel_m_s2.
 /// Throws io::UsageError on any problem.
 GroundMotion read_ground_motion_csv(const std::filesystem::path& path);
 

@@ -44,6 +44,18 @@ namespace mrd::io {
 /// How error messages name a file: its path as given.
 [[nodiscard]] std::string file_label(const std::filesystem::path& path);
 
+/// The whole content of the regular file `path`, read through a descriptor
+/// that cannot block (FIFOs, devices and folders are refused before any read).
+/// Throws io::UsageError "<file>: <problem>" for a missing file, one that is
+/// not a regular file, one larger than `max_bytes` (the limit is stated), or a
+/// read error.
+[[nodiscard]] std::string read_regular_file(const std::filesystem::path& path, std::size_t max_bytes);
+
+/// Checks that `path` names a regular file of at most `max_bytes` (the same
+/// refusals as read_regular_file, without reading it), for readers that open
+/// the file themselves.
+void check_regular_file(const std::filesystem::path& path, std::size_t max_bytes);
+
 /// "<file>:<line_no>: ", the start of a message about one line of a file.
 [[nodiscard]] std::string line_prefix(const std::string& file, std::size_t line_no);
 

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "firmware/app/option_checks.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
 #include "host_sim/peers/peer_nodes.hpp"
 #include "firmware/platform/linux/posix_clock.hpp"
@@ -16,10 +17,15 @@ int main(int argc, char** argv) {
   double stroke_m = 0.1, velocity_m_s = 0.2, duration_s = 0.0;
   app.add_option("--board", board_file, "Board file for node ids and interface");
   app.add_option("--can", can_if, "CAN interface (default: the board's, else vcan0)");
-  app.add_option("--stroke-limit-m", stroke_m, "Largest amplitude it drives, m")->capture_default_str();
-  app.add_option("--velocity-limit-m-s", velocity_m_s, "Largest velocity it reaches, m/s")->capture_default_str();
-  app.add_option("--duration-s", duration_s, "Stop after this long, s (0: until SIGTERM)");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--stroke-limit-m", stroke_m, "Largest amplitude it drives, m")
+      ->capture_default_str()
+      ->check(app::positive_up_to(1.0, "m"));
+  app.add_option("--velocity-limit-m-s", velocity_m_s, "Largest velocity it reaches, m/s")
+      ->capture_default_str()
+      ->check(app::positive_up_to(10.0, "m/s"));
+  app.add_option("--duration-s", duration_s, "Stop after this long, s (default: until SIGTERM)")
+      ->check(app::positive_up_to(app::kMaxProgramTime_s, "s"));
+  if (const auto status = peers::parse_options(app, argc, argv, "mrd-actuator-sim")) return *status;
 
   peers::install_stop_signals();
   app::BoardConfig board;

@@ -10,6 +10,7 @@
 
 #include "firmware/platform/linux/posix_clock.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
+#include "firmware/app/option_checks.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
 #include "host_sim/peers/peer_nodes.hpp"
 
@@ -148,17 +149,27 @@ int main(int argc, char** argv) {
   app.add_option("--board", o.board_file, "Board file for node ids, period and interface");
   app.add_option("--can", o.can_if, "CAN interface (default: the board's, else vcan0)");
   app.add_flag("--lockstep", o.lockstep, "Tick on the plant's SimCoilState frames (deterministic)");
-  app.add_option("--safe-current-a", o.safe_current_a, "Current applied when commands stop, A")->capture_default_str();
-  app.add_option("--timeout-ms", o.timeout_ms, "Command timeout, ms")->capture_default_str();
-  app.add_option("--duration-s", o.duration_s, "Free-running: stop after this long, s (0: until SIGTERM)");
+  app.add_option("--safe-current-a", o.safe_current_a, "Current applied when commands stop, A")
+      ->capture_default_str()
+      ->check(app::finite_in(0.0, 30.0, "A"));
+  app.add_option("--timeout-ms", o.timeout_ms, "Command timeout, ms")
+      ->capture_default_str()
+      ->check(app::positive_up_to(app::kMaxProgramTime_s * 1e3, "ms"));
+  app.add_option("--duration-s", o.duration_s, "Free-running: stop after this long, s (default: until SIGTERM)")
+      ->check(app::positive_up_to(app::kMaxProgramTime_s, "s"));
   app.add_option("--command-wait-s", o.command_wait_s, "Lockstep: decide a tick without command after this, s")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(app::positive_up_to(app::kMaxProgramTime_s, "s"));
   app.add_option("--idle-exit-s", o.idle_exit_s, "Lockstep: stop when no frame arrives for this long, s")
-      ->capture_default_str();
-  app.add_option("--fault-at-s", o.fault_at_s, "Inject a drive fault at this time (simulated time in lockstep), s");
-  app.add_option("--fault-for-s", o.fault_for_s, "Duration of the injected fault, s");
-  app.add_option("--sched-fifo", o.sched_fifo, "Run at this SCHED_FIFO priority (1..99), as a drive with its own CPU");
-  CLI11_PARSE(app, argc, argv);
+      ->capture_default_str()
+      ->check(app::positive_up_to(app::kMaxProgramTime_s, "s"));
+  app.add_option("--fault-at-s", o.fault_at_s, "Inject a drive fault at this time (simulated time in lockstep), s")
+      ->check(app::finite_in(0.0, app::kMaxProgramTime_s, "s"));
+  app.add_option("--fault-for-s", o.fault_for_s, "Duration of the injected fault, s")
+      ->check(app::finite_in(0.0, app::kMaxProgramTime_s, "s"));
+  app.add_option("--sched-fifo", o.sched_fifo, "Run at this SCHED_FIFO priority (1..99), as a drive with its own CPU")
+      ->check(CLI::Range(1, 99));
+  if (const auto status = peers::parse_options(app, argc, argv, "mrd-drive-sim")) return *status;
 
   peers::install_stop_signals();
   app::BoardConfig board;

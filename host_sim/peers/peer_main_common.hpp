@@ -2,9 +2,12 @@
 /// What the peer programs share: signal handling, the board file's node ids
 /// and period, and the one-line summary format the emulated-board test reads.
 
+#include <CLI/CLI.hpp>
+
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "firmware/app/board_config.hpp"
@@ -19,6 +22,20 @@ inline void install_stop_signals() {
   std::signal(SIGINT, peer_on_signal);
   std::signal(SIGTERM, peer_on_signal);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+}
+
+/// Parses the command line as `mrd` does: a bad option prints one line
+/// "<who>: error: <option>: <problem>" on stderr; returns the exit status to
+/// leave with (0 after --help, 2 for a bad option), or nullopt to go on.
+inline std::optional<int> parse_options(CLI::App& app, int argc, char** argv, const char* who) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "%s: error: %s\n", who, e.what());
+    return 2;
+  }
+  return std::nullopt;
 }
 
 /// The board file's settings when one is given, else the defaults; throws

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "firmware/app/option_checks.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
 #include "host_sim/peers/peer_nodes.hpp"
 #include "firmware/platform/linux/posix_clock.hpp"
@@ -25,13 +26,22 @@ int main(int argc, char** argv) {
   app.add_option("--board", board_file, "Board file for node ids, period and interface (default: protocol defaults)");
   app.add_option("--can", can_if, "CAN interface (default: the board's, else vcan0)");
   app.add_option("--record", record, "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2")->required();
-  app.add_option("--pga-g", pga_g, "Scale the record to this PGA, g")->capture_default_str();
-  app.add_option("--duration-s", duration_s, "Simulated time, s (0: the record's length)")->capture_default_str();
-  app.add_option("--idle-years", idle_years, "Idle time before the motion, years")->capture_default_str();
+  app.add_option("--pga-g", pga_g, "Scale the record to this PGA, g")
+      ->capture_default_str()
+      ->check(app::positive_up_to(100.0, "g"));
+  app.add_option("--duration-s", duration_s, "Simulated time, s (default: the record's length)")
+      ->check(app::positive_up_to(1.0e5, "s"));
+  app.add_option("--idle-years", idle_years, "Idle time before the motion, years")
+      ->capture_default_str()
+      ->check(app::finite_in(0.0, 1000.0, "years"));
   app.add_flag("--lockstep", lockstep, "Wait for the drive's coil drive of every tick (deterministic)");
-  app.add_option("--wait-s", wait_s, "Lockstep: give up when a tick's coil drive takes longer, s")->capture_default_str();
-  app.add_option("--start-delay-s", start_delay_s, "Wait this long before the first tick, s")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--wait-s", wait_s, "Lockstep: give up when a tick's coil drive takes longer, s")
+      ->capture_default_str()
+      ->check(app::positive_up_to(app::kMaxProgramTime_s, "s"));
+  app.add_option("--start-delay-s", start_delay_s, "Wait this long before the first tick, s")
+      ->capture_default_str()
+      ->check(app::finite_in(0.0, app::kMaxProgramTime_s, "s"));
+  if (const auto status = peers::parse_options(app, argc, argv, "mrd-plant-sim")) return *status;
 
   peers::install_stop_signals();
   app::BoardConfig board;

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 
+#include "firmware/app/option_checks.hpp"
 #include "host_sim/peers/in_process_board.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
@@ -20,11 +21,16 @@ int main(int argc, char** argv) {
   double pga_g = 0.1127, duration_s = 0.0, idle_years = 0.0;
   app.add_option("--board", board_file, "Board file (boards/sim/board.toml)")->required();
   app.add_option("--record", record, "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2")->required();
-  app.add_option("--pga-g", pga_g, "Scale the record to this PGA, g")->capture_default_str();
-  app.add_option("--duration-s", duration_s, "Simulated time, s (0: the record's length)");
-  app.add_option("--idle-years", idle_years, "Idle time before the motion, years")->capture_default_str();
+  app.add_option("--pga-g", pga_g, "Scale the record to this PGA, g")
+      ->capture_default_str()
+      ->check(app::positive_up_to(100.0, "g"));
+  app.add_option("--duration-s", duration_s, "Simulated time, s (default: the record's length)")
+      ->check(app::positive_up_to(1.0e5, "s"));
+  app.add_option("--idle-years", idle_years, "Idle time before the motion, years")
+      ->capture_default_str()
+      ->check(app::finite_in(0.0, 1000.0, "years"));
   app.add_option("--mode", mode, "Override the board's mode: passive-off | passive-on | semi-active");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = peers::parse_options(app, argc, argv, "mrd-sim-board")) return *status;
   try {
     app::BoardConfig board = app::load_board_config(board_file);
     if (!mode.empty()) {

@@ -62,6 +62,7 @@ void Plant::advance(const CoilDrive& drive) noexcept {
 
   s_.peak_base_displacement_m = std::max(s_.peak_base_displacement_m, std::fabs(state_.base_disp_m));
   s_.peak_damper_force_n = std::max(s_.peak_damper_force_n, std::fabs(state_.damper_force_n));
+  s_.peak_base_velocity_m_s = std::max(s_.peak_base_velocity_m_s, std::fabs(state_.base_vel_m_s));
   s_.peak_current_a = std::max(s_.peak_current_a, std::fabs(state_.coil_current_a));
   accel_ = building_.abs_accel_m_s2();
   floor_peak_m_s2_ = accel_.tail<structure::kDofs - 1>().cwiseAbs().maxCoeff();

@@ -85,6 +85,7 @@ physics::MrDamperParams hardware_damper_params(physics::MrDamperParams thesis) n
 struct PlantSummary {
   double peak_base_displacement_m = 0.0;       ///< max |x_b|, relative to the ground
   double peak_damper_force_n = 0.0;            ///< max |F|
+  double peak_base_velocity_m_s = 0.0;         ///< max |base velocity relative to the ground| (damper velocity)
   double peak_superstructure_accel_m_s2 = 0.0; ///< max |absolute accel| over floors 1–5
   double peak_base_accel_m_s2 = 0.0;           ///< max |absolute accel| of the base
   double peak_current_a = 0.0;                 ///< max |coil current|

@@ -1,5 +1,7 @@
 #include "host_sim/run/run_outputs.hpp"
 
+#include "host_sim/run/validity.hpp"
+
 #include <algorithm>
 
 #include "mrd/units.hpp"
@@ -105,6 +107,8 @@ nlohmann::json closed_loop_summary_json(const plant::PlantSummary& s) {
   };
 }
 
+std::vector<std::string> sim_warnings(const SimRun& run) { return validity_warnings(validity_peaks(run.summary)); }
+
 nlohmann::json sim_summary_json(const SimRun& run) {
   nlohmann::json j = closed_loop_summary_json(run.summary);
   j["record"] = run.motion.source;
@@ -122,6 +126,8 @@ nlohmann::json sim_summary_json(const SimRun& run) {
   j["time_above_rated_s"] = c.time_above_rated_s;
   j["command_changes_per_s"] = c.command_changes_per_s;
   j["peak_coil_temperature_rise_k"] = c.peak_coil_temperature_rise_k;
+  j["peak_damper_velocity_m_s"] = run.summary.peak_base_velocity_m_s;
+  j["warnings"] = sim_warnings(run);
   return j;
 }
 

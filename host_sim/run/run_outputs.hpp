@@ -37,6 +37,9 @@ std::vector<std::string> write_comparison_plot(const std::filesystem::path& png,
 /// timeseries.csv and its plots (write_closed_loop_outputs, from
 /// run.record), then summary.json. Returns the reasons for plots that could
 /// not be drawn.
+/// Where the run leaves the model's validity (validity_warnings), as sentences.
+std::vector<std::string> sim_warnings(const SimRun& run);
+
 std::vector<std::string> write_sim_outputs(const std::filesystem::path& dir, const SimRun& run);
 
 }  // namespace mrd::run

@@ -1,5 +1,10 @@
 #include "host_sim/run/sine_outputs.hpp"
 
+#include <cmath>
+#include <numbers>
+
+#include "host_sim/run/validity.hpp"
+
 #include <cstdio>
 #include <sstream>
 #include <utility>
@@ -28,6 +33,12 @@ nlohmann::json metrics_json(double fully_mixed_force_kn, double initial_force_kn
 
 }  // namespace
 
+std::vector<std::string> sine_warnings(const SineRun& run) {
+  const double a_m = run.spec.amplitude_m;
+  return validity_warnings(ValidityPeaks{a_m, 2.0 * std::numbers::pi * run.spec.frequency_hz * a_m,
+                                         std::abs(run.spec.current_a), run.metrics.max_force_n});
+}
+
 nlohmann::json sine_summary_json(const SineRun& run) {
   const SineMetrics& m = run.metrics;
   nlohmann::json j = metrics_json(m.fully_mixed_force_n / 1e3, m.initial_force_n / 1e3, m.max_force_n / 1e3,
@@ -38,6 +49,7 @@ nlohmann::json sine_summary_json(const SineRun& run) {
   j["current_a"] = run.spec.current_a;
   j["idle_years"] = run.idle_years;
   j["duration_s"] = run.spec.duration_s;
+  j["warnings"] = sine_warnings(run);
   return j;
 }
 

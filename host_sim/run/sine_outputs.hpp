@@ -22,6 +22,10 @@ struct SineRun {
   SineRecord record;
 };
 
+/// Where the test leaves the model's validity (validity_warnings): stroke the
+/// amplitude, velocity 2πf times it, the coil current and the largest force.
+[[nodiscard]] std::vector<std::string> sine_warnings(const SineRun& run);
+
 /// The fields documented in `mrd sine --help`.
 [[nodiscard]] nlohmann::json sine_summary_json(const SineRun& run);
 

@@ -58,6 +58,10 @@ struct StudyResult {
 /// mode fully mixed and idle, and (with_sweep) the idle-time sweep.
 StudyResult run_study(const StudyOptions& options);
 
+/// Where the study's runs (and its sweep's) leave the model's validity
+/// (validity_warnings), as sentences.
+std::vector<std::string> study_warnings(const StudyResult& result);
+
 /// Writes `dir/report.md`, `dir/summary.json`, one comparison plot per
 /// record and mode and (with a sweep) the sweep outputs under `dir/sweep/`.
 /// `dir` must exist. Returns the reasons for plots that could not be drawn.

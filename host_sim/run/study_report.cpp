@@ -8,6 +8,7 @@
 #include "host_sim/run/run_outputs.hpp"
 #include "host_sim/run/study.hpp"
 #include "host_sim/run/sweep_report.hpp"
+#include "host_sim/run/validity.hpp"
 
 namespace mrd::run {
 namespace {
@@ -111,6 +112,22 @@ nlohmann::json peaks_json(const plant::PlantSummary& s) {
                         {"sq", s.sq}};
 }
 
+}  // namespace
+
+std::vector<std::string> study_warnings(const StudyResult& r) {
+  std::vector<ValidityPeaks> peaks;
+  for (const auto& row : r.rows) {
+    peaks.push_back(validity_peaks(row.fully_mixed));
+    peaks.push_back(validity_peaks(row.idle));
+  }
+  if (r.sweep) {
+    for (const auto& row : r.sweep->rows) peaks.push_back(validity_peaks(row.summary));
+  }
+  return validity_warnings(peaks);
+}
+
+namespace {
+
 nlohmann::json study_summary_json(const StudyResult& r) {
   nlohmann::json runs = nlohmann::json::array();
   for (const auto& row : r.rows) {
@@ -128,6 +145,7 @@ nlohmann::json study_summary_json(const StudyResult& r) {
                         {"max_settling_time_years", r.max_settling_time_years},
                         {"runs", runs},
                         {"sweep", sweep},
+                        {"warnings", study_warnings(r)},
                         {"report", "report.md"}};
 }
 

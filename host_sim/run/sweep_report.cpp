@@ -1,5 +1,7 @@
 #include "host_sim/run/sweep_report.hpp"
 
+#include "host_sim/run/validity.hpp"
+
 #include <cstdio>
 #include <sstream>
 
@@ -94,6 +96,12 @@ double simulated_seconds(const std::vector<SweepRow>& rows) {
   return simulated_s;
 }
 
+std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows) {
+  std::vector<ValidityPeaks> peaks;
+  for (const auto& r : rows) peaks.push_back(validity_peaks(r.summary));
+  return validity_warnings(peaks);
+}
+
 nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<SweepRow>& rows, double wall_s,
                                   const std::vector<std::string>& pngs) {
   nlohmann::json motions = nlohmann::json::array();
@@ -108,7 +116,7 @@ nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<Sweep
                         {"simulated_s", simulated_s},     {"real_time_factor", simulated_s / wall_s},
                         {"motions", motions},            {"controls", modes},
                         {"idle_years", spec.idle_years}, {"csv", "sweep.csv"},
-                        {"plots", pngs}};
+                        {"plots", pngs},                {"warnings", sweep_warnings(rows)}};
 }
 
 std::vector<std::string> write_sweep_report(const std::filesystem::path& dir, const SweepSpec& spec,

@@ -19,6 +19,9 @@ std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, c
                                              const std::vector<SweepRow>& rows, std::vector<std::string>* pngs);
 
 /// The sweep as CSV text (header + one row per run).
+/// Where runs of the sweep leave the model's validity (validity_warnings), as sentences.
+std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows);
+
 std::string sweep_csv(const SweepSpec& spec, const std::vector<SweepRow>& rows);
 
 /// Simulated time summed over the runs, s.

@@ -50,8 +50,11 @@ TEST(MeasuredCsv, ReadsSiColumns) {
 
 TEST(MeasuredCsv, ConvertsUnitsToSi) {
   // 1 in = 25.4 mm; 1 kip = 4448.2216152605 N (1000 lbf); 500 mA = 0.5 A; 2 ms steps.
+  // Displacement and force alternate between two values (a constant one is refused).
   std::string s = "Time_ms,Displacement_in,Current_cmd_mA,Force_kip,velocity_mm_s\n";
-  for (int k = 0; k < 600; ++k) s += std::to_string(2 * k) + ",1,500,2,30\n";
+  for (int k = 0; k < 600; ++k) {
+    s += std::to_string(2 * k) + "," + std::to_string(1 + k % 2) + ",500," + std::to_string(2 + k % 2) + ",30\n";
+  }
   const auto m = parse_measured_csv(s, "lab.csv");
   EXPECT_DOUBLE_EQ(m.time_s[3], 0.006);
   EXPECT_DOUBLE_EQ(m.displacement_m[0], 0.0254);
@@ -63,7 +66,10 @@ TEST(MeasuredCsv, ConvertsUnitsToSi) {
 
 TEST(MeasuredCsv, KeepsExtraColumnsAndAcceptsCurrentAsCommand) {
   std::string s = "# lab export\ntime_s,displacement_mm,current_A,force_kN,temp_top_degC\n";
-  for (int k = 0; k < 1200; ++k) s += std::to_string(k * 1e-3) + ",3,1.5,120," + std::to_string(20 + k) + "\n";
+  for (int k = 0; k < 1200; ++k) {
+    s += std::to_string(k * 1e-3) + "," + std::to_string(3 + k % 2) + ",1.5," + std::to_string(120 + k % 2) + "," +
+         std::to_string(20 + k) + "\n";
+  }
   const auto m = parse_measured_csv(s, "lab.csv");
   EXPECT_DOUBLE_EQ(m.current_cmd_a[0], 1.5);
   EXPECT_DOUBLE_EQ(m.force_n[0], 120e3);
@@ -74,7 +80,9 @@ TEST(MeasuredCsv, KeepsExtraColumnsAndAcceptsCurrentAsCommand) {
 
 TEST(MeasuredCsv, MeasuredCurrentNextToCommandIsKept) {
   std::string s = "time_s,displacement_m,current_cmd_A,current_A,force_N\n";
-  for (int k = 0; k < 1200; ++k) s += std::to_string(k * 1e-3) + ",0,2,1.9,5\n";
+  for (int k = 0; k < 1200; ++k) {
+    s += std::to_string(k * 1e-3) + "," + std::to_string(k % 2) + ",2,1.9," + std::to_string(5 + k % 2) + "\n";
+  }
   const auto m = parse_measured_csv(s, "lab.csv");
   EXPECT_DOUBLE_EQ(m.current_cmd_a[0], 2.0);
   ASSERT_EQ(m.extra.size(), 1u);
@@ -85,7 +93,7 @@ TEST(MeasuredCsv, AcceptsNonUniformTime) {
   std::string s = "time_s,displacement_m,current_cmd_A,force_N\n";
   double t = 0.0;
   for (int k = 0; k < 1500; ++k) {
-    s += std::to_string(t) + ",0,1,0\n";
+    s += std::to_string(t) + "," + std::to_string(k % 2) + ",1," + std::to_string(k % 2) + "\n";
     t += k % 3 == 0 ? 0.0005 : 0.0012;
   }
   const auto m = parse_measured_csv(s, "lab.csv");
@@ -106,6 +114,16 @@ TEST_P(MeasuredCsvBad, NamesFileLineAndColumn) {
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   EXPECT_NE(e.find("lab.csv"), std::string::npos) << e;
   for (const auto& m : c.must_mention) EXPECT_NE(e.find(m), std::string::npos) << "missing '" << m << "' in: " << e;
+}
+
+/// A record whose force never changes (a disconnected load cell).
+std::string constant_force_csv(double force_n) {
+  std::string s = "time_s,displacement_m,current_cmd_A,force_N\n";
+  for (int k = 0; k < 1500; ++k) {
+    s += std::to_string(k * 1e-3) + "," + std::to_string(0.01 * std::sin(0.01 * k)) + ",2.5," +
+         std::to_string(force_n) + "\n";
+  }
+  return s;
 }
 
 std::string with_line(std::string text, int line_no, const std::string& replacement) {
@@ -143,7 +161,14 @@ INSTANTIATE_TEST_SUITE_P(
                 {"lab.csv:1", "force_kN"}},
         BadCase{"WrongFieldCount", with_line(csv(kHeader, 1500), 40, "0.038,0,2.5"), {"lab.csv:40", "3"}},
         BadCase{"Empty", "", {"empty"}},
-        BadCase{"HeaderIsData", csv("0,0,2.5,0", 1500), {"lab.csv:1", "header"}}),
+        BadCase{"HeaderIsData", csv("0,0,2.5,0", 1500), {"lab.csv:1", "header"}},
+        // Limits of measured_data.hpp: |force| <= 1e8 N, |displacement| <= 10 m.
+        BadCase{"AbsurdForce", with_line(csv(kHeader, 1500), 50, "0.048,0,2.5,1e12"),
+                {"lab.csv:50", "force_N", "limit 1e+08 N"}},
+        BadCase{"AbsurdDisplacement", with_line(csv(kHeader, 1500), 60, "0.058,20,2.5,0"),
+                {"lab.csv:60", "displacement_m", "limit 10 m"}},
+        BadCase{"AllZeroForce", constant_force_csv(0.0), {"lab.csv:1", "force_N", "constant 0 N"}},
+        BadCase{"ConstantForce", constant_force_csv(5e3), {"lab.csv:1", "force_N", "constant 5000 N"}}),
     [](const auto& p) { return std::string(p.param.name); });
 
 TEST(MeasuredCsv, TooCoarseSampling) {

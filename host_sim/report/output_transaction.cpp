@@ -1,0 +1,369 @@
+#include "host_sim/report/output_transaction.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <signal.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "host_sim/io/usage_error.hpp"
+
+namespace mrd::report {
+namespace fs = std::filesystem;
+using io::UsageError;
+
+namespace {
+
+// ------------------------------------------------ what a signal handler sees
+
+/// Open transactions' staging folders as plain strings, for the signal handler
+/// (which may only use async-signal-safe calls). An empty slot is unused.
+constexpr std::size_t kMaxOpen = 8;
+constexpr std::size_t kMaxPath = 4096;
+char g_staging[kMaxOpen][kMaxPath];
+volatile std::sig_atomic_t g_in_use[kMaxOpen];
+
+constexpr std::array kCleanupSignals{SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+
+bool is_dot_or_dotdot(const char* n) { return n[0] == '.' && (n[1] == '\0' || (n[1] == '.' && n[2] == '\0')); }
+
+struct LinuxDirent64 {
+  ino64_t d_ino;
+  off64_t d_off;
+  unsigned short d_reclen;
+  unsigned char d_type;
+  char d_name[];
+};
+
+/// Removes `name` under the folder `parent_fd`, recursively, with
+/// async-signal-safe calls only (openat, getdents64, unlinkat, close).
+void remove_tree_signal_safe(int parent_fd, const char* name, int depth) {
+  if (::unlinkat(parent_fd, name, 0) == 0 || errno == ENOENT) return;
+  if (depth > 32) return;
+  const int fd = ::openat(parent_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return;
+  for (int pass = 0; pass < 4; ++pass) {
+    ::lseek(fd, 0, SEEK_SET);
+    alignas(8) char buf[2048];
+    for (;;) {
+      const long n = ::syscall(SYS_getdents64, fd, buf, sizeof buf);
+      if (n <= 0) break;
+      for (long off = 0; off < n;) {
+        const auto* d = reinterpret_cast<const LinuxDirent64*>(buf + off);
+        off += d->d_reclen;
+        if (!is_dot_or_dotdot(d->d_name)) remove_tree_signal_safe(fd, d->d_name, depth + 1);
+      }
+    }
+    if (::unlinkat(parent_fd, name, AT_REMOVEDIR) == 0 || errno != ENOTEMPTY) break;
+  }
+  ::close(fd);
+}
+
+extern "C" void remove_staging_and_reraise(int sig) {
+  const int saved = errno;
+  for (std::size_t i = 0; i < kMaxOpen; ++i) {
+    if (g_in_use[i] != 0) remove_tree_signal_safe(AT_FDCWD, g_staging[i], 0);
+  }
+  errno = saved;
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+void install_handlers_once() {
+  static bool installed = false;
+  if (installed) return;
+  installed = true;
+  for (const int sig : kCleanupSignals) {
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;  // keep an ignored signal ignored
+    struct sigaction sa {};
+    sa.sa_handler = remove_staging_and_reraise;
+    sigemptyset(&sa.sa_mask);
+    for (const int s : kCleanupSignals) sigaddset(&sa.sa_mask, s);
+    ::sigaction(sig, &sa, nullptr);
+  }
+}
+
+/// Blocks the cleanup signals for its lifetime (the swap must not be cut in two).
+class SignalBlock {
+ public:
+  SignalBlock() {
+    sigset_t set;
+    sigemptyset(&set);
+    for (const int s : kCleanupSignals) sigaddset(&set, s);
+    ::pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~SignalBlock() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  SignalBlock(const SignalBlock&) = delete;
+  SignalBlock& operator=(const SignalBlock&) = delete;
+
+ private:
+  sigset_t old_{};
+};
+
+void publish(std::size_t slot, const fs::path& staging) {
+  g_in_use[slot] = 0;
+  std::snprintf(g_staging[slot], kMaxPath, "%s", staging.c_str());
+  g_in_use[slot] = 1;
+}
+
+// ------------------------------------------------------------ transactions
+
+struct Transaction {
+  fs::path shown;  ///< the folder as the user named it
+  fs::path target;
+  fs::path staging;
+  fs::path created_root;  ///< first parent folder this run created; empty if none
+  std::size_t slot = 0;
+};
+
+struct Registry {
+  std::vector<Transaction> open;
+  std::vector<Transaction> committed;  ///< for shown_path after the commit
+  ~Registry() { abandon_outputs(); }
+};
+
+Registry& registry() {
+  static Registry r;
+  return r;
+}
+
+std::string errno_text(int err) { return std::strerror(err); }
+
+std::string staging_prefix(const fs::path& target) { return "." + target.filename().string() + ".staging-"; }
+std::string old_prefix(const fs::path& target) { return "." + target.filename().string() + ".old-"; }
+
+bool process_gone(const std::string& pid_text) {
+  if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9) {
+    return false;
+  }
+  const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
+  return pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH;
+}
+
+/// Removes staging (and set-aside) folders of `target` left by processes that
+/// were killed (SIGKILL cannot be caught).
+void remove_stale_staging(const fs::path& target) {
+  std::error_code ec;
+  const std::string staging = staging_prefix(target);
+  const std::string old = old_prefix(target);
+  for (fs::directory_iterator it(target.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    for (const std::string& prefix : {staging, old}) {
+      if (name.rfind(prefix, 0) == 0 && process_gone(name.substr(prefix.size()))) {
+        std::error_code rm;
+        fs::remove_all(it->path(), rm);
+      }
+    }
+  }
+}
+
+/// The folder the user named, absolute, without a trailing separator, a
+/// symbolic link to a folder resolved to that folder.
+fs::path resolve_target(const std::string& shown, const fs::path& given) {
+  std::error_code ec;
+  fs::path t = fs::absolute(given, ec);
+  if (ec) throw UsageError("--out '" + shown + "': " + ec.message());
+  t = t.lexically_normal();
+  if (t.filename().empty()) t = t.parent_path();
+  if (fs::is_symlink(t, ec)) {
+    const fs::path real = fs::canonical(t, ec);
+    if (!ec) t = real;
+  }
+  if (t == t.root_path() || t.filename().empty()) throw UsageError("--out '" + shown + "': not a folder to replace");
+  return t;
+}
+
+void check_replaceable(const std::string& shown, const fs::path& target) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(target, ec);
+  if (!fs::exists(st)) return;
+  if (!fs::is_directory(st)) throw UsageError("--out '" + shown + "' exists and is not a folder");
+  const bool empty = fs::is_empty(target, ec);
+  if (ec) throw UsageError("--out '" + shown + "' cannot be read: " + ec.message());
+  if (!empty && !fs::exists(target / "summary.json", ec)) {
+    throw UsageError("--out '" + shown +
+                     "' is a folder with other files and no summary.json (not an mrd result): refusing to replace "
+                     "it; name a new or empty folder");
+  }
+}
+
+/// Creates the parent of `target`; returns the first folder created (empty if
+/// the parent existed).
+fs::path create_parent(const std::string& shown, const fs::path& target) {
+  const fs::path parent = target.parent_path();
+  std::error_code ec;
+  fs::path first_missing;
+  for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    first_missing = p;
+    if (p == p.parent_path()) break;
+  }
+  fs::create_directories(parent, ec);
+  if (ec) throw UsageError("--out '" + shown + "' cannot be created: " + ec.message());
+  return first_missing;
+}
+
+void remove_created_parents(const Transaction& t) {
+  if (t.created_root.empty()) return;
+  std::error_code ec;
+  for (fs::path p = t.target.parent_path(); !p.empty(); p = p.parent_path()) {
+    if (!fs::remove(p, ec) || ec) return;  // not empty (someone else's files): keep it
+    if (p == t.created_root) return;
+  }
+}
+
+void fsync_folder(const fs::path& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+void release(const Transaction& t) { g_in_use[t.slot] = 0; }
+
+/// Swaps `t.staging` in place of `t.target`. Returns where the previous
+/// result now is (empty when there was none). Throws io::UsageError.
+fs::path swap_in(const Transaction& t) {
+  const SignalBlock block;
+  if (::renameat2(AT_FDCWD, t.staging.c_str(), AT_FDCWD, t.target.c_str(), RENAME_NOREPLACE) == 0) return {};
+  int err = errno;
+  if (err == EEXIST) {
+    if (::renameat2(AT_FDCWD, t.staging.c_str(), AT_FDCWD, t.target.c_str(), RENAME_EXCHANGE) == 0) return t.staging;
+    err = errno;
+  }
+  if (err != EINVAL && err != ENOSYS && err != ENOTSUP) {
+    throw UsageError("--out '" + t.target.string() + "': cannot put the new result in place: " + errno_text(err));
+  }
+  // A file system without renameat2 flags: set the previous result aside, then rename.
+  const fs::path old = t.target.parent_path() / (old_prefix(t.target) + std::to_string(::getpid()));
+  publish(t.slot, old);  // the handler now removes what was set aside if the rename below cannot run
+  const bool had_old = ::rename(t.target.c_str(), old.c_str()) == 0;
+  if (::rename(t.staging.c_str(), t.target.c_str()) != 0) {
+    err = errno;
+    if (had_old) ::rename(old.c_str(), t.target.c_str());
+    publish(t.slot, t.staging);
+    throw UsageError("--out '" + t.target.string() + "': cannot put the new result in place: " + errno_text(err));
+  }
+  return had_old ? old : fs::path{};
+}
+
+}  // namespace
+
+fs::path begin_output(const fs::path& given) {
+  const std::string shown = given.string();
+  if (shown.empty()) throw UsageError("--out: expected a folder, got an empty value");
+  const fs::path target = resolve_target(shown, given);
+  check_replaceable(shown, target);
+  Registry& reg = registry();
+  std::size_t slot = kMaxOpen;
+  for (std::size_t i = 0; i < kMaxOpen; ++i) {
+    if (g_in_use[i] == 0) {
+      slot = i;
+      break;
+    }
+  }
+  if (slot == kMaxOpen || target.string().size() + 32 >= kMaxPath) {
+    throw UsageError("--out '" + shown + "': too many output folders or too long a path");
+  }
+  Transaction t;
+  t.shown = given;
+  t.target = target;
+  t.slot = slot;
+  t.created_root = create_parent(shown, target);
+  remove_stale_staging(target);
+  t.staging = target.parent_path() / (staging_prefix(target) + std::to_string(::getpid()));
+  std::error_code ec;
+  fs::remove_all(t.staging, ec);
+  install_handlers_once();
+  publish(slot, t.staging);
+  if (::mkdir(t.staging.c_str(), 0777) != 0) {
+    const int err = errno;
+    release(t);
+    remove_created_parents(t);
+    throw UsageError("--out '" + shown + "' is not writable: " + errno_text(err));
+  }
+  reg.open.push_back(t);
+  return t.staging;
+}
+
+void commit_outputs() {
+  Registry& reg = registry();
+  while (!reg.open.empty()) {
+    const Transaction t = reg.open.front();
+    fsync_folder(t.staging);
+    fs::path previous;
+    try {
+      previous = swap_in(t);
+    } catch (...) {
+      abandon_outputs();
+      throw;
+    }
+    reg.open.erase(reg.open.begin());
+    reg.committed.push_back(t);
+    fsync_folder(t.target.parent_path());
+    if (!previous.empty()) {
+      publish(t.slot, previous);
+      std::error_code ec;
+      fs::remove_all(previous, ec);
+    }
+    release(t);
+  }
+}
+
+void abandon_outputs() noexcept {
+  Registry& reg = registry();
+  for (const Transaction& t : reg.open) {
+    std::error_code ec;
+    fs::remove_all(t.staging, ec);
+    release(t);
+    remove_created_parents(t);
+  }
+  reg.open.clear();
+}
+
+namespace {
+std::string shown_folder(const Transaction& t) {
+  std::string shown = t.shown.string();
+  while (shown.size() > 1 && shown.back() == '/') shown.pop_back();
+  return shown;
+}
+}  // namespace
+
+fs::path shown_path(const fs::path& path) {
+  const Registry& reg = registry();
+  std::vector<Transaction> all = reg.open;
+  all.insert(all.end(), reg.committed.begin(), reg.committed.end());
+  for (const Transaction& t : all) {
+    const std::string s = path.string();
+    const std::string staging = t.staging.string();
+    if (s.rfind(staging, 0) == 0 && (s.size() == staging.size() || s[staging.size()] == '/')) {
+      return fs::path(shown_folder(t) + s.substr(staging.size()));
+    }
+  }
+  return path;
+}
+
+std::string shown_text(std::string text) {
+  const Registry& reg = registry();
+  std::vector<Transaction> all = reg.open;
+  all.insert(all.end(), reg.committed.begin(), reg.committed.end());
+  for (const Transaction& t : all) {
+    const std::string staging = t.staging.string();
+    const std::string shown = shown_folder(t);
+    for (std::size_t at = text.find(staging); at != std::string::npos; at = text.find(staging, at + shown.size())) {
+      text.replace(at, staging.size(), shown);
+    }
+  }
+  return text;
+}
+
+}  // namespace mrd::report

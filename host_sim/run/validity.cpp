@@ -1,0 +1,72 @@
+#include "host_sim/run/validity.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdio>
+
+namespace mrd::run {
+namespace {
+
+/// Tolerance on the current limit: the drive's regulation ripple.
+constexpr double kCurrentTolerance_a = 1e-6;
+
+struct Limit {
+  double ValidityPeaks::*peak;
+  double limit;
+  double tolerance;
+  const char* format;  ///< printf with the peak, then the limit
+};
+
+constexpr Limit kLimits[] = {
+    {&ValidityPeaks::stroke_m, kDamperHalfStroke_m, 0.0,
+     "peak stroke %.4g m exceeds the damper's +-%.4g m (Table 3.1): the damper and isolators would reach their "
+     "stops, which the model does not have"},
+    {&ValidityPeaks::velocity_m_s, kMaxModelVelocity_m_s, 0.0,
+     "peak damper velocity %.4g m/s exceeds the %.4g m/s of the tests the model was fitted to (Table 3.1): the force "
+     "is extrapolated"},
+    {&ValidityPeaks::current_a, kMaxFittedCurrent_a, kCurrentTolerance_a,
+     "peak coil current %.4g A exceeds the fitted range 0 to %.4g A (Table 4.1): the force is extrapolated"},
+    {&ValidityPeaks::force_n, kDamperCapacity_n, 0.0,
+     "peak damper force %.4g N exceeds the damper's %.4g N capacity"},
+};
+
+std::string sentence(const Limit& l, double peak) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, l.format, peak, l.limit);
+  return buf;
+}
+
+}  // namespace
+
+ValidityPeaks validity_peaks(const plant::PlantSummary& s) {
+  return {s.peak_base_displacement_m, s.peak_base_velocity_m_s, s.peak_current_a, s.peak_damper_force_n};
+}
+
+std::vector<std::string> validity_warnings(const ValidityPeaks& p) {
+  std::vector<std::string> out;
+  for (const Limit& l : kLimits) {
+    const double peak = p.*l.peak;
+    if (!(peak <= l.limit + l.tolerance)) out.push_back(sentence(l, peak));
+  }
+  return out;
+}
+
+std::vector<std::string> validity_warnings(const std::vector<ValidityPeaks>& runs) {
+  std::vector<std::string> out;
+  for (const Limit& l : kLimits) {
+    std::size_t over = 0;
+    double worst = 0.0;
+    for (const ValidityPeaks& p : runs) {
+      const double peak = p.*l.peak;
+      if (!(peak <= l.limit + l.tolerance)) {
+        ++over;
+        worst = std::max(worst, peak);
+      }
+    }
+    if (over == 0) continue;
+    out.push_back("in " + std::to_string(over) + " of " + std::to_string(runs.size()) + " runs: " + sentence(l, worst));
+  }
+  return out;
+}
+
+}  // namespace mrd::run
