@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cstddef>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -36,13 +37,15 @@ constexpr std::array kCleanupSignals{SIGINT, SIGTERM, SIGHUP, SIGQUIT};
 
 bool is_dot_or_dotdot(const char* n) { return n[0] == '.' && (n[1] == '\0' || (n[1] == '.' && n[2] == '\0')); }
 
-struct LinuxDirent64 {
+/// The fixed head of a getdents64 record (linux_dirent64); the
+/// NUL-terminated name follows it at kDirentNameOffset.
+struct LinuxDirent64Head {
   ino64_t d_ino;
   off64_t d_off;
   unsigned short d_reclen;
   unsigned char d_type;
-  char d_name[];
 };
+constexpr std::size_t kDirentNameOffset = offsetof(LinuxDirent64Head, d_type) + 1;
 
 /// Removes `name` under the folder `parent_fd`, recursively, with
 /// async-signal-safe calls only (openat, getdents64, unlinkat, close).
@@ -58,9 +61,10 @@ void remove_tree_signal_safe(int parent_fd, const char* name, int depth) {
       const long n = ::syscall(SYS_getdents64, fd, buf, sizeof buf);
       if (n <= 0) break;
       for (long off = 0; off < n;) {
-        const auto* d = reinterpret_cast<const LinuxDirent64*>(buf + off);
+        const auto* d = reinterpret_cast<const LinuxDirent64Head*>(buf + off);
+        const char* entry = buf + off + kDirentNameOffset;
         off += d->d_reclen;
-        if (!is_dot_or_dotdot(d->d_name)) remove_tree_signal_safe(fd, d->d_name, depth + 1);
+        if (!is_dot_or_dotdot(entry)) remove_tree_signal_safe(fd, entry, depth + 1);
       }
     }
     if (::unlinkat(parent_fd, name, AT_REMOVEDIR) == 0 || errno != ENOTEMPTY) break;
