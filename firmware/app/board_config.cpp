@@ -194,8 +194,8 @@ bool is_bare_key_char(char c) {
 /// e.g. U+00B5), and arrays, inline tables and multi-line strings, which
 /// board files do not use (toml++ asserts on some malformed ones, and a
 /// string spanning lines would hide what follows from these checks). Board files are ASCII but for
-/// comments, so a line that starts with '[' is a table header. A comment starts
-/// at a '#' with an even number of each quote character before it on its line.
+/// comments, so a line that starts with '[' is a table header. Strings are
+/// single-line, so a line's quotes and comment are found on the line itself.
 void check_toml_input(const std::string& text, const std::string& origin) {
   std::size_t line_no = 0;
   for (std::size_t pos = 0; pos <= text.size();) {
@@ -209,22 +209,37 @@ void check_toml_input(const std::string& text, const std::string& origin) {
     };
     std::size_t k = line.find_first_not_of(" \t\r");
     const bool header = k != std::string_view::npos && line[k] == '[';
-    std::size_t double_quotes = 0;
-    std::size_t single_quotes = 0;
+    enum class In { kCode, kBasic, kLiteral };  // outside strings, in "...", in '...'
+    In in = In::kCode;
     bool in_header_brackets = header;
     for (std::size_t j = 0; j < line.size(); ++j) {
       const char c = line[j];
-      const bool quoted = double_quotes % 2 != 0 || single_quotes % 2 != 0;
-      if (c == '#' && !quoted) break;
-      if (c == '"') ++double_quotes;
-      if (c == '\'') ++single_quotes;
+      if (static_cast<unsigned char>(c) >= 0x80 && in != In::kCode) fail_at("non-ASCII character outside a comment");
+      if (in == In::kBasic) {
+        if (c == '\\') {
+          ++j;  // an escape: the next character cannot end the string
+          if (j < line.size() && static_cast<unsigned char>(line[j]) >= 0x80) {
+            fail_at("non-ASCII character outside a comment");
+          }
+        } else if (c == '"') {
+          in = In::kCode;
+        }
+        continue;
+      }
+      if (in == In::kLiteral) {
+        if (c == '\'') in = In::kCode;
+        continue;
+      }
+      if (c == '#') break;  // a comment: anything may follow
       if (static_cast<unsigned char>(c) >= 0x80) fail_at("non-ASCII character outside a comment");
-      if (!quoted && (line.substr(j).starts_with("\"\"\"") || line.substr(j).starts_with("'''"))) {
+      if (line.substr(j).starts_with("\"\"\"") || line.substr(j).starts_with("'''")) {
         fail_at("multi-line strings are not used in board files");
       }
+      if (c == '"') in = In::kBasic;
+      if (c == '\'') in = In::kLiteral;
       if (in_header_brackets && c != '[' && c != ' ' && c != '\t') in_header_brackets = false;
-      if (!quoted && !header && (c == '[' || c == '{')) fail_at("arrays and inline tables are not used in board files");
-      if (!quoted && header && !in_header_brackets && c == '{') fail_at("table header: unexpected '{'");
+      if (!header && (c == '[' || c == '{')) fail_at("arrays and inline tables are not used in board files");
+      if (header && !in_header_brackets && c == '{') fail_at("table header: unexpected '{'");
     }
     if (!header) continue;
     // As toml++ reads a header: '[', blanks, an optional second '[' and blanks, then the name.
