@@ -11,6 +11,7 @@
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/discrepancy/solver_options.hpp"
 #include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
 
@@ -141,17 +142,7 @@ LocalResult local_fit(const JointData& data, const Layout& layout, const Baselin
     problem.SetParameterLowerBound(out.theta.data(), static_cast<int>(j), std::log(kLower[layout.free[j]]));
     problem.SetParameterUpperBound(out.theta.data(), static_cast<int>(j), std::log(kUpper[layout.free[j]]));
   }
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = 100;
-  so.function_tolerance = 1e-10;
-  so.gradient_tolerance = 1e-12;
-  so.parameter_tolerance = 1e-9;
-  so.num_threads = 1;
-  so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = false;
+  const ceres::Solver::Options so = lm_solver_options(100);
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   out.cost = summary.final_cost;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host_sim/discrepancy/solver_options.hpp"
+
 namespace mrd::discrepancy {
 namespace {
 
@@ -161,17 +163,7 @@ LocalFit local_fit(const FitData& data, const EffectSet& set, std::vector<double
     problem.SetParameterLowerBound(f.u.data(), static_cast<int>(j), 0.0);
     problem.SetParameterUpperBound(f.u.data(), static_cast<int>(j), 1.0);
   }
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = 60;
-  so.function_tolerance = 1e-10;
-  so.gradient_tolerance = 1e-12;
-  so.parameter_tolerance = 1e-9;
-  so.num_threads = 1;
-  so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = false;
+  const ceres::Solver::Options so = lm_solver_options(60);
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   f.iterations = static_cast<int>(summary.iterations.size());
