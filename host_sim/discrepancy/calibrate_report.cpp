@@ -5,6 +5,7 @@
 #include "host_sim/discrepancy/baseline_file.hpp"
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/discrepancy/report_format.hpp"
 #include "host_sim/io/text.hpp"
 #include "host_sim/report/output_dir.hpp"
 #include "host_sim/report/plot.hpp"
@@ -14,16 +15,6 @@ namespace mrd::discrepancy {
 namespace {
 
 using nlohmann::json;
-
-std::vector<double> thin(std::span<const double> v, std::size_t stride, double scale = 1.0) {
-  std::vector<double> out;
-  out.reserve(v.size() / stride + 1);
-  for (std::size_t k = 0; k < v.size(); k += stride) out.push_back(v[k] * scale);
-  return out;
-}
-
-std::string pct(double f) { return io::format_number("%.2f %%", 100.0 * f); }
-std::string g4(double v) { return io::format_number("%.4g", v); }
 
 json fit_json(const LawFit& f, const CalibrationResult& r) {
   json params = json::object();

@@ -6,6 +6,7 @@
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/settling.hpp"
 #include "mrd/units.hpp"
+#include "host_sim/discrepancy/report_format.hpp"
 #include "host_sim/io/text.hpp"
 #include "host_sim/report/output_dir.hpp"
 #include "host_sim/report/summary_json.hpp"
@@ -16,14 +17,6 @@ namespace mrd::discrepancy {
 namespace {
 
 using nlohmann::json;
-
-/// Every stride-th value, scaled, so that at most ~max_points remain.
-std::vector<double> thin(std::span<const double> v, std::size_t stride, double scale = 1.0) {
-  std::vector<double> out;
-  out.reserve(v.size() / stride + 1);
-  for (std::size_t k = 0; k < v.size(); k += stride) out.push_back(v[k] * scale);
-  return out;
-}
 
 json effects_json(const std::vector<Effect>& effects);
 
@@ -123,9 +116,7 @@ json effect_params_json(const std::vector<Effect>& effects, std::span<const doub
   return out;
 }
 
-std::string pct(double f) { return io::format_number("%.2f %%", 100.0 * f); }
 
-std::string g4(double v) { return io::format_number("%.4g", v); }
 
 void note(std::vector<std::string>& problems, const report::PlotResult& r, const std::filesystem::path& png) {
   if (!r.ok) problems.push_back(png.filename().string() + ": " + r.reason);
