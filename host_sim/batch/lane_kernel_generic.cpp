@@ -1,0 +1,14 @@
+// The lane kernel for any CPU: 4 lanes, glibc's exp() per lane.
+#define MRD_BATCH_LANES 4
+#define MRD_BATCH_NS generic
+#define MRD_BATCH_FMA_EXP 0
+#include "host_sim/batch/lane_kernel.hpp"
+
+namespace mrd::batch {
+
+LaneKernel generic_lane_kernel() noexcept {
+  return LaneKernel{"generic", MRD_BATCH_LANES, &generic::sense, &generic::advance, &generic::run,
+                    &generic::exp_n};
+}
+
+}  // namespace mrd::batch
