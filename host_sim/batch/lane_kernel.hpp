@@ -43,16 +43,15 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
   return v;
 }
 [[gnu::always_inline]] inline void store(double* p, vd v) { __builtin_memcpy(p, &v, sizeof v); }
-[[gnu::always_inline]] inline vd splat(double x) {
-  vd v;
-  for (int l = 0; l < kW; ++l) v[l] = x;
-  return v;
-}
-[[gnu::always_inline]] inline vi splat_i(std::int64_t x) {
-  vi v;
-  for (int l = 0; l < kW; ++l) v[l] = x;
-  return v;
-}
+#if MRD_BATCH_LANES == 8
+#define MRD_BATCH_ALL(x) {x, x, x, x, x, x, x, x}
+#elif MRD_BATCH_LANES == 4
+#define MRD_BATCH_ALL(x) {x, x, x, x}
+#else
+#error "4 or 8 lanes"
+#endif
+[[gnu::always_inline]] inline vd splat(double x) { return vd MRD_BATCH_ALL(x); }
+[[gnu::always_inline]] inline vi splat_i(std::int64_t x) { return vi MRD_BATCH_ALL(x); }
 [[gnu::always_inline]] inline double from_bits(std::uint64_t b) {
   double d;
   __builtin_memcpy(&d, &b, sizeof d);
@@ -74,7 +73,42 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
   return a + b;
 }
 
+/// True when any lane of the comparison result `m` is set.
+[[gnu::always_inline]] inline bool any(vi m) {
+#if MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 8
+  return _mm512_test_epi64_mask((__m512i)m, (__m512i)m) != 0;
+#elif MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 4
+  return _mm256_testz_si256((__m256i)m, (__m256i)m) == 0;
+#else
+  bool a = false;
+  for (int l = 0; l < kW; ++l) a |= m[l] != 0;
+  return a;
+#endif
+}
+
+/// The doubles at the addresses `addr`, one per lane.
+[[gnu::always_inline]] inline vd gather_at(vu addr) {
+#if MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 8
+  return (vd)_mm512_i64gather_pd((__m512i)addr, nullptr, 1);
+#elif MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 4
+  return (vd)_mm256_i64gather_pd(nullptr, (__m256i)addr, 1);
+#else
+  vd v;
+  for (int l = 0; l < kW; ++l) v[l] = *reinterpret_cast<const double*>(addr[l]);
+  return v;
+#endif
+}
+
 #if MRD_BATCH_FMA_EXP
+/// Entries `idx` of the exp table, one per lane.
+[[gnu::always_inline]] inline vu table_at(vu idx) {
+#if MRD_BATCH_LANES == 8
+  return (vu)_mm512_i64gather_epi64((__m512i)idx, kExpTable, 8);
+#else
+  return (vu)_mm256_i64gather_epi64(reinterpret_cast<const long long*>(kExpTable), (__m256i)idx, 8);
+#endif
+}
+
 [[gnu::always_inline]] inline vd fma(vd a, vd b, vd c) {
 #if MRD_BATCH_LANES == 8
   return (vd)_mm512_fmadd_pd((__m512d)a, (__m512d)b, (__m512d)c);
@@ -98,13 +132,8 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
   r = fma(kd, splat(from_bits(kExpNegLn2LoN)), r);
   const vu idx = (ki & 127u) * 2u;
   const vu top = ki << 45;
-  vd tail;
-  vu sbits;
-  for (int l = 0; l < kW; ++l) {
-    tail[l] = from_bits(kExpTable[idx[l]]);
-    sbits[l] = kExpTable[idx[l] + 1];
-  }
-  sbits += top;
+  const vd tail = (vd)table_at(idx);
+  const vu sbits = table_at(idx + 1u) + top;
   const vd p23 = fma(r, splat(from_bits(kExpC3)), splat(from_bits(kExpC2)));
   const vd rt = r + tail;
   const vd r2 = r * r;
@@ -117,10 +146,8 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
   // glibc: abstop − top12(2^-54) ≥ top12(512) − top12(2^-54) leaves the main path.
   const auto tiny = abstop < splat_i(0x3c9);
   y = tiny ? splat(1.0) + x : y;
-  const auto big = abstop >= splat_i(0x408);
-  bool any_big = false;
-  for (int l = 0; l < kW; ++l) any_big |= big[l] != 0;
-  if (__builtin_expect(any_big, 0)) {
+  const vi big = abstop >= splat_i(0x408);
+  if (__builtin_expect(any(big), 0)) {
     for (int l = 0; l < kW; ++l) {
       if (big[l]) y[l] = ::exp(x[l]);
     }
@@ -142,6 +169,8 @@ struct Regs {
   vd y_slow, y_fast, displaced, a_pr, b_pr, neg_c_pr, pr, fc, c0, held, base_accel, rise;
   vd pk_disp, pk_force, pk_vel, pk_current, pk_floor, pk_base;
   vd coil_peak, coil_sum_sq, coil_peak_rise, last_cmd, above, changes;
+  vu ground_addr, ground_step;  ///< where each lane reads a_g, and its stride in bytes
+  vd ground_scale;
 };
 
 [[gnu::always_inline]] inline void load_regs(const LaneBlock& b, Regs& r) {
@@ -170,6 +199,11 @@ struct Regs {
   r.last_cmd = load(b.last_command_a);
   r.above = load(b.ticks_above_rated);
   r.changes = load(b.command_changes);
+  __builtin_memcpy(&r.ground_addr, b.ground, sizeof r.ground_addr);
+  vi stride;
+  __builtin_memcpy(&stride, b.ground_stride, sizeof stride);
+  r.ground_step = (vu)(stride * static_cast<std::int64_t>(sizeof(double)));
+  r.ground_scale = load(b.ground_scale);
 }
 
 [[gnu::always_inline]] inline void store_regs(LaneBlock& b, const Regs& r) {
@@ -195,6 +229,7 @@ struct Regs {
   store(b.last_command_a, r.last_cmd);
   store(b.ticks_above_rated, r.above);
   store(b.command_changes, r.changes);
+  __builtin_memcpy(b.ground, &r.ground_addr, sizeof r.ground_addr);
 }
 
 /// What sense() gives advance().
@@ -203,12 +238,10 @@ struct Sensed {
 };
 
 /// Plant::sense on the thesis plant.
-[[gnu::always_inline]] inline Sensed sense_regs(const SharedModel& m, LaneBlock& b, const Regs& r) {
+[[gnu::always_inline]] inline Sensed sense_regs(const SharedModel& m, Regs& r) {
   Sensed s;
-  for (int l = 0; l < kW; ++l) {
-    s.ag[l] = *b.ground[l] * b.ground_scale[l];
-    b.ground[l] += b.ground_stride[l];
-  }
+  s.ag = gather_at(r.ground_addr) * r.ground_scale;
+  r.ground_addr += r.ground_step;
   s.x = dot_row12(m.disp_row, r.q);
   s.v = dot_row12(m.vel_row, r.q);
   // MrDamper::force_n: TF(v) · (f_c sgn v + c_0 v), Eq. 4.4, 5.12.
@@ -284,7 +317,8 @@ struct Sensed {
 void sense(const SharedModel& m, LaneBlock& b) {
   Regs r;
   load_regs(b, r);
-  const Sensed s = sense_regs(m, b, r);
+  const Sensed s = sense_regs(m, r);
+  __builtin_memcpy(b.ground, &r.ground_addr, sizeof r.ground_addr);
   store(b.ground_accel_m_s2, s.ag);
   store(b.base_disp_m, s.x);
   store(b.base_vel_m_s, s.v);
@@ -315,7 +349,7 @@ void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
   const vd u = load(b.command_a);
   vd roof, floor_peak;
   for (std::size_t t = 0; t < ticks; ++t) {
-    const Sensed s = sense_regs(m, b, r);
+    const Sensed s = sense_regs(m, r);
     advance_regs(m, s, u, r, roof, floor_peak);
   }
   store_regs(b, r);
