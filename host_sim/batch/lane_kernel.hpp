@@ -23,7 +23,7 @@
 #include "host_sim/batch/exp_table.hpp"
 #include "host_sim/batch/lane_block.hpp"
 
-#if MRD_BATCH_FMA_EXP
+#if defined(__x86_64__)
 #include <immintrin.h>
 #endif
 
@@ -47,8 +47,10 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
 #define MRD_BATCH_ALL(x) {x, x, x, x, x, x, x, x}
 #elif MRD_BATCH_LANES == 4
 #define MRD_BATCH_ALL(x) {x, x, x, x}
+#elif MRD_BATCH_LANES == 2
+#define MRD_BATCH_ALL(x) {x, x}
 #else
-#error "4 or 8 lanes"
+#error "2, 4 or 8 lanes"
 #endif
 [[gnu::always_inline]] inline vd splat(double x) { return vd MRD_BATCH_ALL(x); }
 [[gnu::always_inline]] inline vi splat_i(std::int64_t x) { return vi MRD_BATCH_ALL(x); }
@@ -73,12 +75,45 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
   return a + b;
 }
 
+// The few operations GCC's vector extensions lack, by instruction set:
+// AVX-512 with 8 lanes; AVX2 with 4 lanes, or 8 lanes as two halves.
+#if defined(__AVX512F__) && MRD_BATCH_LANES == 8
+#define MRD_BATCH_X86 512
+#elif defined(__AVX2__) && defined(__FMA__)
+#define MRD_BATCH_X86 256
+typedef double vd4 __attribute__((vector_size(32)));
+typedef std::uint64_t vu4 __attribute__((vector_size(32)));
+/// Applies `f` to each 4-lane half.
+template <class V4, class V, class F>
+[[gnu::always_inline]] inline V by_halves(F f) {
+  V out;
+  for (int h = 0; h < kW / 4; ++h) {
+    const V4 part = f(h);
+    __builtin_memcpy(reinterpret_cast<char*>(&out) + 32 * h, &part, 32);
+  }
+  return out;
+}
+template <class V4, class V>
+[[gnu::always_inline]] inline V4 half(const V& v, int h) {
+  V4 part;
+  __builtin_memcpy(&part, reinterpret_cast<const char*>(&v) + 32 * h, 32);
+  return part;
+}
+#else
+#define MRD_BATCH_X86 0
+#endif
+
 /// True when any lane of the comparison result `m` is set.
 [[gnu::always_inline]] inline bool any(vi m) {
-#if MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 8
+#if MRD_BATCH_X86 == 512
   return _mm512_test_epi64_mask((__m512i)m, (__m512i)m) != 0;
-#elif MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 4
-  return _mm256_testz_si256((__m256i)m, (__m256i)m) == 0;
+#elif MRD_BATCH_X86 == 256
+  bool a = false;
+  for (int h = 0; h < kW / 4; ++h) {
+    const __m256i part = (__m256i)half<vu4>(m, h);
+    a |= _mm256_testz_si256(part, part) == 0;
+  }
+  return a;
 #else
   bool a = false;
   for (int l = 0; l < kW; ++l) a |= m[l] != 0;
@@ -88,10 +123,11 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
 
 /// The doubles at the addresses `addr`, one per lane.
 [[gnu::always_inline]] inline vd gather_at(vu addr) {
-#if MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 8
+#if MRD_BATCH_X86 == 512
   return (vd)_mm512_i64gather_pd((__m512i)addr, nullptr, 1);
-#elif MRD_BATCH_FMA_EXP && MRD_BATCH_LANES == 4
-  return (vd)_mm256_i64gather_pd(nullptr, (__m256i)addr, 1);
+#elif MRD_BATCH_X86 == 256
+  return by_halves<vd4, vd>(
+      [&](int h) { return (vd4)_mm256_i64gather_pd(nullptr, (__m256i)half<vu4>(addr, h), 1); });
 #else
   vd v;
   for (int l = 0; l < kW; ++l) v[l] = *reinterpret_cast<const double*>(addr[l]);
@@ -100,22 +136,28 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
 }
 
 #if MRD_BATCH_FMA_EXP
+#if MRD_BATCH_X86 == 0
+#error "the FMA exp needs AVX-512 or AVX2 + FMA"
+#endif
 /// Entries `idx` of the exp table, one per lane.
 [[gnu::always_inline]] inline vu table_at(vu idx) {
-#if MRD_BATCH_LANES == 8
+#if MRD_BATCH_X86 == 512
   return (vu)_mm512_i64gather_epi64((__m512i)idx, kExpTable, 8);
 #else
-  return (vu)_mm256_i64gather_epi64(reinterpret_cast<const long long*>(kExpTable), (__m256i)idx, 8);
+  return by_halves<vu4, vu>([&](int h) {
+    return (vu4)_mm256_i64gather_epi64(reinterpret_cast<const long long*>(kExpTable), (__m256i)half<vu4>(idx, h), 8);
+  });
 #endif
 }
 
+/// a·b + c rounded once.
 [[gnu::always_inline]] inline vd fma(vd a, vd b, vd c) {
-#if MRD_BATCH_LANES == 8
+#if MRD_BATCH_X86 == 512
   return (vd)_mm512_fmadd_pd((__m512d)a, (__m512d)b, (__m512d)c);
-#elif MRD_BATCH_LANES == 4
-  return (vd)_mm256_fmadd_pd((__m256d)a, (__m256d)b, (__m256d)c);
 #else
-#error "FMA exp needs 4 or 8 lanes"
+  return by_halves<vd4, vd>([&](int h) {
+    return (vd4)_mm256_fmadd_pd((__m256d)half<vd4>(a, h), (__m256d)half<vd4>(b, h), (__m256d)half<vd4>(c, h));
+  });
 #endif
 }
 

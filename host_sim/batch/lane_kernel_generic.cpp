@@ -1,5 +1,5 @@
 // The lane kernel for any CPU: 4 lanes, glibc's exp() per lane.
-#define MRD_BATCH_LANES 4
+#define MRD_BATCH_LANES 2
 #define MRD_BATCH_NS generic
 #define MRD_BATCH_FMA_EXP 0
 #include "host_sim/batch/lane_kernel.hpp"
