@@ -206,6 +206,7 @@ class Batch {
     const double i0_a = model_.weight_slow * 0.0 + model_.weight_fast * 0.0;
     b.fc_n[l] = physics::coulomb_force_n(spec_.damper.bingham, i0_a, b.pr[l]);
     b.c0_ns_m[l] = physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, b.pr[l]);
+    b.exp_current_a[l] = std::numeric_limits<double>::quiet_NaN();
     b.ground[l] = &kNoGround;
     b.ground_scale[l] = 1.0;
     b.ground_stride[l] = 0;

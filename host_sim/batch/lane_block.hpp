@@ -13,8 +13,8 @@
 
 namespace mrd::batch {
 
-/// Lanes in a block: the widest kernel's (8 doubles, AVX-512).
-inline constexpr int kMaxLanes = 8;
+/// Lanes in a block: the widest kernel's (2 × 8 doubles, AVX-512).
+inline constexpr int kMaxLanes = 16;
 inline constexpr int kBlockStates = 12;  ///< building states (6 DOFs × displacement, velocity)
 inline constexpr int kBlockDofs = 6;
 
@@ -54,6 +54,9 @@ struct alignas(64) LaneBlock {
   Lanes held_force_n = {};         ///< damper force held over the last step
   Lanes base_accel_m_s2 = {};      ///< absolute base acceleration at t_n
   Lanes rise_k = {};               ///< coil temperature rise
+  /// exp(−f_c,c |i|), exp(−c_0,c |i|) of Eq. 4.2–4.3 and the |i| they were
+  /// computed for (NaN: none yet).
+  Lanes exp_fc = {}, exp_c0 = {}, exp_current_a = {};
 
   // Peaks and coil figures so far.
   Lanes peak_disp_m = {}, peak_force_n = {}, peak_vel_m_s = {}, peak_current_a = {};

@@ -30,8 +30,9 @@
 namespace mrd::batch::MRD_BATCH_NS {
 namespace {
 
-constexpr int kW = MRD_BATCH_LANES;
-static_assert(kW <= kMaxLanes);
+constexpr int kW = MRD_BATCH_LANES;  ///< lanes per register
+constexpr int kInterleave = 1;       ///< register sets stepped together (2 measured slower: spills)
+static_assert(kW * kInterleave <= kMaxLanes);
 
 typedef double vd __attribute__((vector_size(kW * 8)));
 typedef std::int64_t vi __attribute__((vector_size(kW * 8)));
@@ -211,67 +212,74 @@ struct Regs {
   vd y_slow, y_fast, displaced, a_pr, b_pr, neg_c_pr, pr, fc, c0, held, base_accel, rise;
   vd pk_disp, pk_force, pk_vel, pk_current, pk_floor, pk_base;
   vd coil_peak, coil_sum_sq, coil_peak_rise, last_cmd, above, changes;
+  vd exp_fc, exp_c0, exp_current;  ///< the current laws' exp() terms and the |i| they are for
   vu ground_addr, ground_step;  ///< where each lane reads a_g, and its stride in bytes
   vd ground_scale;
 };
 
-[[gnu::always_inline]] inline void load_regs(const LaneBlock& b, Regs& r) {
-  for (int k = 0; k < kBlockStates; ++k) r.q[k] = load(b.q[k]);
-  r.y_slow = load(b.y_slow);
-  r.y_fast = load(b.y_fast);
-  r.displaced = load(b.displaced_m3);
-  r.a_pr = load(b.a_pr);
-  r.b_pr = load(b.b_pr);
-  r.neg_c_pr = load(b.neg_c_pr);
-  r.pr = load(b.pr);
-  r.fc = load(b.fc_n);
-  r.c0 = load(b.c0_ns_m);
-  r.held = load(b.held_force_n);
-  r.base_accel = load(b.base_accel_m_s2);
-  r.rise = load(b.rise_k);
-  r.pk_disp = load(b.peak_disp_m);
-  r.pk_force = load(b.peak_force_n);
-  r.pk_vel = load(b.peak_vel_m_s);
-  r.pk_current = load(b.peak_current_a);
-  r.pk_floor = load(b.peak_floor_accel_m_s2);
-  r.pk_base = load(b.peak_base_accel_m_s2);
-  r.coil_peak = load(b.coil_peak_a);
-  r.coil_sum_sq = load(b.coil_sum_sq_a2);
-  r.coil_peak_rise = load(b.coil_peak_rise_k);
-  r.last_cmd = load(b.last_command_a);
-  r.above = load(b.ticks_above_rated);
-  r.changes = load(b.command_changes);
-  __builtin_memcpy(&r.ground_addr, b.ground, sizeof r.ground_addr);
+[[gnu::always_inline]] inline void load_regs(const LaneBlock& b, int o, Regs& r) {
+  for (int k = 0; k < kBlockStates; ++k) r.q[k] = load(b.q[k] + o);
+  r.y_slow = load(b.y_slow + o);
+  r.y_fast = load(b.y_fast + o);
+  r.displaced = load(b.displaced_m3 + o);
+  r.a_pr = load(b.a_pr + o);
+  r.b_pr = load(b.b_pr + o);
+  r.neg_c_pr = load(b.neg_c_pr + o);
+  r.pr = load(b.pr + o);
+  r.fc = load(b.fc_n + o);
+  r.c0 = load(b.c0_ns_m + o);
+  r.held = load(b.held_force_n + o);
+  r.base_accel = load(b.base_accel_m_s2 + o);
+  r.rise = load(b.rise_k + o);
+  r.pk_disp = load(b.peak_disp_m + o);
+  r.pk_force = load(b.peak_force_n + o);
+  r.pk_vel = load(b.peak_vel_m_s + o);
+  r.pk_current = load(b.peak_current_a + o);
+  r.pk_floor = load(b.peak_floor_accel_m_s2 + o);
+  r.pk_base = load(b.peak_base_accel_m_s2 + o);
+  r.coil_peak = load(b.coil_peak_a + o);
+  r.coil_sum_sq = load(b.coil_sum_sq_a2 + o);
+  r.coil_peak_rise = load(b.coil_peak_rise_k + o);
+  r.last_cmd = load(b.last_command_a + o);
+  r.above = load(b.ticks_above_rated + o);
+  r.changes = load(b.command_changes + o);
+  r.exp_fc = load(b.exp_fc + o);
+  r.exp_c0 = load(b.exp_c0 + o);
+  r.exp_current = load(b.exp_current_a + o);
+  __builtin_memcpy(&r.ground_addr, b.ground + o, sizeof r.ground_addr);
   vi stride;
-  __builtin_memcpy(&stride, b.ground_stride, sizeof stride);
+  __builtin_memcpy(&stride, b.ground_stride + o, sizeof stride);
   r.ground_step = (vu)(stride * static_cast<std::int64_t>(sizeof(double)));
-  r.ground_scale = load(b.ground_scale);
+  r.ground_scale = load(b.ground_scale + o);
 }
 
-[[gnu::always_inline]] inline void store_regs(LaneBlock& b, const Regs& r) {
-  for (int k = 0; k < kBlockStates; ++k) store(b.q[k], r.q[k]);
-  store(b.y_slow, r.y_slow);
-  store(b.y_fast, r.y_fast);
-  store(b.displaced_m3, r.displaced);
-  store(b.pr, r.pr);
-  store(b.fc_n, r.fc);
-  store(b.c0_ns_m, r.c0);
-  store(b.held_force_n, r.held);
-  store(b.base_accel_m_s2, r.base_accel);
-  store(b.rise_k, r.rise);
-  store(b.peak_disp_m, r.pk_disp);
-  store(b.peak_force_n, r.pk_force);
-  store(b.peak_vel_m_s, r.pk_vel);
-  store(b.peak_current_a, r.pk_current);
-  store(b.peak_floor_accel_m_s2, r.pk_floor);
-  store(b.peak_base_accel_m_s2, r.pk_base);
-  store(b.coil_peak_a, r.coil_peak);
-  store(b.coil_sum_sq_a2, r.coil_sum_sq);
-  store(b.coil_peak_rise_k, r.coil_peak_rise);
-  store(b.last_command_a, r.last_cmd);
-  store(b.ticks_above_rated, r.above);
-  store(b.command_changes, r.changes);
-  __builtin_memcpy(b.ground, &r.ground_addr, sizeof r.ground_addr);
+[[gnu::always_inline]] inline void store_regs(LaneBlock& b, int o, const Regs& r) {
+  for (int k = 0; k < kBlockStates; ++k) store(b.q[k] + o, r.q[k]);
+  store(b.y_slow + o, r.y_slow);
+  store(b.y_fast + o, r.y_fast);
+  store(b.displaced_m3 + o, r.displaced);
+  store(b.pr + o, r.pr);
+  store(b.fc_n + o, r.fc);
+  store(b.c0_ns_m + o, r.c0);
+  store(b.held_force_n + o, r.held);
+  store(b.base_accel_m_s2 + o, r.base_accel);
+  store(b.rise_k + o, r.rise);
+  store(b.peak_disp_m + o, r.pk_disp);
+  store(b.peak_force_n + o, r.pk_force);
+  store(b.peak_vel_m_s + o, r.pk_vel);
+  store(b.peak_current_a + o, r.pk_current);
+  store(b.peak_floor_accel_m_s2 + o, r.pk_floor);
+  store(b.peak_base_accel_m_s2 + o, r.pk_base);
+  store(b.coil_peak_a + o, r.coil_peak);
+  store(b.coil_sum_sq_a2 + o, r.coil_sum_sq);
+  store(b.coil_peak_rise_k + o, r.coil_peak_rise);
+  store(b.last_command_a + o, r.last_cmd);
+  store(b.ticks_above_rated + o, r.above);
+  store(b.command_changes + o, r.changes);
+  store(b.exp_fc + o, r.exp_fc);
+  store(b.exp_c0 + o, r.exp_c0);
+  store(b.exp_current_a + o, r.exp_current);
+  __builtin_memcpy(b.ground + o, &r.ground_addr, sizeof r.ground_addr);
 }
 
 /// What sense() gives advance().
@@ -310,10 +318,18 @@ struct Sensed {
   // Unmoved lanes recompute the same PR from the same ∫Q.
   r.pr = r.b_pr + (r.a_pr - r.b_pr) * vexp(r.neg_c_pr * (r.displaced / splat(m.volume_unit_m3)));
   const vd i_next = vabs(splat(m.weight_slow) * r.y_slow + splat(m.weight_fast) * r.y_fast);
+  // The current laws' exp() terms depend on |i| alone: while no lane's |i|
+  // changed (a constant command, once the coil has settled to its last
+  // bit), the previous values are the same doubles.
+  if (any((vi)(i_next != r.exp_current))) {
+    r.exp_fc = vexp(splat(m.neg_fc_c_per_a) * i_next);
+    r.exp_c0 = vexp(splat(m.neg_c0_c_per_a) * i_next);
+    r.exp_current = i_next;
+  }
   const vd bf = r.pr * splat(m.fc_b_n);
-  r.fc = bf + (splat(m.fc_a_n) - bf) * vexp(splat(m.neg_fc_c_per_a) * i_next);
+  r.fc = bf + (splat(m.fc_a_n) - bf) * r.exp_fc;
   const vd bc = r.pr * splat(m.c0_b_ns_m);
-  r.c0 = bc + (splat(m.c0_a_ns_m) - bc) * vexp(splat(m.neg_c0_c_per_a) * i_next);
+  r.c0 = bc + (splat(m.c0_a_ns_m) - bc) * r.exp_c0;
   // CoilThermal::step with i[n]².
   const vd power_w = (s.current * s.current) * splat(m.resistance_ohm);
   r.rise = splat(m.thermal_a) * r.rise + splat(m.thermal_gain_k_w) * power_w;
@@ -356,47 +372,62 @@ struct Sensed {
   r.base_accel = a[0];
 }
 
+// The kernel steps kInterleave register sets of kW lanes in one loop, so
+// that one set's dependency chain (q → v → F → q, and v → ∫Q → exp → PR →
+// f_c → F) overlaps the other's.
+
 void sense(const SharedModel& m, LaneBlock& b) {
-  Regs r;
-  load_regs(b, r);
-  const Sensed s = sense_regs(m, r);
-  __builtin_memcpy(b.ground, &r.ground_addr, sizeof r.ground_addr);
-  store(b.ground_accel_m_s2, s.ag);
-  store(b.base_disp_m, s.x);
-  store(b.base_vel_m_s, s.v);
-  store(b.damper_force_n, s.force);
-  store(b.current_a, s.current);
+  for (int h = 0; h < kInterleave; ++h) {
+    const int o = h * kW;
+    Regs r;
+    load_regs(b, o, r);
+    const Sensed s = sense_regs(m, r);
+    __builtin_memcpy(b.ground + o, &r.ground_addr, sizeof r.ground_addr);
+    store(b.ground_accel_m_s2 + o, s.ag);
+    store(b.base_disp_m + o, s.x);
+    store(b.base_vel_m_s + o, s.v);
+    store(b.damper_force_n + o, s.force);
+    store(b.current_a + o, s.current);
+  }
 }
 
 void advance(const SharedModel& m, LaneBlock& b) {
-  Regs r;
-  load_regs(b, r);
-  Sensed s;
-  s.ag = load(b.ground_accel_m_s2);
-  s.x = load(b.base_disp_m);
-  s.v = load(b.base_vel_m_s);
-  s.force = load(b.damper_force_n);
-  s.current = load(b.current_a);
-  vd roof, floor_peak;
-  advance_regs(m, s, load(b.command_a), r, roof, floor_peak);
-  store_regs(b, r);
-  store(b.roof_accel_m_s2, roof);
-  store(b.floor_peak_m_s2, floor_peak);
+  for (int h = 0; h < kInterleave; ++h) {
+    const int o = h * kW;
+    Regs r;
+    load_regs(b, o, r);
+    Sensed s;
+    s.ag = load(b.ground_accel_m_s2 + o);
+    s.x = load(b.base_disp_m + o);
+    s.v = load(b.base_vel_m_s + o);
+    s.force = load(b.damper_force_n + o);
+    s.current = load(b.current_a + o);
+    vd roof, floor_peak;
+    advance_regs(m, s, load(b.command_a + o), r, roof, floor_peak);
+    store_regs(b, o, r);
+    store(b.roof_accel_m_s2 + o, roof);
+    store(b.floor_peak_m_s2 + o, floor_peak);
+  }
 }
 
 void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
   if (ticks == 0) return;
-  Regs r;
-  load_regs(b, r);
-  const vd u = load(b.command_a);
-  vd roof, floor_peak;
-  for (std::size_t t = 0; t < ticks; ++t) {
-    const Sensed s = sense_regs(m, r);
-    advance_regs(m, s, u, r, roof, floor_peak);
+  Regs r[kInterleave];
+  vd u[kInterleave], roof[kInterleave], floor_peak[kInterleave];
+  for (int h = 0; h < kInterleave; ++h) {
+    load_regs(b, h * kW, r[h]);
+    u[h] = load(b.command_a + h * kW);
   }
-  store_regs(b, r);
-  store(b.roof_accel_m_s2, roof);
-  store(b.floor_peak_m_s2, floor_peak);
+  for (std::size_t t = 0; t < ticks; ++t) {
+    Sensed s[kInterleave];
+    for (int h = 0; h < kInterleave; ++h) s[h] = sense_regs(m, r[h]);
+    for (int h = 0; h < kInterleave; ++h) advance_regs(m, s[h], u[h], r[h], roof[h], floor_peak[h]);
+  }
+  for (int h = 0; h < kInterleave; ++h) {
+    store_regs(b, h * kW, r[h]);
+    store(b.roof_accel_m_s2 + h * kW, roof[h]);
+    store(b.floor_peak_m_s2 + h * kW, floor_peak[h]);
+  }
 }
 
 void exp_n(const double* x, double* y, std::size_t n) {
