@@ -351,8 +351,9 @@ const char* lane_isa_name(LaneIsa isa) noexcept {
 
 bool lane_isa_available(LaneIsa isa) {
   if (isa == LaneIsa::kAuto || isa == LaneIsa::kGeneric) return true;
-  if (!cpu_runs(isa)) return false;
-  return exp_agrees(kernel_of(isa));
+  static const bool v3 = cpu_runs(LaneIsa::kX86_64V3) && exp_agrees(kernel_of(LaneIsa::kX86_64V3));
+  static const bool v4 = cpu_runs(LaneIsa::kX86_64V4) && exp_agrees(kernel_of(LaneIsa::kX86_64V4));
+  return isa == LaneIsa::kX86_64V3 ? v3 : v4;
 }
 
 LaneIsa auto_lane_isa() {
@@ -370,7 +371,10 @@ int lane_count(LaneIsa isa) { return kernel_of(isa == LaneIsa::kAuto ? auto_lane
 std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& plant, std::span<const BatchRun> runs,
                                                        const BatchOptions& options) {
   const LaneIsa isa = options.isa == LaneIsa::kAuto ? auto_lane_isa() : options.isa;
-  if (!cpu_runs(isa)) throw std::invalid_argument(std::string("this CPU lacks ") + lane_isa_name(isa));
+  if (!lane_isa_available(isa)) {
+    throw std::invalid_argument(std::string("the ") + lane_isa_name(isa) +
+                                " lane kernel does not run here (instruction set, or the C library's exp())");
+  }
   const LaneKernel kernel = kernel_of(isa);
   const SharedModel model = shared_model(plant);
   std::vector<plant::PlantSummary> out(runs.size());

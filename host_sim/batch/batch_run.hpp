@@ -58,8 +58,9 @@ struct BatchOptions {
 /// </pre>
 /// One thread; independent calls may run on separate threads. Throws
 /// std::invalid_argument for a hardware plant, a bad step, a building
-/// without the modal stepping form, or an ISA this CPU lacks;
-/// io::UsageError when the control core rejects the step.
+/// without the modal stepping form, or an ISA that is not available
+/// (lane_isa_available()); io::UsageError when the control core rejects
+/// the step.
 std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& plant, std::span<const BatchRun> runs,
                                                        const BatchOptions& options = {});
 

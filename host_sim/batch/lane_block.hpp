@@ -13,8 +13,8 @@
 
 namespace mrd::batch {
 
-/// Lanes in a block: the widest kernel's (2 × 8 doubles, AVX-512).
-inline constexpr int kMaxLanes = 16;
+/// Lanes in a block: the widest kernel's (8 doubles, AVX-512).
+inline constexpr int kMaxLanes = 8;
 inline constexpr int kBlockStates = 12;  ///< building states (6 DOFs × displacement, velocity)
 inline constexpr int kBlockDofs = 6;
 

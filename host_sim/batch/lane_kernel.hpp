@@ -31,7 +31,7 @@ namespace mrd::batch::MRD_BATCH_NS {
 namespace {
 
 constexpr int kW = MRD_BATCH_LANES;  ///< lanes per register
-constexpr int kInterleave = 1;       ///< register sets stepped together (2 measured slower: spills)
+constexpr int kInterleave = 1;       ///< register sets stepped together (2 measured slower here: spills)
 static_assert(kW * kInterleave <= kMaxLanes);
 
 typedef double vd __attribute__((vector_size(kW * 8)));
@@ -373,8 +373,8 @@ struct Sensed {
 }
 
 // The kernel steps kInterleave register sets of kW lanes in one loop, so
-// that one set's dependency chain (q → v → F → q, and v → ∫Q → exp → PR →
-// f_c → F) overlaps the other's.
+// that one set's dependency chains (q → v → F → q; v → ∫Q → exp → PR →
+// f_c → F) can overlap another's; with one set it is plain SIMD.
 
 void sense(const SharedModel& m, LaneBlock& b) {
   for (int h = 0; h < kInterleave; ++h) {

@@ -7,7 +7,7 @@
 namespace mrd::batch {
 
 LaneKernel generic_lane_kernel() noexcept {
-  return LaneKernel{"generic", MRD_BATCH_LANES, &generic::sense, &generic::advance, &generic::run,
+  return LaneKernel{"generic", generic::kW * generic::kInterleave, &generic::sense, &generic::advance, &generic::run,
                     &generic::exp_n};
 }
 

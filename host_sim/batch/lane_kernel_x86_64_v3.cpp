@@ -7,7 +7,7 @@
 namespace mrd::batch {
 
 LaneKernel x86_64_v3_lane_kernel() noexcept {
-  return LaneKernel{"x86-64-v3", MRD_BATCH_LANES, &x86_64_v3::sense, &x86_64_v3::advance, &x86_64_v3::run,
+  return LaneKernel{"x86-64-v3", x86_64_v3::kW * x86_64_v3::kInterleave, &x86_64_v3::sense, &x86_64_v3::advance, &x86_64_v3::run,
                     &x86_64_v3::exp_n};
 }
 

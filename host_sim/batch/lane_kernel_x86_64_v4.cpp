@@ -7,7 +7,7 @@
 namespace mrd::batch {
 
 LaneKernel x86_64_v4_lane_kernel() noexcept {
-  return LaneKernel{"x86-64-v4", MRD_BATCH_LANES, &x86_64_v4::sense, &x86_64_v4::advance, &x86_64_v4::run,
+  return LaneKernel{"x86-64-v4", x86_64_v4::kW * x86_64_v4::kInterleave, &x86_64_v4::sense, &x86_64_v4::advance, &x86_64_v4::run,
                     &x86_64_v4::exp_n};
 }
 
