@@ -2,7 +2,7 @@
 /// Many closed-loop earthquake runs stepped together: the runs share the
 /// plant (building, damper, step) and differ in ground motion, its scaling,
 /// idle time and control mode. They are laid side by side in SIMD lanes
-/// (8 with AVX-512, 4 with AVX2 or without), so every load of the
+/// (8 with AVX-512, 4 with AVX2, 2 otherwise), so every load of the
 /// building's matrices serves all lanes; a lane whose run ends takes the
 /// next run, so runs of any lengths mix.
 ///
@@ -38,7 +38,7 @@ struct BatchRun {
 /// Which kernel steps the lanes.
 enum class LaneIsa {
   kAuto,      ///< the widest this CPU runs
-  kGeneric,   ///< any CPU: 4 lanes, glibc's exp() per lane
+  kGeneric,   ///< any CPU: 2 lanes, glibc's exp() per lane
   kX86_64V3,  ///< AVX2 + FMA: 4 lanes
   kX86_64V4,  ///< AVX-512: 8 lanes
 };

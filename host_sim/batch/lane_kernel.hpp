@@ -125,7 +125,7 @@ template <class V4, class V>
 /// The doubles at the addresses `addr`, one per lane.
 [[gnu::always_inline]] inline vd gather_at(vu addr) {
 #if MRD_BATCH_X86 == 512
-  return (vd)_mm512_i64gather_pd((__m512i)addr, nullptr, 1);
+  return (vd)_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, (__m512i)addr, nullptr, 1);
 #elif MRD_BATCH_X86 == 256
   return by_halves<vd4, vd>(
       [&](int h) { return (vd4)_mm256_i64gather_pd(nullptr, (__m256i)half<vu4>(addr, h), 1); });
@@ -143,7 +143,7 @@ template <class V4, class V>
 /// Entries `idx` of the exp table, one per lane.
 [[gnu::always_inline]] inline vu table_at(vu idx) {
 #if MRD_BATCH_X86 == 512
-  return (vu)_mm512_i64gather_epi64((__m512i)idx, kExpTable, 8);
+  return (vu)_mm512_mask_i64gather_epi64(_mm512_setzero_si512(), 0xff, (__m512i)idx, kExpTable, 8);
 #else
   return by_halves<vu4, vu>([&](int h) {
     return (vu4)_mm256_i64gather_epi64(reinterpret_cast<const long long*>(kExpTable), (__m256i)half<vu4>(idx, h), 8);

@@ -1,4 +1,4 @@
-// The lane kernel for any CPU: 4 lanes, glibc's exp() per lane.
+// The lane kernel for any CPU: 2 lanes (SSE2 on x86-64), glibc's exp() per lane.
 #define MRD_BATCH_LANES 2
 #define MRD_BATCH_NS generic
 #define MRD_BATCH_FMA_EXP 0
