@@ -113,20 +113,31 @@ const std::vector<double>& synthetic(unsigned seed, double duration_s) {
   return keep.back();
 }
 
-/// The records of ../shared/ground_motions at the thesis PGA, or none.
+/// The four records of ../shared/ground_motions (Table 6.2) at the thesis
+/// PGA; none when a record is missing.
 const std::vector<std::vector<double>>& shared_records() {
   static const std::vector<std::vector<double>> records = [] {
     std::vector<std::vector<double>> out;
     const auto dir = mrd::run::find_shared_ground_motions();
     if (!dir) return out;
     for (const char* name : {"elcentro_ns.csv", "hachinohe_ns.csv", "kobe_jma_ns.csv", "northridge_sylmar_ns.csv"}) {
-      if (!fs::exists(*dir / name)) continue;
+      if (!fs::exists(*dir / name)) return std::vector<std::vector<double>>{};
       out.push_back(mrd::run::load_study_motion(*dir / name, mrd::run::kThesisPga_g, kStep_s).accel_m_s2);
     }
     return out;
   }();
   return records;
 }
+
+/// The shared records are part of the checkout's surroundings (../shared
+/// beside the clone, or MRD_SHARED_DIR): their absence is a failure.
+#define REQUIRE_SHARED_RECORDS()                                                                        \
+  do {                                                                                                  \
+    if (shared_records().empty()) {                                                                     \
+      FAIL() << "the four records of the shared ground_motions folder were not found (../shared beside " \
+                "the checkout, or MRD_SHARED_DIR)";                                                     \
+    }                                                                                                   \
+  } while (false)
 
 TEST(BatchExp, EveryKernelsExpIsTheCLibrarysBitForBit) {
   // The arguments the damper feeds exp(): −c·|i| and −c_PR·∫Q, from 0 down
@@ -183,8 +194,8 @@ TEST(Batch, SyntheticRunsOfEachModeEqualTheScalarLoop) {
 // The four shared records (Table 6.2) at several scalings and idle times,
 // 13 runs per mode, each record cut to a different length.
 TEST(Batch, RealRecordsOfEachModeEqualTheScalarLoop) {
+  REQUIRE_SHARED_RECORDS();
   const auto& records = shared_records();
-  if (records.empty()) GTEST_SKIP() << "shared ground motions not found; skipping";
   for (ControlMode mode : {ControlMode::kPassiveOff, ControlMode::kPassiveOn, ControlMode::kSemiActive}) {
     SCOPED_TRACE(mrd::control::mode_name(mode));
     Case c;
@@ -212,8 +223,8 @@ TEST(Batch, MixedModesAndLengthsInOneBatch) {
 
 // A few samples of every time series, with records on some lanes only.
 TEST(Batch, TimeSeriesSamplesEqualTheScalarLoop) {
-  const auto& records = shared_records();
-  const std::vector<double>& rec = records.empty() ? synthetic(9, 20.0) : records[1];
+  REQUIRE_SHARED_RECORDS();
+  const std::vector<double>& rec = shared_records()[1];  // Hachinohe
   const mrd::plant::PlantSpec plant;
   for (LaneIsa isa : isas()) {
     SCOPED_TRACE(mrd::batch::lane_isa_name(isa));
