@@ -111,6 +111,18 @@ class DiscreteBuilding {
   const StateMatrix& phi() const noexcept { return phi_; }
   const InputMatrix& gamma() const noexcept { return gamma_; }
 
+  /// The stepping form step() uses (see above), for steppers that must
+  /// reproduce its arithmetic: rows (2j, 2j+1) of B_j (modal form only).
+  const Eigen::Matrix<double, kStates, 2>& modal_blocks() const noexcept { return blocks_; }
+  /// T⁻¹ Γ (Γ when stepping densely).
+  const InputMatrix& stepping_gamma() const noexcept { return gamma_q_; }
+  /// T, with z = T q (I when stepping densely).
+  const StateMatrix& modal_basis() const noexcept { return t_; }
+  /// Rows 6..11 of A times T: ẍ as a function of q.
+  const Eigen::Matrix<double, kDofs, kStates>& accel_rows() const noexcept { return accel_rows_; }
+  /// 1 / base mass, 1/kg.
+  double inv_base_mass_per_kg() const noexcept { return inv_base_mass_per_kg_; }
+
  private:
   StateMatrix phi_;
   InputMatrix gamma_;

@@ -1,0 +1,391 @@
+#include "host_sim/batch/batch_run.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "host_sim/batch/lane_block.hpp"
+#include "host_sim/structure/discrete_building.hpp"
+#include "mrd/physics/bingham.hpp"
+#include "mrd/physics/participant_ratio.hpp"
+#include "mrd/physics/settling.hpp"
+
+namespace mrd::batch {
+namespace {
+
+bool cpu_runs(LaneIsa isa) {
+#if defined(__x86_64__)
+  switch (isa) {
+    case LaneIsa::kX86_64V3: return __builtin_cpu_supports("x86-64-v3") != 0;
+    case LaneIsa::kX86_64V4: return __builtin_cpu_supports("x86-64-v4") != 0;
+    default: return true;
+  }
+#else
+  return isa == LaneIsa::kGeneric || isa == LaneIsa::kAuto;
+#endif
+}
+
+LaneKernel kernel_of(LaneIsa isa) {
+  switch (isa) {
+#if defined(__x86_64__)
+    case LaneIsa::kX86_64V3: return x86_64_v3_lane_kernel();
+    case LaneIsa::kX86_64V4: return x86_64_v4_lane_kernel();
+#endif
+    default: return generic_lane_kernel();
+  }
+}
+
+/// The kernel's exp() against the C library's, bit for bit, over the main
+/// range, both of its edges and the special cases.
+bool exp_agrees(const LaneKernel& k) {
+  std::vector<double> x = {0.0, -0.0, 1e-300, -1e-17, 0x1p-55, -0x1p-54, 511.9, -511.9, 512.0, -512.0, -745.2, 710.0};
+  for (int i = 0; i < 4000; ++i) x.push_back(-700.0 + 0.3501234567 * i);
+  for (int i = 0; i < 4000; ++i) x.push_back(-3.0 + 0.00100007 * i);
+  std::vector<double> y(x.size());
+  k.exp(x.data(), y.data(), x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double e = std::exp(x[i]);
+    if (std::memcmp(&e, &y[i], sizeof e) != 0) return false;
+  }
+  return true;
+}
+
+/// Eigen's order for DiscreteBuilding::disp_m(0) (see lane_kernel.hpp).
+double dot_row12(const double* row, const double* q) {
+  double p[kBlockStates];
+  for (int k = 0; k < kBlockStates; ++k) p[k] = row[k] * q[k];
+  const double a = (p[0] + (p[1] + p[2])) + (p[3] + (p[4] + p[5]));
+  const double b = (p[6] + (p[7] + p[8])) + (p[9] + (p[10] + p[11]));
+  return a + b;
+}
+
+SharedModel shared_model(const plant::PlantSpec& spec) {
+  if (spec.kind != plant::PlantKind::kThesis) {
+    throw std::invalid_argument("the batch runs the thesis plant only");
+  }
+  structure::DiscreteBuilding b;
+  b.init(spec.building, spec.step_s);
+  if (!b.modal_stepping()) {
+    throw std::invalid_argument("the batch needs the building's modal stepping form (an underdamped building)");
+  }
+  SharedModel m;
+  for (int r = 0; r < kBlockStates; ++r) {
+    m.blocks[r][0] = b.modal_blocks()(r, 0);
+    m.blocks[r][1] = b.modal_blocks()(r, 1);
+    m.gamma[r][0] = b.stepping_gamma()(r, 0);
+    m.gamma[r][1] = b.stepping_gamma()(r, 1);
+    m.disp_row[r] = b.modal_basis()(structure::kBaseDof, r);
+    m.vel_row[r] = b.modal_basis()(structure::kDofs + structure::kBaseDof, r);
+    for (int i = 0; i < kBlockDofs; ++i) m.accel_rows[i][r] = b.accel_rows()(i, r);
+  }
+  m.inv_base_mass_per_kg = b.inv_base_mass_per_kg();
+  const physics::BinghamParams& bp = spec.damper.bingham;
+  m.fc_a_n = bp.fc_a_n;
+  m.fc_b_n = bp.fc_b_n;
+  m.neg_fc_c_per_a = -bp.fc_c_per_a;
+  m.c0_a_ns_m = bp.c0_a_ns_m;
+  m.c0_b_ns_m = bp.c0_b_ns_m;
+  m.neg_c0_c_per_a = -bp.c0_c_per_a;
+  m.v_tf_m_s = bp.v_tf_m_s;
+  // As physics::CurrentDynamics::init and plant::CoilThermal::init compute them.
+  m.a_slow = std::exp(-spec.step_s / spec.damper.coil.tau_slow_s);
+  m.a_fast = std::exp(-spec.step_s / spec.damper.coil.tau_fast_s);
+  m.one_minus_a_slow = 1.0 - m.a_slow;
+  m.one_minus_a_fast = 1.0 - m.a_fast;
+  m.weight_slow = spec.damper.coil.weight_slow;
+  m.weight_fast = spec.damper.coil.weight_fast;
+  m.flow_area_m2 = spec.damper.pr.flow_area_m2;
+  m.volume_unit_m3 = spec.damper.pr.volume_unit_m3;
+  m.step_s = spec.step_s;
+  m.thermal_a = std::exp(-spec.step_s / spec.thermal.time_constant_s);
+  m.thermal_gain_k_w = (1.0 - m.thermal_a) * spec.thermal.thermal_resistance_k_w;
+  m.resistance_ohm = spec.thermal.resistance_ohm;
+  m.rated_current_a = plant::kRatedCoilCurrent_a;
+  return m;
+}
+
+constexpr double kNoGround = 0.0;  ///< what an idle lane reads
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+constexpr int kModes = 3;
+
+bool passive(control::ControlMode m) { return m != control::ControlMode::kSemiActive; }
+
+/// Steps the runs of one queue through one block, a lane taking the next
+/// run when its run ends.
+class Batch {
+ public:
+  Batch(const plant::PlantSpec& spec, const LaneKernel& kernel, const SharedModel& model,
+        std::span<const BatchRun> runs, const BatchOptions& options, std::vector<plant::PlantSummary>& out)
+      : spec_(spec), kernel_(kernel), model_(model), runs_(runs), options_(options), out_(out) {
+    block_ = std::make_unique<LaneBlock>();
+    for (int l = 0; l < kMaxLanes; ++l) rest(l);
+  }
+
+  void run(const std::vector<std::size_t>& queue) {
+    queue_ = &queue;
+    next_ = 0;
+    for (int l = 0; l < kernel_.lanes; ++l) take_next(l);
+    for (;;) {
+      std::size_t left = std::numeric_limits<std::size_t>::max();
+      bool tick_by_tick = false;
+      for (int l = 0; l < kernel_.lanes; ++l) {
+        if (lanes_[l].run == kNone) continue;
+        left = std::min(left, lanes_[l].ticks - lanes_[l].tick);
+        const BatchRun& r = runs_[lanes_[l].run];
+        tick_by_tick = tick_by_tick || r.record != nullptr || !passive(r.mode);
+      }
+      if (left == std::numeric_limits<std::size_t>::max()) return;  // every lane idle
+      if (tick_by_tick) {
+        tick();
+        left = 1;
+      } else {
+        kernel_.run(model_, *block_, left);
+      }
+      for (int l = 0; l < kernel_.lanes; ++l) {
+        if (lanes_[l].run == kNone) continue;
+        lanes_[l].tick += left;
+        if (lanes_[l].tick == lanes_[l].ticks) {
+          finish(l);
+          take_next(l);
+        }
+      }
+    }
+  }
+
+ private:
+  struct Lane {
+    std::size_t run = kNone;
+    std::size_t tick = 0;
+    std::size_t ticks = 0;
+    double sq = 0.0;
+    double desired_force_n = 0.0;  ///< the passive core's F_d (0)
+    run::Controller* controller = nullptr;  ///< semi-active only
+  };
+
+  const plant::PlantSpec& spec_;
+  const LaneKernel& kernel_;
+  const SharedModel& model_;
+  std::span<const BatchRun> runs_;
+  const BatchOptions& options_;
+  std::vector<plant::PlantSummary>& out_;
+  std::unique_ptr<LaneBlock> block_;
+  std::array<Lane, kMaxLanes> lanes_{};
+  std::array<std::array<std::unique_ptr<run::Controller>, kModes>, kMaxLanes> controllers_{};
+  const std::vector<std::size_t>* queue_ = nullptr;
+  std::size_t next_ = 0;
+
+  run::Controller& controller(int lane, control::ControlMode mode) {
+    auto& c = controllers_[lane][static_cast<int>(mode)];
+    if (!c) c = run::make_controller(mode, spec_.step_s, options_.numeric);
+    return *c;
+  }
+
+  /// Lane l at rest with nothing to run.
+  void rest(int l) {
+    LaneBlock& b = *block_;
+    for (auto& row : b.q) row[l] = 0.0;
+    for (double* v : {b.y_slow, b.y_fast, b.displaced_m3, b.held_force_n, b.base_accel_m_s2, b.rise_k, b.peak_disp_m,
+                      b.peak_force_n, b.peak_vel_m_s, b.peak_current_a, b.peak_floor_accel_m_s2,
+                      b.peak_base_accel_m_s2, b.coil_peak_a, b.coil_sum_sq_a2, b.coil_peak_rise_k, b.last_command_a,
+                      b.ticks_above_rated, b.command_changes, b.command_a}) {
+      v[l] = 0.0;
+    }
+    // Plant::init: PR and the damper's coefficients at ∫Q = 0 and i = 0 A
+    // (physics::ParticipantRatio::reset, MrDamper::update_coefficients).
+    const physics::PrCoefficients c = physics::pr_coefficients(spec_.damper.pr, lanes_[l].sq);
+    b.a_pr[l] = c.a_pr;
+    b.b_pr[l] = c.b_pr;
+    b.neg_c_pr[l] = -c.c_pr;
+    b.pr[l] = physics::participant_ratio(c, 0.0 / spec_.damper.pr.volume_unit_m3);
+    const double i0_a = model_.weight_slow * 0.0 + model_.weight_fast * 0.0;
+    b.fc_n[l] = physics::coulomb_force_n(spec_.damper.bingham, i0_a, b.pr[l]);
+    b.c0_ns_m[l] = physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, b.pr[l]);
+    b.exp_current_a[l] = std::numeric_limits<double>::quiet_NaN();
+    b.ground[l] = &kNoGround;
+    b.ground_scale[l] = 1.0;
+    b.ground_stride[l] = 0;
+  }
+
+  void take_next(int l) {
+    Lane& lane = lanes_[l];
+    lane = Lane{};
+    while (next_ < queue_->size()) {
+      const std::size_t i = (*queue_)[next_++];
+      const BatchRun& r = runs_[i];
+      lane.run = i;
+      lane.ticks = r.ground_accel_m_s2.size();
+      lane.sq = physics::settling_quotient_after_idle(r.idle_time_s, spec_.settling);
+      rest(l);
+      if (r.record) start_record(*r.record, lane.ticks);
+      if (lane.ticks == 0) {
+        finish(l);
+        lane = Lane{};
+        continue;
+      }
+      LaneBlock& b = *block_;
+      b.ground[l] = r.ground_accel_m_s2.data();
+      b.ground_scale[l] = r.ground_scale;
+      b.ground_stride[l] = 1;
+      run::Controller& c = controller(l, r.mode);
+      c.reset();
+      if (passive(r.mode)) {
+        // SAFE-3: a passive core's output ignores its input, so its first
+        // tick's command holds for the run.
+        const control::ControllerOutput o = c.step(control::ControllerInput{});
+        b.command_a[l] = plant::command_stage_a(plant::CoilDrive{static_cast<double>(o.current_command_a), o.drive_enable});
+        lane.desired_force_n = o.desired_force_n;
+      } else {
+        lane.controller = &c;
+      }
+      return;
+    }
+    lane = Lane{};
+    rest(l);
+  }
+
+  static void start_record(run::ClosedLoopRecord& rec, std::size_t n) {
+    for (auto* v : {&rec.time_s, &rec.ground_accel_m_s2, &rec.base_disp_m, &rec.base_vel_m_s, &rec.damper_force_n,
+                    &rec.desired_force_n, &rec.command_a, &rec.current_a, &rec.pr, &rec.roof_accel_m_s2,
+                    &rec.peak_floor_accel_m_s2}) {
+      v->clear();
+      v->reserve(n);
+    }
+  }
+
+  /// One tick of every lane, the semi-active lanes' cores in between, as
+  /// run::run_closed_loop does it.
+  void tick() {
+    LaneBlock& b = *block_;
+    kernel_.sense(model_, b);
+    std::array<double, kMaxLanes> desired{};
+    std::array<double, kMaxLanes> pr{};
+    for (int l = 0; l < kernel_.lanes; ++l) {
+      Lane& lane = lanes_[l];
+      if (lane.run == kNone) continue;
+      pr[l] = b.pr[l];
+      desired[l] = lane.desired_force_n;
+      if (!lane.controller) continue;
+      control::ControllerInput in;
+      in.tick = lane.tick;
+      in.damper_disp_m = static_cast<float>(b.base_disp_m[l]);
+      in.damper_force_n = static_cast<float>(b.damper_force_n[l]);
+      in.ground_accel_m_s2 = static_cast<float>(b.ground_accel_m_s2[l]);
+      in.base_accel_m_s2 = static_cast<float>(b.base_accel_m_s2[l]);
+      in.coil_current_a = static_cast<float>(b.current_a[l]);
+      const control::ControllerOutput o = lane.controller->step(in);
+      b.command_a[l] = plant::command_stage_a(plant::CoilDrive{static_cast<double>(o.current_command_a), o.drive_enable});
+      desired[l] = o.desired_force_n;
+    }
+    // The sensed values, before advance() overwrites what they came from.
+    LaneBlock::Lanes x, v, f, ag, i;
+    std::memcpy(x, b.base_disp_m, sizeof x);
+    std::memcpy(v, b.base_vel_m_s, sizeof v);
+    std::memcpy(f, b.damper_force_n, sizeof f);
+    std::memcpy(ag, b.ground_accel_m_s2, sizeof ag);
+    std::memcpy(i, b.current_a, sizeof i);
+    kernel_.advance(model_, b);
+    for (int l = 0; l < kernel_.lanes; ++l) {
+      const Lane& lane = lanes_[l];
+      if (lane.run == kNone || !runs_[lane.run].record) continue;
+      run::ClosedLoopRecord& rec = *runs_[lane.run].record;
+      rec.time_s.push_back(static_cast<double>(lane.tick) * spec_.step_s);
+      rec.ground_accel_m_s2.push_back(ag[l]);
+      rec.base_disp_m.push_back(x[l]);
+      rec.base_vel_m_s.push_back(v[l]);
+      rec.damper_force_n.push_back(f[l]);
+      rec.desired_force_n.push_back(desired[l]);
+      rec.command_a.push_back(b.command_a[l]);
+      rec.current_a.push_back(i[l]);
+      rec.pr.push_back(pr[l]);
+      rec.roof_accel_m_s2.push_back(b.roof_accel_m_s2[l]);
+      rec.peak_floor_accel_m_s2.push_back(b.floor_peak_m_s2[l]);
+    }
+  }
+
+  /// Plant::summary() of lane l's run.
+  void finish(int l) {
+    const LaneBlock& b = *block_;
+    const Lane& lane = lanes_[l];
+    plant::PlantSummary s;
+    double q[kBlockStates];
+    for (int k = 0; k < kBlockStates; ++k) q[k] = b.q[k][l];
+    s.ticks = lane.tick;
+    s.sq = lane.sq;
+    s.duration_s = static_cast<double>(s.ticks) * spec_.step_s;
+    s.peak_base_displacement_m = std::max(b.peak_disp_m[l], std::fabs(dot_row12(model_.disp_row, q)));
+    s.peak_damper_force_n = b.peak_force_n[l];
+    s.peak_base_velocity_m_s = b.peak_vel_m_s[l];
+    s.peak_superstructure_accel_m_s2 = b.peak_floor_accel_m_s2[l];
+    s.peak_base_accel_m_s2 = b.peak_base_accel_m_s2[l];
+    s.peak_current_a = b.peak_current_a[l];
+    s.final_participant_ratio = b.pr[l];
+    // plant::CoilFigureCounter::figures.
+    s.coil.peak_coil_current_a = b.coil_peak_a[l];
+    s.coil.peak_coil_temperature_rise_k = b.coil_peak_rise_k[l];
+    if (s.ticks > 0) {
+      s.coil.rms_coil_current_a = std::sqrt(b.coil_sum_sq_a2[l] / static_cast<double>(s.ticks));
+      s.coil.time_above_rated_s = b.ticks_above_rated[l] * spec_.step_s;
+      s.coil.command_changes_per_s = b.command_changes[l] / s.duration_s;
+    }
+    out_[lane.run] = s;
+  }
+};
+
+}  // namespace
+
+const char* lane_isa_name(LaneIsa isa) noexcept {
+  switch (isa) {
+    case LaneIsa::kAuto: return "auto";
+    case LaneIsa::kGeneric: return "generic";
+    case LaneIsa::kX86_64V3: return "x86-64-v3";
+    case LaneIsa::kX86_64V4: return "x86-64-v4";
+  }
+  return "unknown";
+}
+
+bool lane_isa_available(LaneIsa isa) {
+  if (isa == LaneIsa::kAuto || isa == LaneIsa::kGeneric) return true;
+  static const bool v3 = cpu_runs(LaneIsa::kX86_64V3) && exp_agrees(kernel_of(LaneIsa::kX86_64V3));
+  static const bool v4 = cpu_runs(LaneIsa::kX86_64V4) && exp_agrees(kernel_of(LaneIsa::kX86_64V4));
+  return isa == LaneIsa::kX86_64V3 ? v3 : v4;
+}
+
+LaneIsa auto_lane_isa() {
+  static const LaneIsa chosen = [] {
+    for (LaneIsa isa : {LaneIsa::kX86_64V4, LaneIsa::kX86_64V3}) {
+      if (lane_isa_available(isa)) return isa;
+    }
+    return LaneIsa::kGeneric;
+  }();
+  return chosen;
+}
+
+int lane_count(LaneIsa isa) { return kernel_of(isa == LaneIsa::kAuto ? auto_lane_isa() : isa).lanes; }
+
+std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& plant, std::span<const BatchRun> runs,
+                                                       const BatchOptions& options) {
+  const LaneIsa isa = options.isa == LaneIsa::kAuto ? auto_lane_isa() : options.isa;
+  if (!lane_isa_available(isa)) {
+    throw std::invalid_argument(std::string("the ") + lane_isa_name(isa) +
+                                " lane kernel does not run here (instruction set, or the C library's exp())");
+  }
+  const LaneKernel kernel = kernel_of(isa);
+  const SharedModel model = shared_model(plant);
+  std::vector<plant::PlantSummary> out(runs.size());
+  // Passive runs step many ticks per kernel call; semi-active ones tick by
+  // tick around their cores. Each kind fills its own lanes.
+  std::vector<std::size_t> passive_runs, active_runs;
+  for (std::size_t i = 0; i < runs.size(); ++i) (passive(runs[i].mode) ? passive_runs : active_runs).push_back(i);
+  Batch batch(plant, kernel, model, runs, options, out);
+  batch.run(passive_runs);
+  batch.run(active_runs);
+  return out;
+}
+
+}  // namespace mrd::batch

@@ -1,0 +1,103 @@
+#pragma once
+/// Up to kMaxLanes closed-loop runs of the thesis plant held side by side,
+/// structure-of-arrays: entry [l] of every array belongs to lane l, so one
+/// SIMD register holds one quantity of all lanes. The lane kernels
+/// (lane_kernel.hpp) step a block with the arithmetic of plant::Plant,
+/// operation for operation; what every lane shares (the building's stepping
+/// form, the damper, coil and thermal constants) is in SharedModel.
+///
+/// Plain data only: this header is compiled for several instruction sets.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace mrd::batch {
+
+/// Lanes in a block: the widest kernel's (8 doubles, AVX-512).
+inline constexpr int kMaxLanes = 8;
+inline constexpr int kBlockStates = 12;  ///< building states (6 DOFs × displacement, velocity)
+inline constexpr int kBlockDofs = 6;
+
+/// What every lane of a batch shares.
+struct SharedModel {
+  // Building (structure::DiscreteBuilding's modal stepping form).
+  double blocks[kBlockStates][2] = {};            ///< rows (2j, 2j+1) of the 2×2 modal blocks B_j
+  double gamma[kBlockStates][2] = {};             ///< T⁻¹Γ: columns a_g (m/s²) and F (N)
+  double disp_row[kBlockStates] = {};             ///< row 0 of T: base displacement from q, m
+  double vel_row[kBlockStates] = {};              ///< row 6 of T: base velocity from q, m/s
+  double accel_rows[kBlockDofs][kBlockStates] = {};  ///< rows 6..11 of A·T: ẍ from q
+  double inv_base_mass_per_kg = 0.0;
+  // Damper, Eq. 4.4, 5.10–5.11.
+  double fc_a_n = 0.0, fc_b_n = 0.0, neg_fc_c_per_a = 0.0;
+  double c0_a_ns_m = 0.0, c0_b_ns_m = 0.0, neg_c0_c_per_a = 0.0;
+  double v_tf_m_s = 0.0;
+  // Coil, Eq. 4.5: y ← a y + (1 − a) u per branch, i = w_slow y_slow + w_fast y_fast.
+  double a_slow = 0.0, one_minus_a_slow = 0.0, a_fast = 0.0, one_minus_a_fast = 0.0;
+  double weight_slow = 0.0, weight_fast = 0.0;
+  // Participant ratio, Eq. 5.9: ∫Q += |v| A T.
+  double flow_area_m2 = 0.0, volume_unit_m3 = 0.0, step_s = 0.0;
+  // Coil heating: ΔT ← a ΔT + ((1 − a) R_th) i² R.
+  double thermal_a = 0.0, thermal_gain_k_w = 0.0, resistance_ohm = 0.0;
+  double rated_current_a = 0.0;  ///< for the time above the rating
+};
+
+/// The state of kMaxLanes runs and what the last tick measured.
+struct alignas(64) LaneBlock {
+  using Lanes = double[kMaxLanes];
+
+  // State at t_n.
+  Lanes q[kBlockStates] = {};  ///< building, modal coordinates
+  Lanes y_slow = {}, y_fast = {};  ///< coil branches, A
+  Lanes displaced_m3 = {};         ///< ∫|v| A dt
+  Lanes a_pr = {}, b_pr = {}, neg_c_pr = {};  ///< Eq. 5.6–5.8 coefficients (−c_PR)
+  Lanes pr = {}, fc_n = {}, c0_ns_m = {};     ///< PR and the damper's coefficients at t_n
+  Lanes held_force_n = {};         ///< damper force held over the last step
+  Lanes base_accel_m_s2 = {};      ///< absolute base acceleration at t_n
+  Lanes rise_k = {};               ///< coil temperature rise
+  /// exp(−f_c,c |i|), exp(−c_0,c |i|) of Eq. 4.2–4.3 and the |i| they were
+  /// computed for (NaN: none yet).
+  Lanes exp_fc = {}, exp_c0 = {}, exp_current_a = {};
+
+  // Peaks and coil figures so far.
+  Lanes peak_disp_m = {}, peak_force_n = {}, peak_vel_m_s = {}, peak_current_a = {};
+  Lanes peak_floor_accel_m_s2 = {}, peak_base_accel_m_s2 = {};
+  Lanes coil_peak_a = {}, coil_sum_sq_a2 = {}, coil_peak_rise_k = {}, last_command_a = {};
+  Lanes ticks_above_rated = {}, command_changes = {};  ///< counts, exact in double below 2^53
+
+  // Ground input: each tick a lane reads *ground[l] · ground_scale[l],
+  // then moves ground[l] by ground_stride[l] (0 for an idle lane).
+  const double* ground[kMaxLanes] = {};
+  Lanes ground_scale = {};
+  std::ptrdiff_t ground_stride[kMaxLanes] = {};
+
+  Lanes command_a = {};  ///< u[n] over the step (the command stage's output)
+
+  // What sense() measured at t_n.
+  Lanes ground_accel_m_s2 = {}, base_disp_m = {}, base_vel_m_s = {}, damper_force_n = {}, current_a = {};
+  // What advance() reached at t_{n+1}.
+  Lanes roof_accel_m_s2 = {}, floor_peak_m_s2 = {};
+};
+
+/// One instruction set's kernel.
+struct LaneKernel {
+  const char* name = "";
+  int lanes = 0;  ///< lanes it steps (≤ kMaxLanes); lanes beyond are left untouched
+  /// Starts tick n: reads the ground input, fills the sensed values.
+  void (*sense)(const SharedModel&, LaneBlock&) = nullptr;
+  /// Completes tick n with command_a held over the step.
+  void (*advance)(const SharedModel&, LaneBlock&) = nullptr;
+  /// `ticks` × (sense, advance) with command_a constant.
+  void (*run)(const SharedModel&, LaneBlock&, std::size_t ticks) = nullptr;
+  /// y[i] = exp(x[i]) for n values, as the kernel evaluates it.
+  void (*exp)(const double* x, double* y, std::size_t n) = nullptr;
+};
+
+/// The kernels this build has. The x86-64-v3 and -v4 kernels run only on
+/// CPUs with those instruction sets (batch_run.cpp checks before use).
+LaneKernel generic_lane_kernel() noexcept;
+#if defined(__x86_64__)
+LaneKernel x86_64_v3_lane_kernel() noexcept;
+LaneKernel x86_64_v4_lane_kernel() noexcept;
+#endif
+
+}  // namespace mrd::batch

@@ -1,0 +1,445 @@
+// One lane kernel: the plant's tick (plant::Plant::sense and ::advance on
+// the thesis plant) for MRD_BATCH_LANES lanes at once, in GCC vector
+// extensions. Included once per instruction set by lane_kernel_*.cpp, each
+// of which defines MRD_BATCH_LANES, MRD_BATCH_NS (the namespace of its
+// copy) and MRD_BATCH_FMA_EXP (1: exp() evaluated in the vector registers
+// as glibc's FMA build evaluates it; 0: glibc's exp() per lane).
+//
+// Equality with the scalar plant rests on doing the same IEEE operations
+// in the same order: every expression below mirrors the one in
+// mr_damper.hpp, bingham.hpp, participant_ratio.hpp, current_dynamics.hpp,
+// coil_thermal.hpp, coil_figures.hpp and discrete_building.cpp, and the
+// files are compiled with -ffp-contract=off so that no multiply-add is
+// fused that the scalar build (x86-64 baseline, no FMA) does not fuse.
+// Only intrinsics, builtins and plain data are used here: an inline
+// function shared with other translation units could otherwise be emitted
+// with this file's instruction set and picked by the linker for all.
+
+#include <math.h>
+
+#include <cstddef>
+#include <cstdint>
+
+#include "host_sim/batch/exp_table.hpp"
+#include "host_sim/batch/lane_block.hpp"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace mrd::batch::MRD_BATCH_NS {
+namespace {
+
+constexpr int kW = MRD_BATCH_LANES;  ///< lanes per register
+constexpr int kInterleave = 1;       ///< register sets stepped together (2 measured slower here: spills)
+static_assert(kW * kInterleave <= kMaxLanes);
+
+typedef double vd __attribute__((vector_size(kW * 8)));
+typedef std::int64_t vi __attribute__((vector_size(kW * 8)));
+typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
+
+[[gnu::always_inline]] inline vd load(const double* p) {
+  vd v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline void store(double* p, vd v) { __builtin_memcpy(p, &v, sizeof v); }
+#if MRD_BATCH_LANES == 8
+#define MRD_BATCH_ALL(x) {x, x, x, x, x, x, x, x}
+#elif MRD_BATCH_LANES == 4
+#define MRD_BATCH_ALL(x) {x, x, x, x}
+#elif MRD_BATCH_LANES == 2
+#define MRD_BATCH_ALL(x) {x, x}
+#else
+#error "2, 4 or 8 lanes"
+#endif
+[[gnu::always_inline]] inline vd splat(double x) { return vd MRD_BATCH_ALL(x); }
+[[gnu::always_inline]] inline vi splat_i(std::int64_t x) { return vi MRD_BATCH_ALL(x); }
+[[gnu::always_inline]] inline double from_bits(std::uint64_t b) {
+  double d;
+  __builtin_memcpy(&d, &b, sizeof d);
+  return d;
+}
+/// std::fabs per lane.
+[[gnu::always_inline]] inline vd vabs(vd x) { return (vd)((vi)x & splat_i(0x7fffffffffffffffll)); }
+/// std::max(a, b) per lane: (a < b) ? b : a.
+[[gnu::always_inline]] inline vd vmax(vd a, vd b) { return a < b ? b : a; }
+
+/// Eigen's order for a fixed 12-term dot product of a matrix row (no
+/// packets: the row is strided): halves, recursively,
+/// ((p0 + (p1 + p2)) + (p3 + (p4 + p5))) + ((p6 + (p7 + p8)) + (p9 + (p10 + p11))).
+[[gnu::always_inline]] inline vd dot_row12(const double* row, const vd* q) {
+  vd p[kBlockStates];
+  for (int k = 0; k < kBlockStates; ++k) p[k] = splat(row[k]) * q[k];
+  const vd a = (p[0] + (p[1] + p[2])) + (p[3] + (p[4] + p[5]));
+  const vd b = (p[6] + (p[7] + p[8])) + (p[9] + (p[10] + p[11]));
+  return a + b;
+}
+
+// The few operations GCC's vector extensions lack, by instruction set:
+// AVX-512 with 8 lanes; AVX2 with 4 lanes, or 8 lanes as two halves.
+#if defined(__AVX512F__) && MRD_BATCH_LANES == 8
+#define MRD_BATCH_X86 512
+#elif defined(__AVX2__) && defined(__FMA__)
+#define MRD_BATCH_X86 256
+typedef double vd4 __attribute__((vector_size(32)));
+typedef std::uint64_t vu4 __attribute__((vector_size(32)));
+/// Applies `f` to each 4-lane half.
+template <class V4, class V, class F>
+[[gnu::always_inline]] inline V by_halves(F f) {
+  V out;
+  for (int h = 0; h < kW / 4; ++h) {
+    const V4 part = f(h);
+    __builtin_memcpy(reinterpret_cast<char*>(&out) + 32 * h, &part, 32);
+  }
+  return out;
+}
+template <class V4, class V>
+[[gnu::always_inline]] inline V4 half(const V& v, int h) {
+  V4 part;
+  __builtin_memcpy(&part, reinterpret_cast<const char*>(&v) + 32 * h, 32);
+  return part;
+}
+#else
+#define MRD_BATCH_X86 0
+#endif
+
+/// True when any lane of the comparison result `m` is set.
+[[gnu::always_inline]] inline bool any(vi m) {
+#if MRD_BATCH_X86 == 512
+  return _mm512_test_epi64_mask((__m512i)m, (__m512i)m) != 0;
+#elif MRD_BATCH_X86 == 256
+  bool a = false;
+  for (int h = 0; h < kW / 4; ++h) {
+    const __m256i part = (__m256i)half<vu4>(m, h);
+    a |= _mm256_testz_si256(part, part) == 0;
+  }
+  return a;
+#else
+  bool a = false;
+  for (int l = 0; l < kW; ++l) a |= m[l] != 0;
+  return a;
+#endif
+}
+
+/// The doubles at the addresses `addr`, one per lane.
+[[gnu::always_inline]] inline vd gather_at(vu addr) {
+#if MRD_BATCH_X86 == 512
+  return (vd)_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, (__m512i)addr, nullptr, 1);
+#elif MRD_BATCH_X86 == 256
+  return by_halves<vd4, vd>(
+      [&](int h) { return (vd4)_mm256_i64gather_pd(nullptr, (__m256i)half<vu4>(addr, h), 1); });
+#else
+  vd v;
+  for (int l = 0; l < kW; ++l) v[l] = *reinterpret_cast<const double*>(addr[l]);
+  return v;
+#endif
+}
+
+#if MRD_BATCH_FMA_EXP
+#if MRD_BATCH_X86 == 0
+#error "the FMA exp needs AVX-512 or AVX2 + FMA"
+#endif
+/// Entries `idx` of the exp table, one per lane.
+[[gnu::always_inline]] inline vu table_at(vu idx) {
+#if MRD_BATCH_X86 == 512
+  return (vu)_mm512_mask_i64gather_epi64(_mm512_setzero_si512(), 0xff, (__m512i)idx, kExpTable, 8);
+#else
+  return by_halves<vu4, vu>([&](int h) {
+    return (vu4)_mm256_i64gather_epi64(reinterpret_cast<const long long*>(kExpTable), (__m256i)half<vu4>(idx, h), 8);
+  });
+#endif
+}
+
+/// a·b + c rounded once.
+[[gnu::always_inline]] inline vd fma(vd a, vd b, vd c) {
+#if MRD_BATCH_X86 == 512
+  return (vd)_mm512_fmadd_pd((__m512d)a, (__m512d)b, (__m512d)c);
+#else
+  return by_halves<vd4, vd>([&](int h) {
+    return (vd4)_mm256_fmadd_pd((__m256d)half<vd4>(a, h), (__m256d)half<vd4>(b, h), (__m256d)half<vd4>(c, h));
+  });
+#endif
+}
+
+/// exp(x) per lane, bit for bit as glibc's __exp_fma: its operations in its
+/// order, the fused multiply-adds where that build fuses them. Lanes outside
+/// its main range take glibc's own answer: |x| < 2^-54 gives 1 + x, and
+/// |x| ≥ 512 (or NaN) calls exp().
+[[gnu::always_inline]] inline vd vexp(vd x) {
+  const vi abstop = ((vi)x >> 52) & splat_i(0x7ff);
+  const vd kd0 = fma(x, splat(from_bits(kExpInvLn2N)), splat(from_bits(kExpShift)));
+  const vu ki = (vu)kd0;
+  const vd kd = kd0 - splat(from_bits(kExpShift));
+  vd r = fma(kd, splat(from_bits(kExpNegLn2HiN)), x);
+  r = fma(kd, splat(from_bits(kExpNegLn2LoN)), r);
+  const vu idx = (ki & 127u) * 2u;
+  const vu top = ki << 45;
+  const vd tail = (vd)table_at(idx);
+  const vu sbits = table_at(idx + 1u) + top;
+  const vd p23 = fma(r, splat(from_bits(kExpC3)), splat(from_bits(kExpC2)));
+  const vd rt = r + tail;
+  const vd r2 = r * r;
+  const vd p45 = fma(r, splat(from_bits(kExpC5)), splat(from_bits(kExpC4)));
+  const vd t1 = fma(p23, r2, rt);
+  const vd r4 = r2 * r2;
+  const vd tmp = fma(r4, p45, t1);
+  const vd scale = (vd)sbits;
+  vd y = fma(scale, tmp, scale);
+  // glibc: abstop − top12(2^-54) ≥ top12(512) − top12(2^-54) leaves the main path.
+  const auto tiny = abstop < splat_i(0x3c9);
+  y = tiny ? splat(1.0) + x : y;
+  const vi big = abstop >= splat_i(0x408);
+  if (__builtin_expect(any(big), 0)) {
+    for (int l = 0; l < kW; ++l) {
+      if (big[l]) y[l] = ::exp(x[l]);
+    }
+  }
+  return y;
+}
+#else
+/// exp(x) per lane by glibc's exp(): the scalar plant's own call.
+[[gnu::always_inline]] inline vd vexp(vd x) {
+  vd y;
+  for (int l = 0; l < kW; ++l) y[l] = ::exp(x[l]);
+  return y;
+}
+#endif
+
+/// The block's state in registers.
+struct Regs {
+  vd q[kBlockStates];
+  vd y_slow, y_fast, displaced, a_pr, b_pr, neg_c_pr, pr, fc, c0, held, base_accel, rise;
+  vd pk_disp, pk_force, pk_vel, pk_current, pk_floor, pk_base;
+  vd coil_peak, coil_sum_sq, coil_peak_rise, last_cmd, above, changes;
+  vd exp_fc, exp_c0, exp_current;  ///< the current laws' exp() terms and the |i| they are for
+  vu ground_addr, ground_step;  ///< where each lane reads a_g, and its stride in bytes
+  vd ground_scale;
+};
+
+[[gnu::always_inline]] inline void load_regs(const LaneBlock& b, int o, Regs& r) {
+  for (int k = 0; k < kBlockStates; ++k) r.q[k] = load(b.q[k] + o);
+  r.y_slow = load(b.y_slow + o);
+  r.y_fast = load(b.y_fast + o);
+  r.displaced = load(b.displaced_m3 + o);
+  r.a_pr = load(b.a_pr + o);
+  r.b_pr = load(b.b_pr + o);
+  r.neg_c_pr = load(b.neg_c_pr + o);
+  r.pr = load(b.pr + o);
+  r.fc = load(b.fc_n + o);
+  r.c0 = load(b.c0_ns_m + o);
+  r.held = load(b.held_force_n + o);
+  r.base_accel = load(b.base_accel_m_s2 + o);
+  r.rise = load(b.rise_k + o);
+  r.pk_disp = load(b.peak_disp_m + o);
+  r.pk_force = load(b.peak_force_n + o);
+  r.pk_vel = load(b.peak_vel_m_s + o);
+  r.pk_current = load(b.peak_current_a + o);
+  r.pk_floor = load(b.peak_floor_accel_m_s2 + o);
+  r.pk_base = load(b.peak_base_accel_m_s2 + o);
+  r.coil_peak = load(b.coil_peak_a + o);
+  r.coil_sum_sq = load(b.coil_sum_sq_a2 + o);
+  r.coil_peak_rise = load(b.coil_peak_rise_k + o);
+  r.last_cmd = load(b.last_command_a + o);
+  r.above = load(b.ticks_above_rated + o);
+  r.changes = load(b.command_changes + o);
+  r.exp_fc = load(b.exp_fc + o);
+  r.exp_c0 = load(b.exp_c0 + o);
+  r.exp_current = load(b.exp_current_a + o);
+  __builtin_memcpy(&r.ground_addr, b.ground + o, sizeof r.ground_addr);
+  vi stride;
+  __builtin_memcpy(&stride, b.ground_stride + o, sizeof stride);
+  r.ground_step = (vu)(stride * static_cast<std::int64_t>(sizeof(double)));
+  r.ground_scale = load(b.ground_scale + o);
+}
+
+[[gnu::always_inline]] inline void store_regs(LaneBlock& b, int o, const Regs& r) {
+  for (int k = 0; k < kBlockStates; ++k) store(b.q[k] + o, r.q[k]);
+  store(b.y_slow + o, r.y_slow);
+  store(b.y_fast + o, r.y_fast);
+  store(b.displaced_m3 + o, r.displaced);
+  store(b.pr + o, r.pr);
+  store(b.fc_n + o, r.fc);
+  store(b.c0_ns_m + o, r.c0);
+  store(b.held_force_n + o, r.held);
+  store(b.base_accel_m_s2 + o, r.base_accel);
+  store(b.rise_k + o, r.rise);
+  store(b.peak_disp_m + o, r.pk_disp);
+  store(b.peak_force_n + o, r.pk_force);
+  store(b.peak_vel_m_s + o, r.pk_vel);
+  store(b.peak_current_a + o, r.pk_current);
+  store(b.peak_floor_accel_m_s2 + o, r.pk_floor);
+  store(b.peak_base_accel_m_s2 + o, r.pk_base);
+  store(b.coil_peak_a + o, r.coil_peak);
+  store(b.coil_sum_sq_a2 + o, r.coil_sum_sq);
+  store(b.coil_peak_rise_k + o, r.coil_peak_rise);
+  store(b.last_command_a + o, r.last_cmd);
+  store(b.ticks_above_rated + o, r.above);
+  store(b.command_changes + o, r.changes);
+  store(b.exp_fc + o, r.exp_fc);
+  store(b.exp_c0 + o, r.exp_c0);
+  store(b.exp_current_a + o, r.exp_current);
+  __builtin_memcpy(b.ground + o, &r.ground_addr, sizeof r.ground_addr);
+}
+
+/// What sense() gives advance().
+struct Sensed {
+  vd ag, x, v, force, current;
+};
+
+/// Plant::sense on the thesis plant.
+[[gnu::always_inline]] inline Sensed sense_regs(const SharedModel& m, Regs& r) {
+  Sensed s;
+  s.ag = gather_at(r.ground_addr) * r.ground_scale;
+  r.ground_addr += r.ground_step;
+  s.x = dot_row12(m.disp_row, r.q);
+  s.v = dot_row12(m.vel_row, r.q);
+  // MrDamper::force_n: TF(v) · (f_c sgn v + c_0 v), Eq. 4.4, 5.12.
+  const vd zero = splat(0.0);
+  const vd sgn = s.v > zero ? splat(1.0) : (s.v < zero ? splat(-1.0) : zero);
+  const vd speed = vabs(s.v);
+  const vd vtf = splat(m.v_tf_m_s);
+  const vd tf = speed <= vtf ? speed / vtf : splat(1.0);
+  s.force = tf * (r.fc * sgn + r.c0 * s.v);
+  // CurrentDynamics::current_a.
+  s.current = splat(m.weight_slow) * r.y_slow + splat(m.weight_fast) * r.y_fast;
+  return s;
+}
+
+/// Plant::advance on the thesis plant with the command stage's output `u`.
+[[gnu::always_inline]] inline void advance_regs(const SharedModel& m, const Sensed& s, vd u, Regs& r, vd& roof,
+                                                vd& floor_peak) {
+  // MrDamper::step: coil (Eq. 4.5), then PR (Eq. 5.9), then f_c, c_0.
+  r.y_slow = splat(m.a_slow) * r.y_slow + splat(m.one_minus_a_slow) * u;
+  r.y_fast = splat(m.a_fast) * r.y_fast + splat(m.one_minus_a_fast) * u;
+  const vd zero = splat(0.0);
+  const vd moved = r.displaced + vabs(s.v) * splat(m.flow_area_m2) * splat(m.step_s);
+  r.displaced = s.v != zero ? moved : r.displaced;
+  // Unmoved lanes recompute the same PR from the same ∫Q.
+  r.pr = r.b_pr + (r.a_pr - r.b_pr) * vexp(r.neg_c_pr * (r.displaced / splat(m.volume_unit_m3)));
+  const vd i_next = vabs(splat(m.weight_slow) * r.y_slow + splat(m.weight_fast) * r.y_fast);
+  // The current laws' exp() terms depend on |i| alone: while no lane's |i|
+  // changed (a constant command, once the coil has settled to its last
+  // bit), the previous values are the same doubles.
+  if (any((vi)(i_next != r.exp_current))) {
+    r.exp_fc = vexp(splat(m.neg_fc_c_per_a) * i_next);
+    r.exp_c0 = vexp(splat(m.neg_c0_c_per_a) * i_next);
+    r.exp_current = i_next;
+  }
+  const vd bf = r.pr * splat(m.fc_b_n);
+  r.fc = bf + (splat(m.fc_a_n) - bf) * r.exp_fc;
+  const vd bc = r.pr * splat(m.c0_b_ns_m);
+  r.c0 = bc + (splat(m.c0_a_ns_m) - bc) * r.exp_c0;
+  // CoilThermal::step with i[n]².
+  const vd power_w = (s.current * s.current) * splat(m.resistance_ohm);
+  r.rise = splat(m.thermal_a) * r.rise + splat(m.thermal_gain_k_w) * power_w;
+  // CoilFigureCounter::add.
+  const vd i_abs = vabs(s.current);
+  r.coil_peak = vmax(r.coil_peak, i_abs);
+  r.coil_sum_sq = r.coil_sum_sq + s.current * s.current;
+  r.above = i_abs > splat(m.rated_current_a) ? r.above + splat(1.0) : r.above;
+  r.changes = u != r.last_cmd ? r.changes + splat(1.0) : r.changes;
+  r.last_cmd = u;
+  r.coil_peak_rise = vmax(r.coil_peak_rise, r.rise);
+  // DiscreteBuilding::step (modal form).
+  vd next[kBlockStates];
+  for (int j = 0; j < kBlockStates; j += 2) {
+    next[j] = splat(m.blocks[j][0]) * r.q[j] + splat(m.blocks[j][1]) * r.q[j + 1];
+    next[j + 1] = splat(m.blocks[j + 1][0]) * r.q[j] + splat(m.blocks[j + 1][1]) * r.q[j + 1];
+  }
+  for (int j = 0; j < kBlockStates; ++j) next[j] = next[j] + splat(m.gamma[j][0]) * s.ag;
+  for (int j = 0; j < kBlockStates; ++j) next[j] = next[j] + splat(m.gamma[j][1]) * s.force;
+  for (int j = 0; j < kBlockStates; ++j) r.q[j] = next[j];
+  r.held = s.force;
+  // Plant::advance's peaks.
+  r.pk_disp = vmax(r.pk_disp, vabs(s.x));
+  r.pk_force = vmax(r.pk_force, vabs(s.force));
+  r.pk_vel = vmax(r.pk_vel, vabs(s.v));
+  r.pk_current = vmax(r.pk_current, i_abs);
+  // DiscreteBuilding::abs_accel_m_s2(): Eigen's lazy product sums over q in order.
+  vd a[kBlockDofs];
+  for (int i = 0; i < kBlockDofs; ++i) {
+    vd acc = splat(m.accel_rows[i][0]) * r.q[0];
+    for (int k = 1; k < kBlockStates; ++k) acc = splat(m.accel_rows[i][k]) * r.q[k] + acc;
+    a[i] = acc;
+  }
+  a[0] = a[0] - splat(m.inv_base_mass_per_kg) * r.held;
+  floor_peak = vabs(a[1]);
+  for (int i = 2; i < kBlockDofs; ++i) floor_peak = vmax(floor_peak, vabs(a[i]));
+  roof = a[kBlockDofs - 1];
+  r.pk_floor = vmax(r.pk_floor, floor_peak);
+  r.pk_base = vmax(r.pk_base, vabs(a[0]));
+  r.base_accel = a[0];
+}
+
+// The kernel steps kInterleave register sets of kW lanes in one loop, so
+// that one set's dependency chains (q → v → F → q; v → ∫Q → exp → PR →
+// f_c → F) can overlap another's; with one set it is plain SIMD.
+
+void sense(const SharedModel& m, LaneBlock& b) {
+  for (int h = 0; h < kInterleave; ++h) {
+    const int o = h * kW;
+    Regs r;
+    load_regs(b, o, r);
+    const Sensed s = sense_regs(m, r);
+    __builtin_memcpy(b.ground + o, &r.ground_addr, sizeof r.ground_addr);
+    store(b.ground_accel_m_s2 + o, s.ag);
+    store(b.base_disp_m + o, s.x);
+    store(b.base_vel_m_s + o, s.v);
+    store(b.damper_force_n + o, s.force);
+    store(b.current_a + o, s.current);
+  }
+}
+
+void advance(const SharedModel& m, LaneBlock& b) {
+  for (int h = 0; h < kInterleave; ++h) {
+    const int o = h * kW;
+    Regs r;
+    load_regs(b, o, r);
+    Sensed s;
+    s.ag = load(b.ground_accel_m_s2 + o);
+    s.x = load(b.base_disp_m + o);
+    s.v = load(b.base_vel_m_s + o);
+    s.force = load(b.damper_force_n + o);
+    s.current = load(b.current_a + o);
+    vd roof, floor_peak;
+    advance_regs(m, s, load(b.command_a + o), r, roof, floor_peak);
+    store_regs(b, o, r);
+    store(b.roof_accel_m_s2 + o, roof);
+    store(b.floor_peak_m_s2 + o, floor_peak);
+  }
+}
+
+void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
+  if (ticks == 0) return;
+  Regs r[kInterleave];
+  vd u[kInterleave], roof[kInterleave], floor_peak[kInterleave];
+  for (int h = 0; h < kInterleave; ++h) {
+    load_regs(b, h * kW, r[h]);
+    u[h] = load(b.command_a + h * kW);
+  }
+  for (std::size_t t = 0; t < ticks; ++t) {
+    Sensed s[kInterleave];
+    for (int h = 0; h < kInterleave; ++h) s[h] = sense_regs(m, r[h]);
+    for (int h = 0; h < kInterleave; ++h) advance_regs(m, s[h], u[h], r[h], roof[h], floor_peak[h]);
+  }
+  for (int h = 0; h < kInterleave; ++h) {
+    store_regs(b, h * kW, r[h]);
+    store(b.roof_accel_m_s2 + h * kW, roof[h]);
+    store(b.floor_peak_m_s2 + h * kW, floor_peak[h]);
+  }
+}
+
+void exp_n(const double* x, double* y, std::size_t n) {
+  std::size_t i = 0;
+  for (; i + kW <= n; i += kW) store(y + i, vexp(load(x + i)));
+  if (i < n) {
+    double in[kW], out[kW];
+    for (int l = 0; l < kW; ++l) in[l] = i + static_cast<std::size_t>(l) < n ? x[i + static_cast<std::size_t>(l)] : 0.0;
+    store(out, vexp(load(in)));
+    for (int l = 0; i + static_cast<std::size_t>(l) < n; ++l) y[i + static_cast<std::size_t>(l)] = out[l];
+  }
+}
+
+}  // namespace
+}  // namespace mrd::batch::MRD_BATCH_NS

@@ -1,0 +1,14 @@
+// The lane kernel for any CPU: 2 lanes (SSE2 on x86-64), glibc's exp() per lane.
+#define MRD_BATCH_LANES 2
+#define MRD_BATCH_NS generic
+#define MRD_BATCH_FMA_EXP 0
+#include "host_sim/batch/lane_kernel.hpp"
+
+namespace mrd::batch {
+
+LaneKernel generic_lane_kernel() noexcept {
+  return LaneKernel{"generic", generic::kW * generic::kInterleave, &generic::sense, &generic::advance, &generic::run,
+                    &generic::exp_n};
+}
+
+}  // namespace mrd::batch

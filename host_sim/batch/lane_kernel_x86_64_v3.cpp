@@ -1,0 +1,14 @@
+// The lane kernel for x86-64-v3 (AVX2, FMA): 4 lanes.
+#define MRD_BATCH_LANES 4
+#define MRD_BATCH_NS x86_64_v3
+#define MRD_BATCH_FMA_EXP 1
+#include "host_sim/batch/lane_kernel.hpp"
+
+namespace mrd::batch {
+
+LaneKernel x86_64_v3_lane_kernel() noexcept {
+  return LaneKernel{"x86-64-v3", x86_64_v3::kW * x86_64_v3::kInterleave, &x86_64_v3::sense, &x86_64_v3::advance, &x86_64_v3::run,
+                    &x86_64_v3::exp_n};
+}
+
+}  // namespace mrd::batch

@@ -1,0 +1,14 @@
+// The lane kernel for x86-64-v4 (AVX-512): 8 lanes.
+#define MRD_BATCH_LANES 8
+#define MRD_BATCH_NS x86_64_v4
+#define MRD_BATCH_FMA_EXP 1
+#include "host_sim/batch/lane_kernel.hpp"
+
+namespace mrd::batch {
+
+LaneKernel x86_64_v4_lane_kernel() noexcept {
+  return LaneKernel{"x86-64-v4", x86_64_v4::kW * x86_64_v4::kInterleave, &x86_64_v4::sense, &x86_64_v4::advance, &x86_64_v4::run,
+                    &x86_64_v4::exp_n};
+}
+
+}  // namespace mrd::batch
