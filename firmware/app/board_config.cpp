@@ -41,6 +41,20 @@ class Table {
     out = static_cast<T>(*v);
     return true;
   }
+  /// A number (integer or float) in [lo, hi].
+  bool number(const char* key, double& out, double lo, double hi, const char* unit) {
+    const toml::node* n = find(key);
+    if (!n) return false;
+    if (!n->is_number()) fail(origin_, n->source(), field(key), std::string("expected a number, ") + unit);
+    const double v = n->is_integer() ? static_cast<double>(*n->value<std::int64_t>()) : *n->value<double>();
+    if (!(v >= lo && v <= hi)) {
+      std::ostringstream msg;
+      msg << "expected " << lo << " … " << hi << " " << unit << ", got " << v;
+      fail(origin_, n->source(), field(key), msg.str());
+    }
+    out = v;
+    return true;
+  }
   bool boolean(const char* key, bool& out) {
     const toml::node* n = find(key);
     if (!n) return false;
@@ -169,7 +183,43 @@ void read_realtime(const toml::table& root, const std::string& origin, BoardConf
   rt.no_unknown_keys();
 }
 
+void read_state(const toml::table& root, const std::string& origin, BoardConfig& c) {
+  Table st(root, "state", origin, false);
+  if (st.string("path", c.state_path) && (c.state_path.empty() || c.state_path.front() != '/' || c.state_path.back() == '/'))
+    fail(origin, st.where("path"), "state.path", "expected an absolute file path, got '" + c.state_path + "'");
+  st.number("save_every_s", c.save_every_s, 0.001, 86400.0, "s");
+  st.no_unknown_keys();
+}
+
+void read_mixing(const toml::table& root, const std::string& origin, BoardConfig& c) {
+  Table mx(root, "mixing", origin, false);
+  fw::MixingSchedulerConfig& m = c.mixing;
+  mx.boolean("actuator_fitted", m.actuator_fitted);
+  mx.number("capacity_threshold", m.capacity_threshold, 0.05, 0.999, "(fraction of a fully mixed damper's force)");
+  mx.number("lead_time_s", m.lead_time_s, 0.0, 30.0 * 86400.0, "s");
+  mx.number("maintenance_lead_time_s", m.maintenance_lead_time_s, 0.0, 365.0 * 86400.0, "s");
+  mx.number("max_amplitude_m", m.max_amplitude_m, 1e-3, 0.2, "m");
+  mx.number("max_velocity_m_s", m.max_velocity_m_s, 1e-3, 2.0, "m/s");
+  mx.number("preferred_frequency_hz", m.preferred_frequency_hz, 0.01, 2.0, "Hz");
+  mx.integer("max_cycles", m.max_cycles, 1, 1000);
+  mx.number("start_timeout_s", m.start_timeout_s, 0.1, 3600.0, "s");
+  mx.number("confirm_hold_s", m.confirm_hold_s, 0.0, 86400.0, "s");
+  mx.number("holdoff_s", m.holdoff_s, 0.0, 86400.0, "s");
+  mx.integer("max_attempts", m.max_attempts, 1, 100);
+  mx.number("dead_band_m", c.dead_band_m, 0.0, 0.01, "m");
+  mx.no_unknown_keys();
+}
+
 }  // namespace
+
+MixingTaskConfig BoardConfig::mixing_task_config() const noexcept {
+  MixingTaskConfig t;
+  t.estimator.period_s = period_s();
+  t.estimator.dead_band_m = dead_band_m;
+  t.estimator.save_interval_s = save_every_s;
+  t.scheduler = mixing;
+  return t;
+}
 
 ControlTaskConfig BoardConfig::task_config() const noexcept {
   ControlTaskConfig c;
@@ -271,8 +321,9 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
   }
   for (const auto& [k, v] : root) {
     const std::string key(k.str());
-    if (key != "board" && key != "control" && key != "can" && key != "gpio" && key != "realtime")
-      fail(origin, v.source(), key, "unknown table (expected board, control, can, gpio, realtime)");
+    if (key != "board" && key != "control" && key != "can" && key != "gpio" && key != "realtime" && key != "state" &&
+        key != "mixing")
+      fail(origin, v.source(), key, "unknown table (expected board, control, can, gpio, realtime, state, mixing)");
   }
   BoardConfig c;
   read_board(root, origin, c);
@@ -280,6 +331,8 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
   read_can(root, origin, c);
   read_gpio(root, origin, c);
   read_realtime(root, origin, c);
+  read_state(root, origin, c);
+  read_mixing(root, origin, c);
   return c;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 /// The board file (boards/<name>/board.toml): CAN interface and node ids,
 /// GPIO chip and lines (or `fitted = false` for a board without them),
-/// control period and mode, real-time settings. Read once at start-up; every
+/// control period and mode, real-time settings, where the idle-time
+/// estimator's state is kept ([state]) and the mixing scheduler's settings
+/// ([mixing]). Read once at start-up; every
 /// error names the file, the line and the field.
 
 #include <cstdint>
@@ -10,6 +12,7 @@
 #include <string>
 
 #include "firmware/app/control_task.hpp"
+#include "firmware/app/mixing_task.hpp"
 #include "mrd/control/io.hpp"
 #include "mrd/protocol/messages.hpp"
 
@@ -50,9 +53,17 @@ struct BoardConfig {
   int sched_fifo_priority = 0;  ///< 1..99 asks for SCHED_FIFO; 0 leaves the scheduler alone
   bool lock_memory = false;     ///< mlockall(MCL_CURRENT | MCL_FUTURE)
   int cpu = -1;                 ///< pin the control thread to this CPU; −1 leaves it free
+  // [state]
+  std::string state_path = "/var/lib/mrd/state.bin";  ///< absolute; its folder must exist (systemd StateDirectory=mrd)
+  double save_every_s = 3600.0;  ///< the estimator saves at least this often while running, s
+  // [mixing]: the scheduler's settings (period and flow area come from the estimator)
+  fw::MixingSchedulerConfig mixing{};
+  double dead_band_m = 1.0e-4;  ///< estimator's play operator half-width, m (above the stroke sensor's noise)
 
   double period_s() const noexcept { return static_cast<double>(period_us) * 1e-6; }
   ControlTaskConfig task_config() const noexcept;
+  /// The idle-time estimator and the mixing scheduler at the control period.
+  MixingTaskConfig mixing_task_config() const noexcept;
 };
 
 /// Parses TOML text; `origin` names the file in error messages.

@@ -50,7 +50,7 @@ struct ControlTaskConfig {
   std::uint32_t drive_status_timeout_ticks = 10;
   /// No MixingStatus for this long: the actuator counts as absent (500 ms).
   std::uint32_t actuator_timeout_ticks = 500;
-  /// ControllerStatus and MixingCommand period (100 ms).
+  /// ControllerStatus, IdleStatus and MixingCommand period (100 ms).
   std::uint32_t heartbeat_period_ticks = 100;
 };
 
@@ -118,6 +118,9 @@ class ControlTask {
     command_counter_ = heartbeat_counter_ = mixing_counter_ = 0;
     enable_written_ = maintenance_written_ = false;
     bus_error_since_heartbeat_ = false;
+    idle_ = {};
+    idle_set_ = false;
+    idle_counter_ = 0;
   }
 
   /// One control period: poll_rx() then step_tick().
@@ -180,6 +183,12 @@ class ControlTask {
   void request_mixing(const protocol::MixingCommand& cmd) noexcept {
     mixing_request_ = cmd;
     mixing_stop_pending_ = cmd.action == protocol::MixingAction::kStop;
+  }
+  /// Sends `s` as the IdleStatus frame with every heartbeat from now on
+  /// (the counter is the task's).
+  void set_idle_status(const protocol::IdleStatus& s) noexcept {
+    idle_ = s;
+    idle_set_ = true;
   }
   /// Drives the maintenance-due line from the next tick on.
   void set_maintenance_due(bool due) noexcept { maintenance_due_ = due; }
@@ -363,6 +372,15 @@ class ControlTask {
     hal::CanFrame f;
     if (protocol::encode(hb, config_.nodes.controller, f)) transmit(f);
     bus_error_since_heartbeat_ = false;
+    if (idle_set_) {
+      protocol::IdleStatus idle = idle_;
+      idle.counter = idle_counter_++;
+      if (protocol::encode(idle, config_.nodes.controller, f)) {
+        transmit(f);
+      } else {
+        bump(status_.encode_errors);
+      }
+    }
   }
 
   void send_mixing() noexcept {
@@ -394,6 +412,9 @@ class ControlTask {
   bool bus_error_since_heartbeat_ = false;
   protocol::MixingCommand mixing_request_{};
   bool mixing_stop_pending_ = false;
+  protocol::IdleStatus idle_{};
+  bool idle_set_ = false;
+  std::uint8_t idle_counter_ = 0;
 };
 
 }  // namespace mrd::app

@@ -4,17 +4,29 @@
 /// locked memory, and hands them to the board runtime (firmware/app/runtime),
 /// which runs the control task at the board's period on CLOCK_MONOTONIC, or
 /// in lockstep with a simulated plant (one tick per complete set of inputs).
-/// Exit status: 0 done, 1 runtime failure (no CAN, no GPIO), 2 bad input.
+///
+/// Free-running, the runtime also runs the mixing task (idle-time estimator
+/// and mixing scheduler) in the board's numeric build: its state is restored
+/// at start from the board's state file ([state] path) with the time the
+/// board was off (CLOCK_REALTIME against the record's stamp) counted as idle
+/// time, saved by a writer thread (never inside a tick) every save_every_s,
+/// after a confirmed mixing cycle and at exit. In lockstep (a simulated plant
+/// replaying an earthquake from its own idle time) the mixing task does not run.
+///
+/// Exit status: 0 done, 1 runtime failure (no CAN, no GPIO), 2 bad input,
+/// 3 (--print-state) the state record is unreadable or corrupt.
 
 #include <CLI/CLI.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "firmware/app/board_config.hpp"
 #include "firmware/app/option_checks.hpp"
@@ -22,8 +34,12 @@
 #include "firmware/app/runtime.hpp"
 #include "firmware/core/controller_config.hpp"
 #include "firmware/core/damper_controller.hpp"
+#include "firmware/core/state_store.hpp"
+#include "firmware/platform/linux/background_state_store.hpp"
+#include "firmware/platform/linux/file_state_store.hpp"
 #include "firmware/platform/linux/posix_clock.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
+#include "mrd/units.hpp"
 #ifdef MRD_HAVE_GPIOD
 #include "firmware/platform/linux/gpiod_io.hpp"
 #endif
@@ -32,6 +48,7 @@ namespace {
 
 constexpr int kExitRuntime = 1;
 constexpr int kExitUsage = 2;
+constexpr int kExitBadState = 3;
 
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop.store(true); }
@@ -44,6 +61,10 @@ struct Options {
   std::uint64_t ticks = 0;
   double idle_exit_s = 2.0;
   double report_every_s = 0.0;
+  std::string state_path;
+  double save_every_s = 0.0;
+  bool log_saves = false;
+  bool print_state = false;
 };
 
 /// The runtime's lines on stdout, flushed one by one.
@@ -98,6 +119,75 @@ void announce(const mrd::app::BoardConfig& board, const Options& o) {
   std::fflush(stdout);
 }
 
+/// "mrd-firmware: state saved seq=N" after each write (the writer thread).
+void log_save(mrd::hal::StoreStatus status, const mrd::hal::StateRecord& record) {
+  mrd::fw::PersistedIdleState s;
+  const bool readable = mrd::fw::decode_state(record, s) == mrd::fw::DecodeStatus::kOk;
+  if (status == mrd::hal::StoreStatus::kOk && readable) {
+    std::printf("mrd-firmware: state saved seq=%u\n", s.save_sequence);
+  } else {
+    std::printf("mrd-firmware: state save failed: %s\n", mrd::hal::store_status_name(status));
+  }
+  std::fflush(stdout);
+}
+
+/// The wall clock in the mixing task's numbers: seconds (reference build) or milliseconds.
+template <class Mixing>
+typename Mixing::Rtc rtc_of(double unix_s) {
+  if constexpr (std::is_floating_point_v<typename Mixing::Rtc>) {
+    return unix_s;
+  } else {
+    return std::llround(unix_s * 1e3);
+  }
+}
+
+/// Restores the estimator's state and prints the boot line.
+template <class Mixing>
+void boot_mixing(Mixing& mixing, mrd::hal::StateStore& store, const mrd::hal::WallClock& rtc, const std::string& path) {
+  double unix_s = 0.0;
+  const bool rtc_valid = rtc.now_s(unix_s);
+  const mrd::fw::IdleBootReport rep = mixing.boot(store, 0, rtc_of<Mixing>(unix_s), rtc_valid);
+  const auto& e = mixing.estimator().estimate();
+  std::printf("mrd-firmware: boot: state %s: %s%s%s off_days=%.4f equivalent_idle_years=%.6f sq=%.4f pr=%.4f "
+              "capacity=%.4f cycles=%u rtc=%s idle_flags=0x%x\n",
+              path.c_str(), mrd::hal::store_status_name(rep.load),
+              rep.load == mrd::hal::StoreStatus::kOk ? " " : "",
+              rep.load == mrd::hal::StoreStatus::kOk ? mrd::fw::decode_status_name(rep.decode) : "",
+              rep.offline_s / 86400.0, static_cast<double>(e.equivalent_idle_s) / mrd::units::kSecondsPerYear,
+              static_cast<double>(e.sq), static_cast<double>(e.participant_ratio),
+              static_cast<double>(e.capacity_fraction), e.mixing_cycles, rtc_valid ? "valid" : "invalid",
+              static_cast<unsigned>(e.flags));
+  if (e.flags & mrd::fw::kIdleAssumedSettled)
+    std::printf("mrd-firmware: boot: no usable state or clock: the damper is taken as fully settled (worst case)\n");
+  std::fflush(stdout);
+}
+
+/// --print-state: the record in the state file, without CAN or GPIO.
+int print_state(const std::string& path) {
+  mrd::posix::FileStateStore file(path);
+  mrd::hal::StateRecord record{};
+  const mrd::hal::StoreStatus st = file.load(record);
+  if (st == mrd::hal::StoreStatus::kMissing) {
+    std::printf("mrd-firmware: state %s: missing\n", path.c_str());
+    return 0;
+  }
+  if (st != mrd::hal::StoreStatus::kOk) {
+    std::printf("mrd-firmware: state %s: corrupt (%s)\n", path.c_str(), mrd::hal::store_status_name(st));
+    return kExitBadState;
+  }
+  mrd::fw::PersistedIdleState s;
+  const mrd::fw::DecodeStatus d = mrd::fw::decode_state(record, s);
+  if (d != mrd::fw::DecodeStatus::kOk) {
+    std::printf("mrd-firmware: state %s: corrupt (%s)\n", path.c_str(), mrd::fw::decode_status_name(d));
+    return kExitBadState;
+  }
+  std::printf("mrd-firmware: state %s: ok seq=%u cycles=%u idle_years=%.6f rtc_ms=%lld lifetime_volume_m3=%.6f\n",
+              path.c_str(), s.save_sequence, s.mixing_cycles,
+              static_cast<double>(s.equivalent_idle_ms) * 1e-3 / mrd::units::kSecondsPerYear,
+              static_cast<long long>(s.rtc_ms), static_cast<double>(s.lifetime_volume) * mrd::fw::kStateVolumeCountM3);
+  return 0;
+}
+
 template <class Policy>
 int run(const mrd::app::BoardConfig& board, const Options& o) {
   using Core = mrd::fw::DamperController<Policy>;
@@ -119,6 +209,25 @@ int run(const mrd::app::BoardConfig& board, const Options& o) {
     return kExitRuntime;
   }
 
+  // The mixing task and its state (free-running only).
+  using Mixing = mrd::app::BasicMixingTask<Policy>;
+  std::unique_ptr<Mixing> mixing;
+  mrd::posix::FileStateStore file_store(board.state_path);
+  std::unique_ptr<mrd::posix::BackgroundStateStore> store;
+  mrd::posix::PosixWallClock rtc;
+  if (!o.lockstep) {
+    mixing = std::make_unique<Mixing>();
+    if (!mixing->init(board.mixing_task_config())) {
+      std::fprintf(stderr, "mrd-firmware: error: %s: [mixing]/[state]: the idle-time estimator or the mixing "
+                   "scheduler rejects the configuration\n", o.board_file.c_str());
+      return kExitUsage;
+    }
+    mrd::posix::BackgroundStateStore::WriteListener listener;
+    if (o.log_saves) listener = log_save;
+    store = std::make_unique<mrd::posix::BackgroundStateStore>(file_store, listener);
+    boot_mixing(*mixing, *store, rtc, board.state_path);
+  }
+
   mrd::posix::PosixClock clock;
   StdoutLog log;
   mrd::app::RuntimeConfig rc;
@@ -128,12 +237,24 @@ int run(const mrd::app::BoardConfig& board, const Options& o) {
   rc.lockstep_idle_exit_ns = static_cast<std::int64_t>(o.idle_exit_s * 1e9);
   mrd::app::RuntimePorts ports{clock, *bus, *io};
   ports.log = &log;
-  auto runtime = std::make_unique<mrd::app::BoardRuntime<Core>>(*core, ports, board.task_config(), rc);
+  if (mixing) {
+    ports.store = store.get();
+    ports.rtc = &rtc;
+  }
+  auto runtime = std::make_unique<mrd::app::BoardRuntime<Core, Mixing>>(*core, ports, board.task_config(), rc);
+  if (mixing) runtime->attach_mixing(mixing.get());
   announce(board, o);
   if (o.lockstep) {
     runtime->run_lockstep(g_stop);
   } else {
     runtime->run_periodic(g_stop);
+  }
+  if (mixing) {
+    const bool saved = runtime->save_now();
+    store->flush();
+    std::printf("mrd-firmware: state %s at exit: %s (%llu writes, %llu failed)\n", board.state_path.c_str(),
+                saved ? "saved" : "not saved", static_cast<unsigned long long>(store->writes()),
+                static_cast<unsigned long long>(store->failed_writes()));
   }
   return 0;
 }
@@ -157,6 +278,15 @@ std::optional<mrd::app::BoardConfig> board_of(const Options& o) {
     board.mode = *mode;
   }
   if (!o.can_interface.empty()) board.can_interface = o.can_interface;
+  if (!o.state_path.empty()) {
+    if (o.state_path.front() != '/' || o.state_path.back() == '/') {
+      std::fprintf(stderr, "mrd-firmware: error: --state: expected an absolute file path, got '%s'\n",
+                   o.state_path.c_str());
+      return std::nullopt;
+    }
+    board.state_path = o.state_path;
+  }
+  if (o.save_every_s > 0.0) board.save_every_s = o.save_every_s;
   if (board.can_interface.empty()) {
     std::fprintf(stderr, "mrd-firmware: error: %s: can.interface: empty (the in-process sim board runs as "
                  "mrd-sim-board, not mrd-firmware)\n", o.board_file.c_str());
@@ -181,6 +311,11 @@ int main(int argc, char** argv) {
       ->check(mrd::app::positive_up_to(mrd::app::kMaxProgramTime_s, "s"));
   app.add_option("--report-every-s", o.report_every_s, "Print the summary line this often, s (default: at exit only)")
       ->check(mrd::app::positive_up_to(mrd::app::kMaxProgramTime_s, "s"));
+  app.add_option("--state", o.state_path, "Override the board's state file ([state] path), an absolute path");
+  app.add_option("--save-every-s", o.save_every_s, "Override how often the state is saved ([state] save_every_s), s")
+      ->check(mrd::app::positive_up_to(86400.0, "s"));
+  app.add_flag("--log-saves", o.log_saves, "Print a line after each save of the state");
+  app.add_flag("--print-state", o.print_state, "Print the state file's record and exit (no CAN, no GPIO)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -190,6 +325,7 @@ int main(int argc, char** argv) {
   }
   const std::optional<mrd::app::BoardConfig> board = board_of(o);
   if (!board) return kExitUsage;
+  if (o.print_state) return print_state(board->state_path);
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

@@ -59,6 +59,7 @@ struct BasicMixingTaskInput : fw::IdleArith<Policy>::RtcInput {
 template <class Policy>
 class BasicMixingTask {
  public:
+  using PolicyType = Policy;
   using Estimator = fw::BasicIdleEstimator<Policy>;
   using Scheduler = fw::BasicMixingScheduler<Policy>;
   using Input = BasicMixingTaskInput<Policy>;

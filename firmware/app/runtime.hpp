@@ -7,8 +7,12 @@
 ///   lockstep:      poll the bus; a complete input set (one plant tick) → step; nothing for a
 ///                  while → the plant has finished
 ///   every tick:    control task (rx → core → command, lines, heartbeat) → drive-enable log
-///                  → mixing task, when attached: sample in, request and maintenance out
+///                  → mixing task, when attached: sample in, request, maintenance and IdleStatus out
 /// </pre>
+///
+/// The mixing task may be any numeric build (BasicMixingTask<Policy>): the
+/// runtime's second template parameter. Its scheduler's transitions and
+/// requests are logged as they happen; the summary line adds its estimate.
 ///
 /// The same runtime runs `mrd-firmware` on a Linux board (SocketCAN, libgpiod,
 /// CLOCK_MONOTONIC) and the in-process `sim` board (in-memory bus and lines,
@@ -57,7 +61,7 @@ inline constexpr std::int64_t kFirstTickWaitFactor = 30;
 /// Lockstep: longest single wait for the bus.
 inline constexpr std::chrono::milliseconds kLockstepPoll{100};
 
-template <ControlCore Core>
+template <ControlCore Core, class Mixing = MixingTask>
 class BoardRuntime {
  public:
   /// Builds the control task on `ports.bus` and `ports.io` and resets it
@@ -69,10 +73,15 @@ class BoardRuntime {
 
   /// Runs `mixing` with every tick from now on (null: none). It must be
   /// initialised and booted; it stays the caller's.
-  void attach_mixing(MixingTask* mixing) noexcept {
+  void attach_mixing(Mixing* mixing) noexcept {
     mixing_ = mixing;
     request_ = MixingRequestEdge{};
+    scheduler_state_ = fw::SchedulerState::kIdle;
   }
+
+  /// Saves the mixing task's state now, due or not (at the end of a run).
+  /// False when nothing is attached or the save did not happen.
+  bool save_now() noexcept { return mixing_ && ports_.store && save(); }
 
   /// Back to the state after construction.
   void reset() noexcept {
@@ -80,6 +89,8 @@ class BoardRuntime {
     timing_ = LoopTiming{};
     enable_ = DriveEnableWatch{};
     request_ = MixingRequestEdge{};
+    scheduler_state_ = fw::SchedulerState::kIdle;
+    saves_ = save_failures_ = 0;
   }
 
   /// One tick on whatever has arrived: drain the bus, step, serve the store.
@@ -135,8 +146,13 @@ class BoardRuntime {
     if (!ports_.log) return;
     char text[kLogLineSize];
     format_summary(text, config_.name, task_.status(), timing_, enable_.changes());
+    if (mixing_) append_mixing_summary(text, *mixing_, saves_, save_failures_);
     ports_.log->line(text);
   }
+
+  /// Saves completed (handed to the store without error) and failed.
+  std::uint32_t saves() const noexcept { return saves_; }
+  std::uint32_t save_failures() const noexcept { return save_failures_; }
 
   const ControlTask<Core>& task() const noexcept { return task_; }
   ControlTask<Core>& task() noexcept { return task_; }
@@ -170,15 +186,58 @@ class BoardRuntime {
   void step_mixing() noexcept {
     double rtc_s = 0.0;
     const bool rtc_valid = ports_.rtc != nullptr && ports_.rtc->now_s(rtc_s);
-    const fw::MixingSchedulerOutput& out = mixing_->step(mixing_input(task_.status(), rtc_s, rtc_valid));
+    const auto& out = mixing_->step(mixing_input<typename Mixing::PolicyType>(task_.status(), rtc_s, rtc_valid));
     protocol::MixingCommand cmd;
-    if (request_.changed(out, cmd)) task_.request_mixing(cmd);
+    if (request_.changed(out, cmd)) {
+      task_.request_mixing(cmd);
+      log_request(cmd);
+    }
     task_.set_maintenance_due(out.maintenance_required);
+    task_.set_idle_status(idle_status_of(*mixing_));
+    if (out.state != scheduler_state_) {
+      log_transition(scheduler_state_, out.state, out.reason);
+      scheduler_state_ = out.state;
+    }
   }
 
   /// Saves the mixing task's state when it asks (I/O: outside the tick).
   void serve_store() noexcept {
-    if (mixing_ && ports_.store && mixing_->save_due()) (void)mixing_->save(*ports_.store);
+    if (mixing_ && ports_.store && mixing_->save_due()) (void)save();
+  }
+
+  bool save() noexcept {
+    const bool ok = mixing_->save(*ports_.store) == fw::SaveOutcome::kSaved;
+    if (ok) {
+      ++saves_;
+    } else {
+      ++save_failures_;
+    }
+    return ok;
+  }
+
+  void log_request(const protocol::MixingCommand& cmd) const noexcept {
+    if (!ports_.log) return;
+    char text[kLogLineSize];
+    if (cmd.action == protocol::MixingAction::kStart) {
+      std::snprintf(text, sizeof text,
+                    "%s: tick %llu: mixing requested: cycles=%u amplitude_m=%.5f frequency_hz=%.2f duration_s=%.0f",
+                    config_.name, static_cast<unsigned long long>(task_.tick() - 1), mixing_->output().plan.cycles,
+                    static_cast<double>(cmd.amplitude_m), static_cast<double>(cmd.frequency_hz),
+                    static_cast<double>(cmd.duration_s));
+    } else {
+      std::snprintf(text, sizeof text, "%s: tick %llu: mixing request withdrawn", config_.name,
+                    static_cast<unsigned long long>(task_.tick() - 1));
+    }
+    ports_.log->line(text);
+  }
+
+  void log_transition(fw::SchedulerState from, fw::SchedulerState to, fw::MixingEndReason why) const noexcept {
+    if (!ports_.log) return;
+    char text[kLogLineSize];
+    std::snprintf(text, sizeof text, "%s: tick %llu: scheduler %s -> %s (%s)", config_.name,
+                  static_cast<unsigned long long>(task_.tick() - 1), fw::scheduler_state_name(from),
+                  fw::scheduler_state_name(to), fw::mixing_end_reason_name(why));
+    ports_.log->line(text);
   }
 
   /// Lockstep: nothing arrived for long enough (says so in the log).
@@ -199,8 +258,10 @@ class BoardRuntime {
   RuntimePorts ports_;
   RuntimeConfig config_;
   ControlTask<Core> task_;
-  MixingTask* mixing_ = nullptr;
+  Mixing* mixing_ = nullptr;
   MixingRequestEdge request_{};
+  fw::SchedulerState scheduler_state_ = fw::SchedulerState::kIdle;
+  std::uint32_t saves_ = 0, save_failures_ = 0;
   LoopTiming timing_{};
   DriveEnableWatch enable_{};
 };

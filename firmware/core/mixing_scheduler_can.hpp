@@ -23,8 +23,10 @@ inline constexpr double kCanDurationStep_s = 1.0;      ///< 1 s
 /// Fills `cmd` from the scheduler's output: start with the plan while a
 /// request is active, stop otherwise (the scheduler withdrew the request,
 /// e.g. on shaking). Returns false, with a stop command, when the plan
-/// cannot be represented (frequency below 0.01 Hz).
-inline bool to_mixing_command(const MixingSchedulerOutput& o, protocol::MixingCommand& cmd) noexcept {
+/// cannot be represented (frequency below 0.01 Hz). Any numeric build: the
+/// plan's numbers are read as double.
+template <class Policy>
+bool to_mixing_command(const BasicMixingSchedulerOutput<Policy>& o, protocol::MixingCommand& cmd) noexcept {
   cmd.action = protocol::MixingAction::kStop;
   cmd.amplitude_m = 0.0f;
   cmd.frequency_hz = 0.0f;
@@ -32,8 +34,10 @@ inline bool to_mixing_command(const MixingSchedulerOutput& o, protocol::MixingCo
   if (!o.request_active) return true;
   // The small offset keeps values already on the grid (0.2 Hz = 20 steps)
   // from falling one step by their binary rounding.
-  const double amp_m = std::floor(o.plan.amplitude_m / kCanAmplitudeStep_m + 1e-6) * kCanAmplitudeStep_m;
-  const double f_hz = std::floor(o.plan.frequency_hz / kCanFrequencyStep_hz + 1e-6) * kCanFrequencyStep_hz;
+  const double amp_m =
+      std::floor(static_cast<double>(o.plan.amplitude_m) / kCanAmplitudeStep_m + 1e-6) * kCanAmplitudeStep_m;
+  const double f_hz =
+      std::floor(static_cast<double>(o.plan.frequency_hz) / kCanFrequencyStep_hz + 1e-6) * kCanFrequencyStep_hz;
   if (!(f_hz > 0.0) || !(amp_m > 0.0)) return false;
   const double duration_s =
       std::ceil(static_cast<double>(o.plan.cycles) / f_hz / kCanDurationStep_s - 1e-6) * kCanDurationStep_s;

@@ -190,4 +190,18 @@ void ActuatorNode::free_tick(std::int64_t now_ns) noexcept {
   }
 }
 
+void RestingDaqNode::sample(double stroke_m) noexcept {
+  protocol::DaqMotion m;
+  m.damper_disp_m = static_cast<float>(stroke_m);
+  m.force_valid = false;
+  m.counter = counter_;
+  protocol::DaqAccel a;
+  a.ground_accel_m_s2 = 0.0f;
+  a.base_accel_m_s2 = 0.0f;
+  a.counter = counter_++;
+  hal::CanFrame f;
+  if (!protocol::encode(m, nodes_.daq, f) || bus_.send(f) != hal::CanResult::kOk) ++send_errors_;
+  if (!protocol::encode(a, nodes_.daq, f) || bus_.send(f) != hal::CanResult::kOk) ++send_errors_;
+}
+
 }  // namespace mrd::peers

@@ -121,6 +121,23 @@ class ActuatorNode {
   std::uint8_t counter_ = 0;
 };
 
+/// The DAQ of a building at rest while the mixing actuator strokes its
+/// damper (a maintenance cycle, no earthquake): stroke = the actuator's
+/// position, both accelerations zero, no force measured (sent as "not
+/// available"). One DaqMotion and one DaqAccel per sample() (free-running).
+class RestingDaqNode {
+ public:
+  RestingDaqNode(hal::CanBus& bus, const protocol::NodeIds& nodes) noexcept : bus_(bus), nodes_(nodes) {}
+  void sample(double stroke_m) noexcept;
+  std::uint64_t send_errors() const noexcept { return send_errors_; }
+
+ private:
+  hal::CanBus& bus_;
+  protocol::NodeIds nodes_;
+  std::uint8_t counter_ = 0;
+  std::uint64_t send_errors_ = 0;
+};
+
 /// The CAN filters of each node (exact ids).
 std::vector<hal::CanFilter> plant_filters(const protocol::NodeIds& n);
 std::vector<hal::CanFilter> drive_filters(const protocol::NodeIds& n);

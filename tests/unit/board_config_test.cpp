@@ -59,6 +59,59 @@ TEST(BoardConfig, EmulatedBoardUsesVcanAndThePl061) {
   EXPECT_EQ(c.drive_enable.offset, 0);
 }
 
+TEST(BoardConfig, StateAndMixingTakeTheirDefaultsWhenAbsent) {
+  const BoardConfig c = parse_board_config(std::string(kMinimal) + kNoGpio, "b.toml");
+  EXPECT_EQ(c.state_path, "/var/lib/mrd/state.bin");
+  EXPECT_EQ(c.save_every_s, 3600.0);
+  EXPECT_TRUE(c.mixing.actuator_fitted);
+  EXPECT_EQ(c.mixing.max_amplitude_m, 0.0762) << "thesis §6.6: ±76.2 mm";
+  EXPECT_EQ(c.mixing.preferred_frequency_hz, 0.2) << "thesis §6.6: 0.2 Hz";
+}
+
+TEST(BoardConfig, StateAndMixingTablesAreRead) {
+  const BoardConfig c = parse_board_config(std::string(kMinimal) + kNoGpio +
+                                               "[state]\npath = \"/data/mrd.bin\"\nsave_every_s = 0.5\n"
+                                               "[mixing]\nactuator_fitted = false\nholdoff_s = 2\n"
+                                               "max_amplitude_m = 0.03\nmax_cycles = 30\ndead_band_m = 2e-4\n",
+                                           "b.toml");
+  EXPECT_EQ(c.state_path, "/data/mrd.bin");
+  EXPECT_EQ(c.save_every_s, 0.5);
+  EXPECT_FALSE(c.mixing.actuator_fitted);
+  EXPECT_EQ(c.mixing.holdoff_s, 2.0) << "an integer is a number too";
+  EXPECT_EQ(c.mixing.max_amplitude_m, 0.03);
+  EXPECT_EQ(c.mixing.max_cycles, 30u);
+  const MixingTaskConfig t = c.mixing_task_config();
+  EXPECT_EQ(t.estimator.period_s, 1e-3);
+  EXPECT_EQ(t.estimator.save_interval_s, 0.5);
+  EXPECT_EQ(t.estimator.dead_band_m, 2e-4);
+  EXPECT_FALSE(t.scheduler.actuator_fitted);
+}
+
+TEST(BoardConfig, ARelativeStatePathIsRefused) {
+  const std::string e = error_of(std::string(kMinimal) + kNoGpio + "[state]\npath = \"state.bin\"\n");
+  EXPECT_EQ(e, "b.toml:9: state.path: expected an absolute file path, got 'state.bin'");
+}
+
+TEST(BoardConfig, AMixingSettingOutOfRangeNamesLineFieldAndUnit) {
+  const std::string e = error_of(std::string(kMinimal) + kNoGpio + "[mixing]\nmax_amplitude_m = 0.5\n");
+  EXPECT_EQ(e, "b.toml:9: mixing.max_amplitude_m: expected 0.001 … 0.2 m, got 0.5");
+  const std::string t = error_of(std::string(kMinimal) + kNoGpio + "[mixing]\nholdoff_s = \"soon\"\n");
+  EXPECT_EQ(t, "b.toml:9: mixing.holdoff_s: expected a number, s");
+  const std::string k = error_of(std::string(kMinimal) + kNoGpio + "[mixing]\nhold_off_s = 2\n");
+  EXPECT_EQ(k, "b.toml:9: mixing.hold_off_s: unknown key");
+}
+
+TEST(BoardConfig, TheMaintenanceTestBoardRunsItsMixingTask) {
+  const BoardConfig c =
+      load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "emulated-arm64" / "maintenance-test.toml");
+  EXPECT_GT(c.mixing.confirm_hold_s, fw::IdleModelConfig{}.quiet_close_s) << "mixing_scheduler.hpp's rule";
+  // 2π · 1 Hz · 0.03 m = 0.188 m/s, within the plan's 0.19 m/s velocity limit.
+  EXPECT_LE(2.0 * 3.141592653589793 * c.mixing.preferred_frequency_hz * c.mixing.max_amplitude_m,
+            c.mixing.max_velocity_m_s);
+  BasicMixingTask<num::Float32Policy> task;
+  EXPECT_TRUE(task.init(c.mixing_task_config()));
+}
+
 TEST(BoardConfig, SyntaxErrorNamesTheLine) {
   EXPECT_EQ(error_of("[board]\nname = \"x\"\n[control\n").rfind("b.toml:3: ", 0), 0u) << error_of("[board]\nname = \"x\"\n[control\n");
 }

@@ -17,6 +17,7 @@
 #include "firmware/platform/sim/memory_bus.hpp"
 #include "firmware/platform/sim/memory_io.hpp"
 #include "firmware/platform/sim/memory_state_store.hpp"
+#include "mrd/units.hpp"
 
 namespace mrd::app {
 namespace {
@@ -262,6 +263,54 @@ TEST_F(RuntimeFixture, TheStateStoreIsServedAfterTheTickWhenTheWallClockIsValid)
   rt.run_tick();
   EXPECT_EQ(store.saves(), 1u);
   EXPECT_FALSE(mixing.save_due());
+}
+
+/// The board's fixed-point build of the mixing task, booted half a year idle.
+using FixedMixing = BasicMixingTask<num::Fixed32Policy>;
+
+TEST_F(RuntimeFixture, TheFixedPointMixingTaskRunsOnTheBoardAndItsEstimateGoesOutAsIdleStatus) {
+  BoardRuntime<Core, FixedMixing> rt(core_, ports(), ControlTaskConfig{}, RuntimeConfig{});
+  FixedMixing mixing;
+  ASSERT_TRUE(mixing.init(MixingTaskConfig{}));
+  constexpr double kHalfYear_s = 0.5 * units::kSecondsPerYear;
+  mixing.boot_with(kHalfYear_s, 0, std::int64_t{1'700'000'000'000});
+  rt.attach_mixing(&mixing);
+  std::vector<protocol::IdleStatus> frames;
+  for (std::uint8_t k = 0; k <= 100; ++k) {
+    send_inputs(k, true);
+    rt.run_tick();
+    hal::CanFrame f;
+    while (peer_.receive(f) == hal::CanResult::kOk) {
+      protocol::IdleStatus s;
+      if (protocol::decode(f, nodes_.controller, s) == protocol::DecodeError::kOk) frames.push_back(s);
+    }
+  }
+  // Heartbeats at ticks 0 and 100; the first goes out before the mixing task's
+  // first step (nothing to send yet), so one IdleStatus.
+  ASSERT_EQ(frames.size(), 1u);
+  // Half a Julian year is 0.5 · 365.25 · 24 = 4383 h (plus 0.1 s of ticks).
+  EXPECT_EQ(frames[0].equivalent_idle_h, 4383u);
+  const auto& e = mixing.estimator().estimate();
+  EXPECT_NEAR(frames[0].participant_ratio, static_cast<double>(e.participant_ratio), 0.002) << "0.004 steps";
+  EXPECT_NEAR(frames[0].capacity_fraction, static_cast<double>(e.capacity_fraction), 0.002);
+  EXPECT_EQ(frames[0].scheduler, static_cast<std::uint8_t>(mixing.output().state));
+  EXPECT_EQ(frames[0].flags, 0u) << "booted from a known state with a clock";
+  rt.log_summary();
+  EXPECT_NE(log_.lines.back().find(" idle_years=0.500"), std::string::npos) << log_.lines.back();
+  EXPECT_NE(log_.lines.back().find(" cycles=0 saves=0 "), std::string::npos) << log_.lines.back();
+}
+
+TEST_F(RuntimeFixture, SchedulerTransitionsAndRequestsAreLogged) {
+  BoardRuntime<Core> rt(core_, ports(), ControlTaskConfig{}, RuntimeConfig{});
+  MixingTask mixing = settled_mixing_task(true);
+  rt.attach_mixing(&mixing);
+  send_inputs(0, true);
+  rt.run_tick();
+  ASSERT_EQ(mixing.output().state, fw::SchedulerState::kRequested);
+  // A fully settled fluid passes idle → due → requested in one step (the
+  // diagram in mixing_scheduler.hpp): one line for the change and one for the request.
+  EXPECT_EQ(lines_containing("mrd-firmware: tick 0: scheduler idle -> requested"), 1);
+  EXPECT_EQ(lines_containing("mrd-firmware: tick 0: mixing requested: cycles="), 1);
 }
 
 TEST(NoLinesFitted, AcceptsWritesAndReadsTheFaultInputInactive) {

@@ -249,6 +249,35 @@ TEST(Codec, DaqRejectsOutOfRangeRaw) {
   EXPECT_EQ(decode(f, 3, out), DecodeError::kOutOfRange);
 }
 
+TEST(Codec, IdleStatusRefusesWhatItCannotCarry) {
+  hal::CanFrame f;
+  // 2^24 − 1 hours is the largest idle time; a fraction above 1, a scheduler
+  // state past 6 or an undefined flag is refused.
+  EXPECT_TRUE(encode(IdleStatus{0xFFFFFF, 1.0f, 0.0f, scheduler_state::kMaintenanceRequired, idle_flag::kAll, 0}, 1, f));
+  EXPECT_FALSE(encode(IdleStatus{0x1000000, 1.0f, 1.0f, 0, 0, 0}, 1, f));
+  EXPECT_FALSE(encode(IdleStatus{0, 1.003f, 1.0f, 0, 0, 0}, 1, f));   // 250.75 counts rounds to 251 > 250
+  EXPECT_FALSE(encode(IdleStatus{0, 1.0f, -0.003f, 0, 0, 0}, 1, f));
+  EXPECT_FALSE(encode(IdleStatus{0, 1.0f, 1.0f, 7, 0, 0}, 1, f));
+  EXPECT_FALSE(encode(IdleStatus{0, 1.0f, 1.0f, 0, 0x08, 0}, 1, f));
+  EXPECT_FALSE(encode(IdleStatus{0, std::numeric_limits<float>::quiet_NaN(), 1.0f, 0, 0, 0}, 1, f));
+
+  ASSERT_TRUE(encode(IdleStatus{10, 0.5f, 0.5f, scheduler_state::kDue, 0, 0}, 1, f));
+  IdleStatus s;
+  hal::CanFrame g = f;
+  g.data[5] |= 0x80;  // reserved bit 7
+  reseal(g);
+  EXPECT_EQ(decode(g, 1, s), DecodeError::kBadField);
+  g = f;
+  g.data[5] = 0x07;  // scheduler state 7 is undefined
+  reseal(g);
+  EXPECT_EQ(decode(g, 1, s), DecodeError::kBadField);
+  g = f;
+  g.data[4] = 251;  // capacity 1.004
+  reseal(g);
+  EXPECT_EQ(decode(g, 1, s), DecodeError::kOutOfRange);
+  EXPECT_EQ(decode(f, 2, s), DecodeError::kWrongId);  // only from the controller's node
+}
+
 TEST(CounterCheck, FollowsTheRulesOfTheSpec) {
   CounterCheck c;
   EXPECT_EQ(c.check(250), CounterVerdict::kSynced);

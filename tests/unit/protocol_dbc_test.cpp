@@ -128,6 +128,15 @@ std::function<Values(const hal::CanFrame&)> codec_view(const std::string& msg) {
                     {"flag_maintenance_due", bit(s.flags, 5)}, {"overruns", s.overruns},
                     {"rejected_frames", s.rejected_frames}, {"counter", s.counter}};
     };
+  if (msg == "IdleStatus")
+    return [bit](const hal::CanFrame& f) {
+      IdleStatus s;
+      EXPECT_EQ(decode(f, 1, s), DecodeError::kOk);
+      return Values{{"equivalent_idle", double(s.equivalent_idle_h)}, {"participant_ratio", s.participant_ratio},
+                    {"capacity", s.capacity_fraction}, {"scheduler", s.scheduler},
+                    {"flag_assumed_settled", bit(s.flags, 0)}, {"flag_clock_invalid", bit(s.flags, 1)},
+                    {"flag_save_failed", bit(s.flags, 2)}, {"counter", s.counter}};
+    };
   if (msg == "SimCoilState")
     return [](const hal::CanFrame& f) {
       SimCoilState s;
@@ -153,7 +162,7 @@ constexpr Expected kMessages[] = {
     {"DaqMotion", MsgId::kDaqMotion, 3},           {"DaqAccel", MsgId::kDaqAccel, 3},
     {"MixingCommand", MsgId::kMixingCommand, 1},   {"MixingStatus", MsgId::kMixingStatus, 4},
     {"ControllerStatus", MsgId::kControllerStatus, 1}, {"SimCoilState", MsgId::kSimCoilState, 3},
-    {"SimCoilDrive", MsgId::kSimCoilDrive, 2},
+    {"SimCoilDrive", MsgId::kSimCoilDrive, 2},     {"IdleStatus", MsgId::kIdleStatus, 1},
 };
 
 TEST(Dbc, HasEveryMessageWithTheSpecIdentifier) {
@@ -185,7 +194,7 @@ TEST(Dbc, EveryMessageEndsWithCounterAndCrcAndHasNoOverlap) {
 TEST(Dbc, DecodesFramesAsTheCodecDoes) {
   const auto dbc = read_dbc();
   // One frame per message, encoded by the codec with values off the grid.
-  std::vector<std::pair<std::string, hal::CanFrame>> frames(9);
+  std::vector<std::pair<std::string, hal::CanFrame>> frames(10);
   ASSERT_TRUE(encode(CurrentCommand{-3.1415f, true, control::ControlMode::kSemiActive, 17}, 1, frames[0].second));
   ASSERT_TRUE(encode(DriveStatus{-12.345f, 29.5f, 0x29, DriveState::kFault, 3}, 2, frames[1].second));
   ASSERT_TRUE(encode(DaqMotion{-0.2345678f, true, 199999.9f, true, 4}, 3, frames[2].second));
@@ -195,9 +204,11 @@ TEST(Dbc, DecodesFramesAsTheCodecDoes) {
   ASSERT_TRUE(encode(ControllerStatus{control::ControlMode::kPassiveOn, 0x2A, 1000, 65535, 8}, 1, frames[6].second));
   ASSERT_TRUE(encode(SimCoilState{-29.12345f, 9}, 3, frames[7].second));
   ASSERT_TRUE(encode(SimCoilDrive{-2.5f, true, 10}, 2, frames[8].second));
+  ASSERT_TRUE(encode(IdleStatus{16777215, 0.123f, 1.0f, scheduler_state::kMaintenanceRequired, idle_flag::kAll, 11}, 1,
+                     frames[9].second));
   const char* names[] = {"CurrentCommand", "DriveStatus", "DaqMotion", "DaqAccel", "MixingCommand",
-                         "MixingStatus", "ControllerStatus", "SimCoilState", "SimCoilDrive"};
-  for (int i = 0; i < 9; ++i) {
+                         "MixingStatus", "ControllerStatus", "SimCoilState", "SimCoilDrive", "IdleStatus"};
+  for (int i = 0; i < 10; ++i) {
     const hal::CanFrame& f = frames[i].second;
     const DbcMessage& msg = dbc.at(names[i]);
     ASSERT_EQ(f.id, msg.id) << names[i];

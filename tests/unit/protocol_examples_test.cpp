@@ -76,7 +76,7 @@ class SpecExamples : public ::testing::Test {
 };
 std::map<int, SpecExample> SpecExamples::examples_;
 
-TEST_F(SpecExamples, AllTenArePresent) { EXPECT_EQ(examples_.size(), 10u); }
+TEST_F(SpecExamples, AllElevenArePresent) { EXPECT_EQ(examples_.size(), 11u); }
 
 TEST_F(SpecExamples, CurrentCommands) {
   hal::CanFrame f;
@@ -88,6 +88,19 @@ TEST_F(SpecExamples, CurrentCommands) {
   ASSERT_EQ(decode(spec_frame(2), 1, c), DecodeError::kOk);
   EXPECT_FLOAT_EQ(c.current_a, -1.234f);
   EXPECT_EQ(c.counter, 0xFF);
+}
+
+TEST_F(SpecExamples, IdleStatus) {
+  hal::CanFrame f;
+  ASSERT_TRUE(encode(IdleStatus{4383, 0.6f, 0.784f, scheduler_state::kRequested, idle_flag::kClockInvalid, 0x11}, 1, f));
+  expect_frame(11, f);
+  IdleStatus s;
+  ASSERT_EQ(decode(spec_frame(11), 1, s), DecodeError::kOk);
+  EXPECT_EQ(s.equivalent_idle_h, 4383u);
+  EXPECT_FLOAT_EQ(s.participant_ratio, 0.6f);
+  EXPECT_FLOAT_EQ(s.capacity_fraction, 0.784f);
+  EXPECT_EQ(s.scheduler, scheduler_state::kRequested);
+  EXPECT_EQ(s.flags, idle_flag::kClockInvalid);
 }
 
 TEST_F(SpecExamples, DriveStatus) {

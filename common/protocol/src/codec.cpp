@@ -46,6 +46,8 @@ constexpr Scaling kMixAmplitude{1.0e5, 0.0, 0.2};           // 0.01 mm
 constexpr Scaling kMixFrequency{100.0, 0.0, 2.0};           // 0.01 Hz
 constexpr Scaling kMixDuration{1.0, 0.0, 7200.0};           // 1 s
 constexpr Scaling kMixElapsed{1.0, 0.0, 65535.0};           // 1 s
+constexpr Scaling kFraction{250.0, 0.0, 1.0};             // 0.004 (PR, capacity)
+constexpr std::uint32_t kMaxIdleHours = 0xFFFFFF;           // 24 bits of hours: 1914 years
 constexpr Scaling kCoilCurrent{1.0e5, -30.0, 30.0};         // 10 µA (a float near 30 A resolves 1.9 µA)
 
 /// "Not available" code of a 24-bit signed signal (J1939 style).
@@ -364,6 +366,38 @@ DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, ControllerStatus
   out.flags = d[1];
   out.overruns = static_cast<std::uint16_t>(get_u16(d, 2));
   out.rejected_frames = static_cast<std::uint16_t>(get_u16(d, 4));
+  out.counter = d[6];
+  return DecodeError::kOk;
+}
+
+// ---- IdleStatus: b0-2 u24 idle hours, b3 u8 PR, b4 u8 capacity, b5 scheduler | flags << 4
+
+bool encode(const IdleStatus& m, std::uint8_t sender, hal::CanFrame& out) noexcept {
+  std::int64_t pr = 0, cap = 0;
+  if (!sender_ok(sender) || m.equivalent_idle_h > kMaxIdleHours || !quantize(m.participant_ratio, kFraction, pr) ||
+      !quantize(m.capacity_fraction, kFraction, cap) || m.scheduler > scheduler_state::kMaintenanceRequired ||
+      (m.flags & ~idle_flag::kAll) != 0)
+    return false;
+  begin(out, MsgId::kIdleStatus, sender);
+  put_u24(out.data, 0, m.equivalent_idle_h);
+  out.data[3] = static_cast<std::uint8_t>(pr);
+  out.data[4] = static_cast<std::uint8_t>(cap);
+  out.data[5] = static_cast<std::uint8_t>(m.scheduler | (m.flags << 4));
+  return finish(out, m.counter);
+}
+
+DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, IdleStatus& out) noexcept {
+  if (const DecodeError e = check_frame(f, MsgId::kIdleStatus, sender); e != DecodeError::kOk) return e;
+  const auto& d = f.data;
+  const std::uint8_t scheduler = d[5] & 0x0Fu;
+  const std::uint8_t flags = static_cast<std::uint8_t>(d[5] >> 4);
+  if (scheduler > scheduler_state::kMaintenanceRequired || (flags & ~idle_flag::kAll) != 0) return DecodeError::kBadField;
+  if (!raw_in_range(d[3], kFraction) || !raw_in_range(d[4], kFraction)) return DecodeError::kOutOfRange;
+  out.equivalent_idle_h = get_u24(d, 0);
+  out.participant_ratio = to_si(d[3], kFraction);
+  out.capacity_fraction = to_si(d[4], kFraction);
+  out.scheduler = scheduler;
+  out.flags = flags;
   out.counter = d[6];
   return DecodeError::kOk;
 }

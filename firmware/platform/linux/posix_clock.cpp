@@ -16,6 +16,15 @@ std::int64_t PosixClock::now_ns() const noexcept {
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
 }
 
+bool PosixWallClock::now_s(double& unix_s) const noexcept {
+  timespec ts{};
+  if (::clock_gettime(CLOCK_REALTIME, &ts) != 0) return false;
+  const double t = static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+  if (t < kEarliestValidUnixS) return false;
+  unix_s = t;
+  return true;
+}
+
 void PosixClock::sleep_until_ns(std::int64_t deadline_ns) noexcept {
   timespec ts{};
   ts.tv_sec = static_cast<time_t>(deadline_ns / 1000000000);

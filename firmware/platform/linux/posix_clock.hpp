@@ -14,6 +14,17 @@ class PosixClock final : public hal::Clock {
   void sleep_until_ns(std::int64_t deadline_ns) noexcept override;
 };
 
+/// hal::WallClock on CLOCK_REALTIME (on a board, set from its RTC at boot:
+/// CONFIG_RTC_HCTOSYS). A clock before kEarliestValidUnixS counts as unset:
+/// a board whose RTC lost its battery boots at the epoch (1970), and a time
+/// off measured from there would be decades.
+class PosixWallClock final : public hal::WallClock {
+ public:
+  /// 2020-01-01T00:00:00Z.
+  static constexpr double kEarliestValidUnixS = 1577836800.0;
+  bool now_s(double& unix_s) const noexcept override;
+};
+
 /// Linux real-time practice for the control thread, each step optional.
 struct RealtimeRequest {
   int sched_fifo_priority = 0;  ///< 1..99: SCHED_FIFO at this priority

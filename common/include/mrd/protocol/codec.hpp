@@ -51,6 +51,7 @@ bool encode(const DaqAccel& m, std::uint8_t sender, hal::CanFrame& out) noexcept
 bool encode(const MixingCommand& m, std::uint8_t sender, hal::CanFrame& out) noexcept;
 bool encode(const MixingStatus& m, std::uint8_t sender, hal::CanFrame& out) noexcept;
 bool encode(const ControllerStatus& m, std::uint8_t sender, hal::CanFrame& out) noexcept;
+bool encode(const IdleStatus& m, std::uint8_t sender, hal::CanFrame& out) noexcept;
 bool encode(const SimCoilState& m, std::uint8_t sender, hal::CanFrame& out) noexcept;
 bool encode(const SimCoilDrive& m, std::uint8_t sender, hal::CanFrame& out) noexcept;
 
@@ -62,6 +63,7 @@ DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, DaqAccel& out) n
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, MixingCommand& out) noexcept;
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, MixingStatus& out) noexcept;
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, ControllerStatus& out) noexcept;
+DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, IdleStatus& out) noexcept;
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, SimCoilState& out) noexcept;
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, SimCoilDrive& out) noexcept;
 

@@ -22,6 +22,7 @@ enum class MsgId : std::uint8_t {
   kMixingCommand = 0x05,     ///< controller → mixing actuator
   kMixingStatus = 0x06,      ///< mixing actuator → controller
   kControllerStatus = 0x07,  ///< controller heartbeat
+  kIdleStatus = 0x08,        ///< controller → all: idle-time estimate and mixing scheduler, with the heartbeat
   kSimCoilState = 0x70,      ///< simulation only: plant → drive, coil current
   kSimCoilDrive = 0x71,      ///< simulation only: drive → plant, current the drive applies
 };
@@ -143,6 +144,37 @@ struct ControllerStatus {
   std::uint8_t flags = 0;            ///< controller_flag bits
   std::uint16_t overruns = 0;        ///< control periods missed since start (saturates)
   std::uint16_t rejected_frames = 0; ///< frames dropped by the codec since start (saturates)
+  std::uint8_t counter = 0;
+};
+
+/// States of the mixing scheduler as IdleStatus carries them (the values of
+/// fw::SchedulerState, firmware/core/mixing_scheduler.hpp).
+namespace scheduler_state {
+inline constexpr std::uint8_t kIdle = 0;
+inline constexpr std::uint8_t kDue = 1;
+inline constexpr std::uint8_t kRequested = 2;
+inline constexpr std::uint8_t kRunning = 3;
+inline constexpr std::uint8_t kConfirmed = 4;
+inline constexpr std::uint8_t kAborted = 5;
+inline constexpr std::uint8_t kMaintenanceRequired = 6;
+}  // namespace scheduler_state
+
+/// Flag bits of IdleStatus.flags.
+namespace idle_flag {
+inline constexpr std::uint8_t kAssumedSettled = 0x01;  ///< no usable record or clock at boot: worst case assumed
+inline constexpr std::uint8_t kClockInvalid = 0x02;    ///< no valid real-time clock at boot or a backward jump
+inline constexpr std::uint8_t kSaveFailed = 0x04;      ///< the last save of the state failed
+inline constexpr std::uint8_t kAll = 0x07;
+}  // namespace idle_flag
+
+/// The idle-time estimator and the mixing scheduler, sent with the
+/// heartbeat when the controller runs them.
+struct IdleStatus {
+  std::uint32_t equivalent_idle_h = 0;  ///< equivalent idle time τ (Eq. 5.5), h, [0, 16777215]
+  float participant_ratio = 1.0f;       ///< PR (Eq. 5.9), [0, 1], 0.004 resolution
+  float capacity_fraction = 1.0f;       ///< force capacity relative to fully mixed, [0, 1], 0.004
+  std::uint8_t scheduler = scheduler_state::kIdle;  ///< scheduler_state value, 0–6
+  std::uint8_t flags = 0;               ///< idle_flag bits
   std::uint8_t counter = 0;
 };
 
