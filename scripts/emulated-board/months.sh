@@ -24,7 +24,7 @@ source "$(dirname "$0")/lib.sh"
 out=${1:?usage: months.sh OUT_DIR}
 t1=${MRD_EMU_T1:-2027-01-01T00:00:00}
 half_year_s=15778800 # 0.5 × 365.25 days (the Julian year of common/include/mrd/units.hpp)
-cycle_limit_s=${MRD_EMU_CYCLE_LIMIT_S:-120}
+cycle_limit_s=${MRD_EMU_CYCLE_LIMIT_S:-240}
 board=$emu_root/boards/emulated-arm64/maintenance-test.toml
 
 emu_require_tools mke2fs
@@ -82,6 +82,9 @@ emu_make_disk "$out/state.img" 64M "$out/empty"
 t1_s=$(date -u -d "$t1" +%s) || emu_fail "cannot read the clock $t1"
 clock() { date -u -d "@$1" +%Y-%m-%dT%H:%M:%S; }
 clocks=("$(clock "$t1_s")" "$(clock $((t1_s + half_year_s)))" "$(clock $((t1_s + half_year_s + 60)))")
+# Two CPUs: the firmware (SCHED_FIFO from the board file) on one, the
+# actuator-DAQ and the drive, free-running at the control period, on the other.
+export MRD_EMU_SMP=${MRD_EMU_SMP:-2}
 for boot in 1 2 3; do
   echo "emulated-board: boot $boot, clock ${clocks[boot - 1]}"
   rc=0

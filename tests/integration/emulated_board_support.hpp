@@ -83,6 +83,15 @@ inline std::vector<std::string> find_lines(const std::string& text, const std::s
   return found;
 }
 
+/// The first line of `text` that starts with `prefix` and contains `part`
+/// ("" when none).
+inline std::string find_line_with(const std::string& text, const std::string& prefix, const std::string& part) {
+  for (const auto& line : find_lines(text, prefix)) {
+    if (line.find(part) != std::string::npos) return line;
+  }
+  return "";
+}
+
 /// The first line of `text` that starts with `prefix` ("" when none).
 inline std::string find_line(const std::string& text, const std::string& prefix) {
   const auto lines = find_lines(text, prefix);
