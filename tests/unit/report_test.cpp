@@ -104,7 +104,7 @@ bool gnuplot_on_path() {
 
 #define REQUIRE_GNUPLOT()                                                   \
   do {                                                                      \
-    if (!gnuplot_on_path()) GTEST_SKIP() << "gnuplot is not installed"; \
+    if (!gnuplot_on_path()) FAIL() << "gnuplot is not installed (scripts/deps/core.list: gnuplot-nox)"; \
   } while (false)
 
 // Writes an executable shell script standing in for gnuplot.
