@@ -36,13 +36,7 @@ emu_fetch
 rootfs=$out/rootfs
 emu_rootfs "$rootfs" "can can-raw vcan $(emu_disk_modules)"
 cp "$(emu_bin mrd-firmware)" "$(emu_bin mrd-actuator-sim)" "$(emu_bin mrd-drive-sim)" "$rootfs/mrd/"
-# The one allowance for the emulator: software emulation of three programs at
-# the 1 kHz control period on a shared build machine delays frames by tens of
-# ms, so the DAQ stream's timeout ([control] sensor_timeout_ticks, 10 ticks on
-# a board) is widened to $MRD_EMU_SENSOR_TIMEOUT_TICKS (default 500); the
-# scheduler would otherwise abort the cycle as a sensor fault.
-if grep -q '^sensor_timeout_ticks' "$board"; then emu_fail "$board sets sensor_timeout_ticks already"; fi
-sed "s/^\[control\]\$/[control]\nsensor_timeout_ticks = ${MRD_EMU_SENSOR_TIMEOUT_TICKS:-500}/" "$board" >"$rootfs/mrd/board.toml"
+cp "$board" "$rootfs/mrd/board.toml"
 {
   echo "CYCLE_LIMIT_S=$cycle_limit_s"
   cat <<'SCENARIO'
