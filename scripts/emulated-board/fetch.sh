@@ -1,47 +1,62 @@
 #!/usr/bin/env bash
-# Fetches what the emulated arm64 board boots: Debian's arm64 kernel (the
-# version the linux-image-arm64 metapackage points at) and busybox-static,
-# with `apt-get download` (no install), unpacked with `dpkg -x` into
-#   $CACHE/kernel/   boot/vmlinuz-*, lib/modules/*/
-#   $CACHE/busybox/  bin/busybox
+# Fetches what the emulated arm64 board boots, all from Debian's archive with
+# `apt-get download` (no install), unpacked with `dpkg -x` into
+#   $CACHE/kernel/    boot/vmlinuz-*, boot/config-*, lib/modules/*/
+#                     (the version the linux-image-arm64 metapackage points at)
+#   $CACHE/busybox/   bin/busybox (busybox-static)
+#   $CACHE/iproute2/  bin/ip and the libraries it loads (libbpf1, libelf1,
+#                     zlib1g, libmnl0, libbsd0, libmd0, libcap2, libc6): busybox's
+#                     `ip` cannot configure a CAN controller (`type can`)
 # $CACHE defaults to .cache/emulated-board (git-ignored). A cache that is
-# already complete is used as is, without network.
-# Exit status: 0 ready, 77 cannot fetch (the caller skips), 1 other error.
+# already complete is used as is, without network. As root, a machine without
+# the arm64 package lists gets them (dpkg --add-architecture, apt-get update).
+# Exit status: 0 ready, 1 not ready (the reason is printed).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cache=${MRD_EMU_CACHE:-$root/.cache/emulated-board}
 mkdir -p "$cache"
 
-ready() { compgen -G "$cache/kernel/boot/vmlinuz-*" >/dev/null && [[ -x $cache/busybox/bin/busybox ]]; }
+ip_libs=(libbpf1 libelf1 zlib1g libmnl0 libbsd0 libmd0 libcap2 libc6)
+ready() {
+  compgen -G "$cache/kernel/boot/vmlinuz-*" >/dev/null && compgen -G "$cache/kernel/boot/config-*" >/dev/null &&
+    [[ -x $cache/busybox/bin/busybox && -x $cache/iproute2/bin/ip && -e $cache/iproute2/lib/ld-linux-aarch64.so.1 ]]
+}
 if ready; then
-  echo "fetch: using the cached kernel and busybox in $cache"
+  echo "fetch: using the cached kernel, busybox and iproute2 in $cache"
   exit 0
 fi
 
-skip() { echo "fetch: SKIP: $*" >&2; exit 77; }
-command -v apt-get >/dev/null || skip "no apt-get on this machine"
-dpkg --print-foreign-architectures | grep -qx arm64 || skip "arm64 is not a dpkg architecture here (run ./scripts/deps.sh)"
+fail() { echo "fetch: FAIL: $*" >&2; exit 1; }
+command -v apt-get >/dev/null || fail "no apt-get on this machine (Debian 12 is assumed)"
+command -v dpkg >/dev/null || fail "no dpkg on this machine"
 
-# The kernel version is not written anywhere in the code: ask the metapackage.
-kpkg=$(apt-cache depends linux-image-arm64:arm64 2>/dev/null | sed -n 's/^ *Depends: \(linux-image-[^ ]*-arm64\).*/\1/p' | head -n1)
-if [[ -z $kpkg ]]; then
-  if [[ $(id -u) -eq 0 ]]; then apt-get update -qq >/dev/null 2>&1 || true; fi
-  kpkg=$(apt-cache depends linux-image-arm64:arm64 2>/dev/null | sed -n 's/^ *Depends: \(linux-image-[^ ]*-arm64\).*/\1/p' | head -n1)
+resolve_kernel() {
+  apt-cache depends linux-image-arm64:arm64 2>/dev/null |
+    sed -n 's/^ *Depends: \(linux-image-[^ ]*-arm64\).*/\1/p' | head -n1
+}
+if ! dpkg --print-foreign-architectures | grep -qx arm64 || [[ -z $(resolve_kernel) ]]; then
+  [[ $(id -u) -eq 0 ]] ||
+    fail "no arm64 package lists here; as root: dpkg --add-architecture arm64 && apt-get update (or ./scripts/deps.sh)"
+  dpkg --print-foreign-architectures | grep -qx arm64 || dpkg --add-architecture arm64
+  apt-get update -qq >/dev/null 2>&1 || fail "apt-get update failed"
 fi
-[[ -n $kpkg ]] || skip "cannot resolve linux-image-arm64:arm64 (no arm64 package lists?)"
+# The kernel version is not written anywhere in the code: ask the metapackage.
+kpkg=$(resolve_kernel)
+[[ -n $kpkg ]] || fail "cannot resolve linux-image-arm64:arm64 (no arm64 package lists?)"
 kpkg=${kpkg%:arm64}
 
 dl=$cache/downloads
 mkdir -p "$dl"
-(
-  cd "$dl"
-  compgen -G "${kpkg}_*_arm64.deb" >/dev/null || apt-get download "${kpkg}:arm64" >/dev/null 2>&1 ||
-    { echo "fetch: SKIP: apt-get download ${kpkg}:arm64 failed" >&2; exit 77; }
-  compgen -G "busybox-static_*_arm64.deb" >/dev/null || apt-get download busybox-static:arm64 >/dev/null 2>&1 ||
-    { echo "fetch: SKIP: apt-get download busybox-static:arm64 failed" >&2; exit 77; }
-)
-rm -rf "$cache/kernel" "$cache/busybox"
-dpkg -x "$(ls "$dl"/${kpkg}_*_arm64.deb | head -n1)" "$cache/kernel"
-dpkg -x "$(ls "$dl"/busybox-static_*_arm64.deb | head -n1)" "$cache/busybox"
-ready || { echo "fetch: the packages did not contain boot/vmlinuz-* and bin/busybox" >&2; exit 1; }
-echo "fetch: $kpkg and busybox-static unpacked in $cache"
+deb() { compgen -G "$dl/${1}_*_arm64.deb" | head -n1; }
+for p in "$kpkg" busybox-static iproute2 "${ip_libs[@]}"; do
+  [[ -n $(deb "$p") ]] && continue
+  (cd "$dl" && apt-get download "$p:arm64" >"$dl/$p.log" 2>&1) ||
+    { cat "$dl/$p.log" >&2; fail "apt-get download $p:arm64 failed"; }
+done
+
+rm -rf "$cache/kernel" "$cache/busybox" "$cache/iproute2"
+dpkg -x "$(deb "$kpkg")" "$cache/kernel"
+dpkg -x "$(deb busybox-static)" "$cache/busybox"
+for p in iproute2 "${ip_libs[@]}"; do dpkg -x "$(deb "$p")" "$cache/iproute2"; done
+ready || fail "the packages did not contain boot/vmlinuz-*, boot/config-*, bin/busybox, bin/ip and ld-linux-aarch64.so.1"
+echo "fetch: $kpkg, busybox-static and iproute2 (with ${ip_libs[*]}) unpacked in $cache"

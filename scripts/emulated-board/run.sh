@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Closed loop on a real Linux kernel: cross-builds mrd-firmware and the peer
-# simulators for aarch64 (preset aarch64-release, static), boots Debian's
-# arm64 kernel under qemu-system-aarch64 -M virt with an initramfs holding
-# busybox, the CAN modules, the programs, the emulated board's board file and
-# the ground-motion record, and runs in the guest:
+# Closed loop on a real Linux kernel over vcan (the quick path): cross-builds
+# mrd-firmware and the peer simulators for aarch64, boots Debian's arm64
+# kernel under qemu-system-aarch64 -M virt with an initramfs holding busybox,
+# the CAN modules, the programs, the emulated board's board file and the
+# ground-motion record, and runs in the guest:
 #   1. for each run of $MRD_EMU_RUNS ("mode:idle_years" …): mrd-drive-sim,
 #      mrd-firmware and mrd-plant-sim on vcan0 in lockstep over the record's
 #      first $MRD_EMU_DURATION_S seconds, with a snapshot of
@@ -16,78 +16,31 @@
 # [run-N-firmware], [run-N-drive], [run-N-gpio], [cut-drive], [cut-firmware].
 #
 # Usage: run.sh RECORD OUT_DIR
-# Exit status: 0 the guest finished, 77 skipped (no QEMU, no cross compiler,
-# kernel not fetchable), 1 failure.
+# Exit status: 0 the guest finished, 1 failure or something missing (the
+# reason is printed).
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$(dirname "$0")/lib.sh"
 record=${1:?usage: run.sh RECORD OUT_DIR}
 out=${2:?usage: run.sh RECORD OUT_DIR}
 runs=${MRD_EMU_RUNS:-"passive-on:0.25 semi-active:0.5"}
 duration_s=${MRD_EMU_DURATION_S:-10}
-jobs=${MRD_EMU_JOBS:-$(nproc)}
-skip() { echo "emulated-board: SKIP: $*" >&2; exit 77; }
 
-command -v qemu-system-aarch64 >/dev/null || skip "qemu-system-aarch64 not installed (scripts/deps/board.list)"
-command -v aarch64-linux-gnu-g++ >/dev/null || skip "aarch64-linux-gnu-g++ not installed (scripts/deps/board.list)"
-command -v cpio >/dev/null || skip "cpio not installed"
-[[ -r $record ]] || skip "ground-motion record $record not readable"
-
-# 1. Cross build (incremental).
-build=$root/build/aarch64-release
-if [[ -z ${MRD_EMU_SKIP_BUILD:-} ]]; then
-  echo "emulated-board: cross-building for aarch64 in $build"
-  (cd "$root" && cmake --preset aarch64-release >/dev/null &&
-     cmake --build "$build" -j "$jobs" --target mrd-firmware mrd-plant-sim mrd-drive-sim) >"$out.build.log" 2>&1 ||
-    { tail -n 30 "$out.build.log" >&2; echo "emulated-board: cross build failed" >&2; exit 1; }
-fi
-bins=("$build/firmware/app/mrd-firmware" "$build/host_sim/peers/mrd-plant-sim" "$build/host_sim/peers/mrd-drive-sim")
-for b in "${bins[@]}"; do [[ -x $b ]] || { echo "emulated-board: missing $b" >&2; exit 1; }; done
-
-# 2. Kernel and busybox.
-set +e
-"$root/scripts/emulated-board/fetch.sh"
-rc=$?
-set -e
-((rc == 77)) && exit 77
-((rc == 0)) || exit 1
-cache=${MRD_EMU_CACHE:-$root/.cache/emulated-board}
-vmlinuz=$(ls "$cache"/kernel/boot/vmlinuz-* | head -n1)
-kver=${vmlinuz##*/vmlinuz-}
-kmod=$cache/kernel/lib/modules/$kver/kernel
-
-# 3. Initramfs.
+emu_require_tools
+[[ -r $record ]] || emu_fail "ground-motion record $record not readable"
 rm -rf "$out" && mkdir -p "$out"
-rootfs=$out/rootfs
-mkdir -p "$rootfs"/{bin,sbin,proc,sys,dev,tmp,modules,mrd}
-cp "$cache/busybox/bin/busybox" "$rootfs/bin/busybox"
-ln -s busybox "$rootfs/bin/sh"
-for m in net/can/can.ko net/can/can-raw.ko drivers/net/can/dev/can-dev.ko drivers/net/can/vcan.ko; do
-  src=$kmod/$m
-  if [[ -f $src ]]; then cp "$src" "$rootfs/modules/"; elif [[ -f $src.xz ]]; then xz -dc "$src.xz" >"$rootfs/modules/$(basename "$m")"; else
-    echo "emulated-board: kernel module $m not found in $kmod" >&2; exit 1; fi
-done
-cp "${bins[@]}" "$rootfs/mrd/"
-cp "$root/boards/emulated-arm64/board.toml" "$rootfs/mrd/board.toml"
-cp "$record" "$rootfs/mrd/record.csv"
+emu_cross_build "$out/build.log" mrd-firmware mrd-plant-sim mrd-drive-sim
+emu_fetch
 
+rootfs=$out/rootfs
+emu_rootfs "$rootfs" "can can-raw vcan"
+cp "$(emu_bin mrd-firmware)" "$(emu_bin mrd-plant-sim)" "$(emu_bin mrd-drive-sim)" "$rootfs/mrd/"
+cp "$emu_root/boards/emulated-arm64/board.toml" "$rootfs/mrd/board.toml"
+cp "$record" "$rootfs/mrd/record.csv"
 {
-  cat <<'INIT'
-#!/bin/sh
-/bin/busybox --install -s /bin
-export PATH=/bin:/sbin
-mount -t proc proc /proc
-mount -t sysfs sys /sys
-mount -t devtmpfs dev /dev
-mount -t debugfs none /sys/kernel/debug
-for m in can can-raw can-dev vcan; do insmod /modules/$m.ko || echo "EMU: insmod $m failed"; done
-ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
-echo "EMU: kernel $(uname -r), $(nproc) CPUs, $(ls /dev/gpiochip* 2>/dev/null)"
-cd /mrd
-tag() { sed "s/^/[$1] /" "$2"; }
-INIT
   echo "DURATION=$duration_s"
   echo "RUNS=\"$runs\""
-  cat <<'INIT'
+  cat <<'SCENARIO'
+ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
 case " $(cat /proc/cmdline) " in *" mrd_phase=cut "*) PHASE=cut ;; *) PHASE=lockstep ;; esac
 n=0
 [ "$PHASE" = lockstep ] && for r in $RUNS; do
@@ -128,28 +81,21 @@ tag cut-drive /tmp/drive2.log
 tag cut-firmware /tmp/fw2.log
 fi
 echo "EMU: done $PHASE"
-poweroff -f
-INIT
-} >"$rootfs/init"
-chmod +x "$rootfs/init"
-(cd "$rootfs" && find . | cpio -o -H newc --quiet | gzip -1) >"$out/initrd.gz"
+SCENARIO
+} >"$rootfs/mrd/scenario.sh"
+emu_pack "$rootfs" "$out/initrd.gz"
 
-# 4. Boot twice: the lockstep runs on one CPU (cross-CPU wake-ups are slow
-# under TCG), the command cut on two (drive and firmware each get a CPU, as
-# they would on separate hardware).
-boot() {  # phase smp
-  echo "emulated-board: booting $kver under qemu-system-aarch64 -smp $2 for the $1 phase"
-  set +e
-  timeout "${MRD_EMU_TIMEOUT_S:-900}" qemu-system-aarch64 -M virt -cpu cortex-a53 -smp "$2" -m 512 \
-    -kernel "$vmlinuz" -initrd "$out/initrd.gz" -append "console=ttyAMA0 quiet panic=-1 mrd_phase=$1" \
-    -nic none -nographic -no-reboot -monitor none -serial stdio </dev/null >"$out/serial-$1.log" 2>&1
-  local rc=$?
-  set -e
-  tr -d '\r' <"$out/serial-$1.log" >>"$out/serial.txt"
-  grep -q "^EMU: done $1" "$out/serial-$1.log" ||
-    { echo "emulated-board: the $1 phase did not finish (qemu exit $rc)" >&2; tail -n 40 "$out/serial-$1.log" >&2; exit 1; }
-}
+# Two boots: the lockstep runs on one CPU (cross-CPU wake-ups are slow under
+# TCG), the command cut on two (drive and firmware each get a CPU, as they
+# would on separate hardware).
 : >"$out/serial.txt"
-boot lockstep 1
-boot cut 2
+for phase in lockstep:1 cut:2; do
+  name=${phase%%:*}
+  echo "emulated-board: booting $emu_kver under qemu-system-aarch64 -smp ${phase##*:} for the $name phase"
+  rc=0
+  MRD_EMU_SMP=${phase##*:} emu_boot "$out/initrd.gz" "mrd_phase=$name" "$out/serial-$name.log" || rc=$?
+  cat "$out/serial-$name.log" >>"$out/serial.txt"
+  grep -q "^EMU: done $name" "$out/serial-$name.log" ||
+    { tail -n 40 "$out/serial-$name.log" >&2; emu_fail "the $name phase did not finish (qemu exit $rc)"; }
+done
 echo "emulated-board: guest finished both phases ($out/serial.txt)"

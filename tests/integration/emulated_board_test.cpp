@@ -14,114 +14,37 @@
 //     (/sys/kernel/debug/gpio) shows line 0 held high by mrd-firmware;
 //  3. after `kill -9` of the free-running firmware the drive applies its safe
 //     current at its first tick past the 20 ms timeout.
-// Skipped in the sanitizer build and where QEMU, the cross compiler or the
-// kernel package cannot be had.
+// Fails when QEMU, the cross compiler or the kernel cannot be had; skipped
+// only in the sanitizer build.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <map>
-#include <regex>
-#include <sstream>
-#include <string>
-
-#include "quantized_reference.hpp"
-#include "host_sim/run/closed_loop.hpp"
-#include "host_sim/run/motions.hpp"
-#include "mrd/units.hpp"
+#include "emulated_board_support.hpp"
 
 namespace mrd {
 namespace {
 
-namespace fs = std::filesystem;
+using testing::GuestRun;
+using testing::find_line;
+using testing::key_values;
 constexpr double kDurationS = 10.0;
-
-struct GuestRun {
-  control::ControlMode mode;
-  double idle_years;
-  double rel_tol;
-};
 constexpr GuestRun kRuns[] = {{control::ControlMode::kPassiveOn, 0.25, 1e-9},
                               {control::ControlMode::kSemiActive, 0.5, 1e-6}};
 
-std::map<std::string, double> key_values(const std::string& line) {
-  std::map<std::string, double> kv;
-  const std::regex re(R"(([a-z0-9_]+)=(-?[0-9.eE+-]+))");
-  for (std::sregex_iterator it(line.begin(), line.end(), re), end; it != end; ++it)
-    kv[(*it)[1]] = std::stod((*it)[2]);
-  return kv;
-}
-
-std::string find_line(const std::string& text, const std::string& prefix) {
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind(prefix, 0) == 0) return line;
-  }
-  return "";
-}
-
 TEST(EmulatedBoard, ClosedLoopOverSocketCanEqualsTheInProcessSimulation) {
-#ifdef MRD_SANITIZE_BUILD
-  GTEST_SKIP() << "the emulated board runs in the release build only (QEMU under ASan would take too long)";
-#endif
-  const fs::path record = fs::path(MRD_SHARED_DIR) / "ground_motions" / "hachinohe_ns.csv";
-  if (!fs::exists(record)) GTEST_SKIP() << "shared Hachinohe record not found at " << record;
-  const fs::path out = fs::path(MRD_BINARY_DIR) / "emulated-board";
-  std::string runs;
-  for (const auto& r : kRuns) runs += std::string(runs.empty() ? "" : " ") + control::mode_name(r.mode) + ":" + std::to_string(r.idle_years);
-  const std::string cmd = "MRD_EMU_RUNS='" + runs + "' MRD_EMU_DURATION_S=" +
-                          std::to_string(static_cast<int>(kDurationS)) + " '" + MRD_SOURCE_DIR +
-                          "/scripts/emulated-board/run.sh' '" + record.string() + "' '" + out.string() + "'";
-  const int status = std::system(cmd.c_str());
-  ASSERT_NE(status, -1);
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 77) GTEST_SKIP() << "emulated board unavailable (see the log above)";
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "run.sh failed, see " << out;
-
-  std::ifstream in(out / "serial.txt");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string serial = ss.str();
+  MRD_SKIP_IN_SANITIZER_BUILD();
+  const auto record = testing::hachinohe_record();
+  ASSERT_TRUE(testing::fs::exists(record)) << "shared Hachinohe record not found at " << record;
+  const auto out = testing::emulated_out_dir("vcan");
+  ASSERT_TRUE(testing::run_emulated_script("MRD_EMU_RUNS='" + testing::runs_argument(kRuns) +
+                                               "' MRD_EMU_DURATION_S=" + std::to_string(static_cast<int>(kDurationS)),
+                                           "run.sh", {record.string(), out.string()}))
+      << "run.sh failed (reason above), see " << out;
+  const std::string serial = testing::read_text(out / "serial.txt");
 
   // 1. Peaks against the in-process run with the same quantization.
-  const auto motion = run::load_study_motion(record, run::kThesisPga_g, 1e-3, kDurationS);
-  for (std::size_t i = 0; i < std::size(kRuns); ++i) {
-    const GuestRun& r = kRuns[i];
-    const std::string tag = "[run-" + std::to_string(i + 1) + "-";
-    SCOPED_TRACE(control::mode_name(r.mode));
-    const std::string plant_line = find_line(serial, tag + "plant] mrd-plant-sim: summary");
-    ASSERT_FALSE(plant_line.empty()) << "no plant summary in " << out / "serial.txt";
-    const auto guest = key_values(plant_line);
-    plant::PlantSpec spec;
-    spec.idle_time_s = units::years_to_s(r.idle_years);
-    testing::QuantizedController controller(run::make_controller(r.mode, 1e-3));
-    const plant::PlantSummary ref = run::run_closed_loop(spec, motion.accel_m_s2, controller);
-    EXPECT_EQ(guest.at("ticks"), static_cast<double>(motion.accel_m_s2.size()));
-    const std::pair<const char*, double> peaks[] = {
-        {"peak_base_displacement_m", ref.peak_base_displacement_m},
-        {"peak_damper_force_n", ref.peak_damper_force_n},
-        {"peak_superstructure_accel_m_s2", ref.peak_superstructure_accel_m_s2},
-        {"peak_base_accel_m_s2", ref.peak_base_accel_m_s2},
-        {"peak_current_a", ref.peak_current_a},
-        {"final_participant_ratio", ref.final_participant_ratio},
-    };
-    for (const auto& [key, want] : peaks) {
-      const double got = guest.at(key);
-      std::printf("emulated board vs in-process, %s: %-32s %.17g vs %.17g (relative %+.2e)\n",
-                  control::mode_name(r.mode), key, got, want, got / want - 1.0);
-      EXPECT_NEAR(got, want, r.rel_tol * std::fabs(want)) << key;
-    }
-    EXPECT_GT(ref.peak_current_a, 2.0) << "the coil was driven";
-    const auto fw = key_values(find_line(serial, tag + "firmware] mrd-firmware: summary"));
-    ASSERT_FALSE(fw.empty());
-    EXPECT_EQ(fw.at("ticks"), static_cast<double>(motion.accel_m_s2.size()));
-    EXPECT_EQ(fw.at("rejected"), 0.0);
-    EXPECT_EQ(fw.at("tx_errors"), 0.0);
-  }
+  for (std::size_t i = 0; i < std::size(kRuns); ++i)
+    testing::expect_guest_run_equals_in_process(serial, static_cast<int>(i + 1), kRuns[i], record, kDurationS,
+                                                "emulated board (vcan)");
 
   // 2. The kernel saw line 0 of the PL061 driven high by mrd-firmware.
   const std::smatch chip = [&] {
