@@ -5,12 +5,14 @@
 // sized to an effect-to-noise ratio drawn log-uniform from 0.25 to 64.
 //
 // Tallied and printed as a table:
-//   (a) single catalogue effects: the right set named, per ENR bin;
-//   (b) clean records: anything named is a false positive;
-//   (c) out-of-catalogue effects: answered with no catalogue effect (and,
-//       once the workflow gives a verdict, "unexplained").
+//   (a) single catalogue effects: the right set named and "explained", per ENR bin;
+//   (b) clean records: anything named, or a verdict other than "none", is a false positive;
+//   (c) out-of-catalogue effects: no catalogue effect named, per ENR bin, and
+//       above the limit the verdict "unexplained".
 // Which effects count as catalogued is read from the workflow's catalogue by
-// name, so an effect the workflow learns moves from (c) to (a).
+// name; a test checks that the generator's own split agrees with it. A
+// low-pass or a series compliance counts by its ENR beyond the best pure
+// delay (independent_synth.hpp), what a time_delay cannot reproduce.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,21 +38,22 @@ namespace {
 
 // ---- Targets and floors --------------------------------------------------------
 // The targets are the project's goals for the workflow; the study prints the
-// rates against them. The floors are what the workflow reaches today on the
-// CI seed set (5000-5059: right set 17/19 = 89 %, false positives 0/10,
-// out-of-catalogue unexplained 6/10 = 60 %), each one case below it, so a
-// regression fails the test; the gap between floor and target is open work,
-// named in the README.
+// rates against them. The floors come from seed sets CI does not run,
+// measured with this generator and workflow: seeds 7000-7059 gave right set
+// 20/20, out-of-catalogue unexplained 6/7; seeds 9000-9059 gave 15/16 and
+// 7/8 (false positives 0/10 on both). Each floor is the lower of the two less
+// one case (14/16 = 0.875, 5/7 = 0.71), rounded down, so a regression on the
+// CI set (5000-5059: 16/17, 7/8) of more than a case or two fails the test.
 /// Stated detection limit: effects at or above this ENR must be found.
 constexpr double kDetectionLimitEnr = 4.0;
 /// Right set named, single catalogue effects at or above the limit.
 constexpr double kTargetRightSetRate = 0.95;
-constexpr double kFloorRightSetRate = 0.84;
+constexpr double kFloorRightSetRate = 0.85;
 /// Clean records with anything named.
 constexpr double kMaxFalsePositiveRate = 0.05;
 /// Out-of-catalogue effects at or above the limit answered "unexplained".
 constexpr double kTargetOutOfCatalogueUnexplainedRate = 0.90;
-constexpr double kFloorOutOfCatalogueUnexplainedRate = 0.50;
+constexpr double kFloorOutOfCatalogueUnexplainedRate = 0.70;
 
 constexpr std::size_t kCases = MRD_INDEPENDENT_STUDY_CASES;
 /// ENR bin edges: <1, 1–2, 2–4, 4–8, 8–16, ≥16.
