@@ -16,9 +16,9 @@
 ///   none               no effect joined, and the held-out residual is not
 ///                      structured (signatures.hpp: < kStructuredShare) or
 ///                      within 1.25 × the baseline's expected gap, and the
-///                      gap on the fit samples is below √2 × the held-out
-///                      one (else the residual lives where the held-out
-///                      blocks do not reach: unexplained)
+///                      RMS residual (N) on the fit samples is below 3 ×
+///                      the held-out one (else the residual lives where the
+///                      held-out blocks do not reach: unexplained)
 ///   explained          effects joined, and the structure they leave on the
 ///                      held-out samples (signatures.hpp) is at most 25 % of
 ///                      the noise there or at most 5 % of the power they
