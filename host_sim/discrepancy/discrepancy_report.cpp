@@ -312,6 +312,14 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
   j["rounds"] = json::array();
   for (const auto& rd : r.rounds) j["rounds"].push_back(round_json(rd));
   j["dropped"] = effects_json(r.dropped);
+  if (r.filter_check.checked) {
+    // filter_check.hpp: the selected delay against a first-order low-pass in its place.
+    j["delay_against_lowpass"] = json{{"delay_s", r.filter_check.delay_s},
+                                      {"lowpass_tau_s", r.filter_check.tau_s},
+                                      {"delta_bic", r.filter_check.delta_bic},
+                                      {"held_out_reduction", r.filter_check.held_out_reduction},
+                                      {"lowpass_better", r.filter_check.lowpass_better}};
+  }
   j["regions"] = json::array();
   for (const auto& s : r.regions) j["regions"].push_back(region_json(s));
   j["time_windows"] = json::array();

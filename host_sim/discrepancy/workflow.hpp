@@ -15,11 +15,15 @@
 ///   baseline_mismatch  check_baseline() failed: no effect is fitted
 ///   none               no effect joined, and the held-out residual is not
 ///                      structured (signatures.hpp: < kStructuredShare) or
-///                      within 1.25 × the baseline's expected gap
+///                      within 1.25 × the baseline's expected gap, and the
+///                      RMS residual (N) on the fit samples is below 3 ×
+///                      the held-out one (else the residual lives where the
+///                      held-out blocks do not reach: unexplained)
 ///   explained          effects joined, and the structure they leave on the
 ///                      held-out samples (signatures.hpp) is at most 25 % of
 ///                      the noise there or at most 5 % of the power they
-///                      removed
+///                      removed, and a time_delay among them is not better
+///                      described as a low-pass (filter_check.hpp)
 ///   unexplained        otherwise; the effects that joined are then reported
 ///                      as rejected, with what the residual looks like
 /// </pre>
@@ -39,6 +43,10 @@
 ///   idle_settling / force_offset   settling scales the force (odd in v, vanishing at v = 0); an offset
 ///                                  is even and constant
 ///   thermal_fade / force_offset    a fade scales the force and grows; an offset is constant
+///   time_delay / low-pass (not     a low-pass is a delay plus a term in d²F/dt², growing with frequency:
+///   in the catalogue)              the delay replaced by a fitted first-order low-pass must not fit
+///                                  better by ΔBIC ≥ min_delta_bic and on the held-out samples
+///                                  (filter_check.hpp); if it does, the verdict is unexplained
 ///   time_delay / backlash          a delay shifts every part of the cycle alike; play flattens the
 ///                                  force only after reversals, for a displacement, not a time
 ///   gas_spring / time_delay        a spring is in phase with x at every frequency; a delay's
@@ -73,6 +81,7 @@
 #include "host_sim/discrepancy/baseline.hpp"
 #include "host_sim/discrepancy/baseline_check.hpp"
 #include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/discrepancy/filter_check.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 #include "host_sim/discrepancy/regions.hpp"
 #include "host_sim/discrepancy/signatures.hpp"
@@ -138,6 +147,8 @@ struct DiscrepancyResult {
   std::vector<Effect> rejected;
   std::vector<double> rejected_params;
   std::vector<Effect> dropped;     ///< chosen, then removed by the backward check
+  /// A selected time_delay against a first-order low-pass (filter_check.hpp).
+  FilterCheck filter_check;
   BaselineCheck baseline_check;
   std::string baseline_name;
   double expected_gap = 0.0;       ///< the baseline's own

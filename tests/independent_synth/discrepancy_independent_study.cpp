@@ -5,17 +5,20 @@
 // sized to an effect-to-noise ratio drawn log-uniform from 0.25 to 64.
 //
 // Tallied and printed as a table:
-//   (a) single catalogue effects: the right set named, per ENR bin;
-//   (b) clean records: anything named is a false positive;
-//   (c) out-of-catalogue effects: answered with no catalogue effect (and,
-//       once the workflow gives a verdict, "unexplained").
+//   (a) single catalogue effects: the right set named and "explained", per ENR bin;
+//   (b) clean records: anything named, or a verdict other than "none", is a false positive;
+//   (c) out-of-catalogue effects: no catalogue effect named, per ENR bin, and
+//       above the limit the verdict "unexplained".
 // Which effects count as catalogued is read from the workflow's catalogue by
-// name, so an effect the workflow learns moves from (c) to (a).
+// name; a test checks that the generator's own split agrees with it. A
+// low-pass or a series compliance counts by its ENR beyond the best pure
+// delay (independent_synth.hpp), what a time_delay cannot reproduce.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -35,21 +38,22 @@ namespace {
 
 // ---- Targets and floors --------------------------------------------------------
 // The targets are the project's goals for the workflow; the study prints the
-// rates against them. The floors are what the workflow reaches today on the
-// CI seed set (5000-5059: right set 17/19 = 89 %, false positives 0/10,
-// out-of-catalogue unexplained 6/10 = 60 %), each one case below it, so a
-// regression fails the test; the gap between floor and target is open work,
-// named in the README.
+// rates against them. The floors come from seed sets CI does not run,
+// measured with this generator and workflow: seeds 7000-7059 gave right set
+// 20/20, out-of-catalogue unexplained 6/7; seeds 9000-9059 gave 15/16 and
+// 7/8 (false positives 0/10 on both). Each floor is the lower of the two less
+// one case (14/16 = 0.875, 5/7 = 0.71), rounded down, so a regression on the
+// CI set (5000-5059: 16/17, 7/8) of more than a case or two fails the test.
 /// Stated detection limit: effects at or above this ENR must be found.
 constexpr double kDetectionLimitEnr = 4.0;
 /// Right set named, single catalogue effects at or above the limit.
 constexpr double kTargetRightSetRate = 0.95;
-constexpr double kFloorRightSetRate = 0.84;
+constexpr double kFloorRightSetRate = 0.85;
 /// Clean records with anything named.
 constexpr double kMaxFalsePositiveRate = 0.05;
 /// Out-of-catalogue effects at or above the limit answered "unexplained".
 constexpr double kTargetOutOfCatalogueUnexplainedRate = 0.90;
-constexpr double kFloorOutOfCatalogueUnexplainedRate = 0.50;
+constexpr double kFloorOutOfCatalogueUnexplainedRate = 0.70;
 
 constexpr std::size_t kCases = MRD_INDEPENDENT_STUDY_CASES;
 /// ENR bin edges: <1, 1–2, 2–4, 4–8, 8–16, ≥16.
@@ -64,12 +68,12 @@ std::string verdict_of(const mrd::discrepancy::DiscrepancyResult& r) {
   return mrd::discrepancy::verdict_name(r.verdict);
 }
 
-/// Case i: clean (2 in 12), each catalogue effect alone (7 in 12), an effect
-/// outside the catalogue (3 in 12, the four in turn).
+/// Case i: clean (2 in 12), one catalogue effect alone (7 in 12, the eight
+/// in turn), an effect outside the catalogue (3 in 12, the four in turn).
 std::vector<indep::Effect> truth_for_case(std::size_t i) {
   const std::size_t slot = i % 12;
   if (slot < 2) return {};
-  if (slot < 9) return {indep::kCatalogueEffects[slot - 2]};
+  if (slot < 9) return {indep::kCatalogueEffects[((i / 12) * 7 + (slot - 2)) % indep::kCatalogueEffects.size()]};
   return {indep::kOutOfCatalogueEffects[((i / 12) * 3 + (slot - 9)) % indep::kOutOfCatalogueEffects.size()]};
 }
 
@@ -110,6 +114,14 @@ std::string named_label(const mrd::discrepancy::DiscrepancyResult& r) {
   return s.empty() ? "none" : s;
 }
 
+// The generator's split of its effects into catalogued and not must be the
+// workflow's: an effect the workflow learns has to move in the generator too,
+// with the form the study then expects it to name.
+TEST(DiscrepancyIndependentStudy, GeneratorAndWorkflowAgreeOnTheCatalogue) {
+  for (const auto e : indep::kCatalogueEffects) EXPECT_TRUE(workflow_knows(e)) << indep::effect_name(e);
+  for (const auto e : indep::kOutOfCatalogueEffects) EXPECT_FALSE(workflow_knows(e)) << indep::effect_name(e);
+}
+
 struct Tally {
   int hit = 0, total = 0;
   void add(bool ok) {
@@ -128,6 +140,9 @@ struct Tally {
 TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
   const char* base_env = std::getenv("MRD_INDEPENDENT_STUDY_SEED_BASE");
   const std::uint64_t seed_base = base_env ? std::strtoull(base_env, nullptr, 10) : 5000u;
+  // MRD_INDEPENDENT_STUDY_ONLY=<seed>: that case alone, with the workflow's findings printed.
+  const char* only_env = std::getenv("MRD_INDEPENDENT_STUDY_ONLY");
+  const std::uint64_t only = only_env ? std::strtoull(only_env, nullptr, 10) : 0u;
   const mrd::discrepancy::DiscrepancyOptions opt;
 
   std::map<std::string, std::array<Tally, 6>> detect;      // effect → per ENR bin: right set named
@@ -139,7 +154,10 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
   std::vector<std::string> misses;
   double workflow_s = 0.0, generate_s = 0.0;
 
+  std::size_t cases_run = 0;
   for (std::size_t i = 0; i < kCases; ++i) {
+    if (only_env && seed_base + i != only) continue;
+    ++cases_run;
     indep::Spec spec;
     spec.effects = truth_for_case(i);
     spec.seed = seed_base + i;
@@ -151,10 +169,26 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
     generate_s += std::chrono::duration<double>(t1 - t0).count();
     workflow_s += std::chrono::duration<double>(t2 - t1).count();
 
+    if (only_env) {
+      std::printf("seed %llu: %s\n", static_cast<unsigned long long>(spec.seed), c.description.c_str());
+      for (const auto& f : r.findings) std::printf("  %s\n", f.c_str());
+      std::printf("  baseline residual: structured %.3f;", r.signatures_before.structured_share);
+      for (const auto& sg : r.signatures_before.signatures) std::printf(" %s %.3f", sg.name.c_str(), sg.held_out_share);
+      std::printf("\n");
+      if (r.filter_check.checked) {
+        std::printf("  delay %.4f s against a low-pass: tau %.4f s, delta BIC %.1f, held-out %.3f\n",
+                    r.filter_check.delay_s, r.filter_check.tau_s, r.filter_check.delta_bic,
+                    r.filter_check.held_out_reduction);
+      }
+    }
     const std::string named = named_label(r);
     const std::string verdict = verdict_of(r);
     const std::string truth = c.effects.empty() ? "none" : std::string(indep::effect_name(c.effects[0]));
-    const double enr = c.enr.empty() ? 0.0 : c.enr[0];
+    // A low-pass or a series compliance counts by what no pure delay reproduces
+    // (independent_synth.hpp): below the noise, time_delay describes it.
+    const double enr = c.enr.empty()                       ? 0.0
+                       : std::isnan(c.enr_beyond_delay[0]) ? c.enr[0]
+                                                           : c.enr_beyond_delay[0];
     named_for[truth][named]++;
     bool ok = true;
     if (c.effects.empty()) {
@@ -207,7 +241,7 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
               100.0 * detect_all_above.rate(), 100.0 * kTargetRightSetRate, 100.0 * kFloorRightSetRate);
   std::printf("\n(b) clean records with anything named: %s (%.0f %%, allowed %.0f %%)\n", clean_fp.text().c_str(),
               100.0 * clean_fp.rate(), 100.0 * kMaxFalsePositiveRate);
-  std::printf("\n(c) out-of-catalogue effect: no catalogue effect named, by ENR\n");
+  std::printf("\n(c) out-of-catalogue effect: no catalogue effect named, by ENR (low-pass, compliance: beyond the best delay)\n");
   std::printf("%-20s", "effect");
   for (const char* b : kBinNames) std::printf("%8s", b);
   std::printf("\n");
@@ -236,7 +270,7 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
 
   EXPECT_LE(clean_fp.rate(), kMaxFalsePositiveRate) << "false positives on clean records";
   // Rates over fewer cases (the sanitizer build's 12) are too coarse for the floors.
-  if (kCases >= 60) {
+  if (cases_run >= 60) {
     EXPECT_GE(detect_all_above.rate(), kFloorRightSetRate) << "right set above ENR " << kDetectionLimitEnr;
     EXPECT_GE(ooc_unexplained_above.rate(), kFloorOutOfCatalogueUnexplainedRate)
         << "out-of-catalogue effects unexplained";

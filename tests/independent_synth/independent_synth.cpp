@@ -29,9 +29,12 @@ SizeRange size_range(Effect e) {
     case Effect::coil_lag: return {1e-5, 5.0};               // tau scale − 1
     case Effect::force_offset: return {0.1, 15.0e3};         // |F_0|, N: 6 % of a 250 kN load cell
     case Effect::tanh_transition: return {0.0, 0.0};         // drawn, not tuned
-    case Effect::direction_asymmetry: return {1e-6, 0.5};    // |a|
+    case Effect::direction_asymmetry: return {1e-6, 0.4};    // |a|: up to a 7:3 ratio
     case Effect::force_lowpass: return {1e-7, 0.05};         // s
     case Effect::series_compliance: return {1e-13, 1e-7};    // 1 / k, m/N
+    // Effective fluid mass ρ L A_p²/A_gap, kg: 3.6 t/m³ over a 0.3 m gap with A_p²/A_gap of 2 m²
+    // (a 0.2 m piston, a 1 mm annulus) gives about 2 t; the range goes 5× beyond to span detection.
+    case Effect::fluid_inertia: return {1e-2, 1.0e4};
   }
   return {0.0, 0.0};
 }
@@ -55,8 +58,9 @@ void set_size(EffectParams& p, Effect e, double size, const Variation& v) {
     case Effect::coil_lag: p.coil_tau_scale = 1.0 + size; break;
     case Effect::force_offset: p.force_offset_n = v.sign * size; break;
     case Effect::tanh_transition: break;
-    case Effect::direction_asymmetry: p.extension_gain = v.sign * size; break;
+    case Effect::direction_asymmetry: p.asymmetry = v.sign * size; break;
     case Effect::force_lowpass: p.force_filter_s = size; break;
+    case Effect::fluid_inertia: p.fluid_mass_kg = size; break;
     case Effect::series_compliance:
       p.series_stiffness_n_m = 1.0 / size;
       p.series_damping_n_s_m = v.ratio / size;
@@ -164,6 +168,7 @@ std::string_view effect_name(Effect e) noexcept {
     case Effect::direction_asymmetry: return "direction_asymmetry";
     case Effect::force_lowpass: return "force_lowpass";
     case Effect::series_compliance: return "series_compliance";
+    case Effect::fluid_inertia: return "fluid_inertia";
   }
   return "?";
 }
@@ -192,7 +197,8 @@ EffectParams without(EffectParams p, Effect e) {
     case Effect::coil_lag: p.coil_tau_scale = null.coil_tau_scale; break;
     case Effect::force_offset: p.force_offset_n = null.force_offset_n; break;
     case Effect::tanh_transition: p.tanh_velocity_m_s = null.tanh_velocity_m_s; break;
-    case Effect::direction_asymmetry: p.extension_gain = null.extension_gain; break;
+    case Effect::direction_asymmetry: p.asymmetry = null.asymmetry; break;
+    case Effect::fluid_inertia: p.fluid_mass_kg = null.fluid_mass_kg; break;
     case Effect::force_lowpass: p.force_filter_s = null.force_filter_s; break;
     case Effect::series_compliance:
       p.series_stiffness_n_m = null.series_stiffness_n_m;
@@ -342,6 +348,41 @@ Case generate(const Spec& spec) {
     Scenario off = sc;
     off.effects = without(sc.effects, e);
     c.enr.push_back(effect_to_noise_ratio(c.clean_force_n, noise_free_force(off, t_true), c.force_noise_rms_n));
+  }
+
+  // What of a filter-like effect the best pure delay leaves: a grid of delays, then golden section.
+  for (const Effect e : spec.effects) {
+    double beyond = std::numeric_limits<double>::quiet_NaN();
+    if (e == Effect::force_lowpass || e == Effect::series_compliance) {
+      Scenario off = sc;
+      off.effects = without(sc.effects, e);
+      const FineRun raw = simulate(off);
+      const auto enr_at = [&](double d_s) {
+        return effect_to_noise_ratio(c.clean_force_n, sample_force(raw, t_true, off.effects.force_delay_s + d_s),
+                                     c.force_noise_rms_n);
+      };
+      constexpr double kStep_s = 5e-4;
+      int best = 0;
+      double best_enr = enr_at(0.0);
+      for (int g = 1; g <= 200; ++g) {
+        const double r = enr_at(g * kStep_s);
+        if (r < best_enr) {
+          best = g;
+          best_enr = r;
+        }
+      }
+      double a = std::max(best - 1, 0) * kStep_s, b = (best + 1) * kStep_s;
+      for (int it = 0; it < 30; ++it) {
+        const double m1 = a + (b - a) / 3.0, m2 = b - (b - a) / 3.0;
+        if (enr_at(m1) < enr_at(m2)) {
+          b = m2;
+        } else {
+          a = m1;
+        }
+      }
+      beyond = std::min(best_enr, enr_at(0.5 * (a + b)));
+    }
+    c.enr_beyond_delay.push_back(beyond);
   }
 
   // The record.

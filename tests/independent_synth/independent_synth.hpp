@@ -23,7 +23,7 @@
 namespace indep {
 
 enum class Effect {
-  // The seven effects of the workflow's catalogue (same names).
+  // Eight effects of the workflow's catalogue (same names).
   idle_settling,
   backlash,
   gas_spring,
@@ -31,18 +31,19 @@ enum class Effect {
   time_delay,
   coil_lag,
   force_offset,
+  direction_asymmetry,
   // Effects the workflow has no model of.
   tanh_transition,
-  direction_asymmetry,
   force_lowpass,
   series_compliance,
+  fluid_inertia,
 };
 
 inline constexpr std::array kCatalogueEffects{Effect::idle_settling, Effect::backlash,   Effect::gas_spring,
                                               Effect::thermal_fade,  Effect::time_delay, Effect::coil_lag,
-                                              Effect::force_offset};
-inline constexpr std::array kOutOfCatalogueEffects{Effect::tanh_transition, Effect::direction_asymmetry,
-                                                   Effect::force_lowpass, Effect::series_compliance};
+                                              Effect::force_offset,  Effect::direction_asymmetry};
+inline constexpr std::array kOutOfCatalogueEffects{Effect::tanh_transition, Effect::force_lowpass,
+                                                   Effect::series_compliance, Effect::fluid_inertia};
 
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;
 [[nodiscard]] bool in_catalogue(Effect e) noexcept;
@@ -80,6 +81,11 @@ struct Case {
   std::vector<Effect> effects;
   std::vector<double> target_enr;       ///< per effect (NaN where the effect has no size to tune)
   std::vector<double> enr;              ///< per effect, achieved, with the others present
+  /// Per effect, for force_lowpass and series_compliance (whose leading term
+  /// is a delay of the force): min over d of RMS(force − force without the
+  /// effect delayed by d) / RMS(noise), what no pure delay reproduces. NaN
+  /// for the other effects.
+  std::vector<double> enr_beyond_delay;
   EffectParams params;
   SensorModel sensors;
   double force_noise_rms_n = 0.0;       ///< RMS of the force noise actually added

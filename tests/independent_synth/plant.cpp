@@ -63,7 +63,7 @@ struct DamperLaw {
     const double f = e.tanh_velocity_m_s > 0.0
                          ? std::tanh(v / e.tanh_velocity_m_s) * (yield_n + viscous_n_s_m * std::abs(v))
                          : transition_factor(v) * (yield_n * sgn(v) + viscous_n_s_m * v);
-    return v > 0.0 ? f * (1.0 + e.extension_gain) : f;
+    return f * (v > 0.0 ? 1.0 + e.asymmetry : (v < 0.0 ? 1.0 - e.asymmetry : 1.0));
   }
 };
 
@@ -83,13 +83,19 @@ class MotionStepper {
     for (const auto& c : m.sines) {
       const double w = 2.0 * std::numbers::pi * c.frequency_hz;
       phasors_.push_back({std::cos(c.phase_rad), std::sin(c.phase_rad), std::cos(w * h), std::sin(w * h),
-                          c.amplitude_m, c.amplitude_m * w});
+                          c.amplitude_m, c.amplitude_m * w, c.amplitude_m * w * w});
     }
   }
   /// Displacement and velocity at t_j, and the displacement at t_(j+1).
   [[nodiscard]] double x() const { return x_at(0.0, false); }
   [[nodiscard]] double v() const { return x_at(0.0, true); }
   [[nodiscard]] double x_next() const { return x_at(h_, false); }
+  /// Acceleration at t_j.
+  [[nodiscard]] double a() const {
+    double sum = 0.0;
+    for (const auto& p : phasors_) sum -= p.amp_m_s2 * p.s;
+    return sum;
+  }
   void step() {
     ++j_;
     for (auto& p : phasors_) {
@@ -101,7 +107,7 @@ class MotionStepper {
 
  private:
   struct Phasor {
-    double c, s, cw, sw, amp_m, amp_m_s;
+    double c, s, cw, sw, amp_m, amp_m_s, amp_m_s2;
   };
   [[nodiscard]] double x_at(double ahead_s, bool velocity) const {
     const double t = static_cast<double>(j_) * h_ + ahead_s;
@@ -160,6 +166,7 @@ FineRun simulate(const Scenario& s) {
   double channel_n = e.force_offset_n;
 
   MotionStepper motion(s.motion, h);
+  double vd_before = s.motion.velocity_m_s(0.0);
   for (std::size_t j = 0; j < n; ++j, motion.step()) {
     const double t = static_cast<double>(j) * h;
     const double xa = motion.x();
@@ -193,7 +200,11 @@ FineRun simulate(const Scenario& s) {
     }
 
     const double fd = damper.force_n(vd);
-    const double f = fd + e.gas_stiffness_n_m * xd * (1.0 + e.gas_nonlinearity_per_m2 * xd * xd) + e.force_offset_n;
+    // Rod acceleration: the actuator's (exact) when the rod follows it rigidly, else a backward difference.
+    const double ad = !play && !compliant ? motion.a() : (j > 0 ? (vd - vd_before) / h : 0.0);
+    vd_before = vd;
+    const double f = fd + e.gas_stiffness_n_m * xd * (1.0 + e.gas_nonlinearity_per_m2 * xd * xd) +
+                     e.fluid_mass_kg * ad + e.force_offset_n;
     // The filter's output at t_j has seen the force up to t_(j−1), held over each step.
     run.force_channel_n[j] = e.force_filter_s > 0.0 ? channel_n : f;
     channel_n += filter_gain * (f - channel_n);

@@ -4,7 +4,8 @@
 /// oversampling factor): coil current (Eq. 4.5) exact for a command that
 /// steps at any instant, rod motion through free play (hard or smooth) or a
 /// series compliance, displaced volume and participant ratio (chapter 5),
-/// fluid temperature, and the force channel (offset, low-pass, delay).
+/// fluid temperature, the fluid column's inertia, and the force channel
+/// (offset, low-pass, delay).
 
 #include <cstddef>
 #include <vector>
@@ -41,17 +42,23 @@ struct EffectParams {
   double coil_tau_scale = 1.0;
   // force_offset: load-cell zero, N.
   double force_offset_n = 0.0;
+  // direction_asymmetry: the damper's force multiplied by 1 + a while
+  // extending (rod velocity > 0) and by 1 − a while compressing, about the
+  // damper's mean characteristic.
+  double asymmetry = 0.0;
   // Outside the workflow's catalogue:
   /// > 0: F = tanh(v / v0)(f_c sgn v + c_0 v) instead of Eq. 4.4's transition function.
   double tanh_velocity_m_s = 0.0;
-  /// Force while extending (rod velocity > 0) multiplied by 1 + a.
-  double extension_gain = 0.0;
   /// First-order low-pass of the force channel (anti-alias filter), time constant, s.
   double force_filter_s = 0.0;
   /// Series compliance of the fluid column between actuator and piston:
   /// spring (0 = rigid) in parallel with a dashpot.
   double series_stiffness_n_m = 0.0;
   double series_damping_n_s_m = 0.0;
+  /// Inertia of the fluid column: F += m a_rod. The fluid in the valve's gap
+  /// moves (A_p / A_gap) times faster than the piston, so the effective mass
+  /// is ρ L_gap A_p² / A_gap, kg.
+  double fluid_mass_kg = 0.0;
 };
 
 /// What the rig does over one run.

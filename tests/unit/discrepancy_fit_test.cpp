@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "host_sim/discrepancy/filter_check.hpp"
 #include "host_sim/discrepancy/fit.hpp"
 #include "host_sim/discrepancy/synth.hpp"
 #include "host_sim/discrepancy/workflow.hpp"
@@ -169,6 +170,70 @@ TEST(Workflow, NonUniformTimeWithCoilLag) {
   EXPECT_EQ(r.effects[0], Effect::coil_lag);
   EXPECT_NEAR(r.params[0], 3.0, 0.15);
   EXPECT_LT(r.gap_after, 0.5 * r.gap_before);
+}
+
+}  // namespace
+}  // namespace mrd::discrepancy
+
+namespace mrd::discrepancy {
+namespace {
+
+TEST(FirstOrderLowpass, ExactOnARamp) {
+  // u = t from rest: y' = (t − y)/τ, y(0) = 0 gives y = t − τ (1 − e^(−t/τ)); τ = 10 ms, t = 50 ms:
+  // 0.05 − 0.01 (1 − e^(−5)) = 0.05 − 0.01 · 0.993262053 = 0.04006737947.
+  std::vector<double> t, u, y;
+  for (int k = 0; k <= 50; ++k) {
+    t.push_back(k * 1e-3);
+    u.push_back(k * 1e-3);
+  }
+  first_order_lowpass(t, u, 0.01, y);
+  EXPECT_NEAR(y.back(), 0.04006737947, 1e-12);
+}
+
+/// The separating test of filter_check.hpp on the baseline's force, 15 ms
+/// late or through a 15 ms low-pass, with 300 N of white noise: a delay is
+/// fitted to each, and only the low-passed record is better described by a
+/// low-pass.
+FilterCheck delay_fitted_then_checked(bool lowpass) {
+  Clean c = clean_record({}, {});
+  std::vector<double> measured;
+  if (lowpass) {
+    first_order_lowpass(c.model.input().time_s, c.force_n, 0.015, measured);
+  } else {
+    ModelWorkspace ws;
+    const std::vector<double> delay{0.015};
+    c.model.simulate(EffectSet{{Effect::time_delay}}, delay, ws, measured);
+  }
+  Normals g(23);
+  for (double& f : measured) f += 300.0 * g.next();
+  const SampleSplit split = split_samples(c.model.input().time_s);
+  const FitData fd = make_fit_data(c.model, measured, split.train, 3000);
+  const EffectSet set{{Effect::time_delay}};
+  const FitOutcome fit = fit_effects(fd, set, {0.01}, &set.effects[0], 3);
+  ModelWorkspace ws;
+  std::vector<double> resid;
+  (void)fit_rss(fd, set, fit.params, ws, &resid);
+  std::vector<double> fit_times;
+  for (const std::size_t k : fd.index) fit_times.push_back(c.model.input().time_s[k]);
+  return compare_delay_with_lowpass(c.model, set, fit.params, measured, fd.index, split.held_out,
+                                    noise_effective_samples(fit_times, resid), 10.0);
+}
+
+TEST(FilterCheck, ALowpassIsToldFromADelay) {
+  const FilterCheck f = delay_fitted_then_checked(true);
+  EXPECT_TRUE(f.checked);
+  EXPECT_TRUE(f.lowpass_better);
+  EXPECT_NEAR(f.tau_s, 0.015, 0.0015);
+  EXPECT_GT(f.delta_bic, 10.0);
+  EXPECT_GT(f.held_out_reduction, 0.0);
+}
+
+TEST(FilterCheck, APureDelayStaysADelay) {
+  const FilterCheck f = delay_fitted_then_checked(false);
+  EXPECT_TRUE(f.checked);
+  EXPECT_FALSE(f.lowpass_better);
+  EXPECT_NEAR(f.delay_s, 0.015, 0.001);
+  EXPECT_LT(f.delta_bic, 0.0);
 }
 
 }  // namespace

@@ -1,0 +1,56 @@
+#pragma once
+/// Pure delay or filter: the test that separates a `time_delay` from a
+/// first-order low-pass of the force channel (an anti-alias filter, or the
+/// compressibility of a fluid column in series), which the catalogue does
+/// not have.
+///
+/// A first-order low-pass 1/(1 + τs) = e^(−τs) (1 + τ²s²/2 + O(τ³s³)): a
+/// delay of τ plus a term in the force's second derivative, whose share
+/// grows with frequency (phase atan ωτ against a delay's ωτ, and a gain
+/// 1/√(1 + ω²τ²) a delay does not have). On a record with force content
+/// well above 1/τ the two differ; below it they are the same within noise.
+/// The test: the delay of the selected model is replaced by a low-pass, the
+/// other effects held at their fitted values, and τ fitted (one parameter,
+/// as the delay). The low-pass is the better description when
+/// <pre>
+///   n_eff ln(RSS_delay / RSS_lowpass) ≥ min_delta_bic   on the fit samples, and
+///   RSS_lowpass < RSS_delay                             on the held-out samples
+/// </pre>
+/// (the same evidence an effect needs to join the model). The delay's model
+/// was fitted jointly with the other effects and the low-pass was not, so
+/// the comparison leans towards the delay.
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/effects.hpp"
+
+namespace mrd::discrepancy {
+
+struct FilterCheck {
+  bool checked = false;           ///< the model had a time_delay to compare
+  double delay_s = 0.0;           ///< the model's fitted delay
+  double tau_s = 0.0;             ///< the best low-pass time constant
+  double delta_bic = 0.0;         ///< n_eff ln(RSS_delay / RSS_lowpass), fit samples
+  double held_out_reduction = 0.0;  ///< 1 − RSS_lowpass / RSS_delay, held-out samples
+  bool lowpass_better = false;
+};
+
+/// First-order low-pass y' = (u − y)/τ of `u` sampled at `time_s`, exact
+/// for an input linear between samples; y starts at u[0].
+void first_order_lowpass(std::span<const double> time_s, std::span<const double> u, double tau_s,
+                         std::vector<double>& y);
+
+/// The test above for `set` (which must contain time_delay) at `params`.
+/// `fit_index`, `held_index`: samples of `measured_force_n`; `n_eff`: the
+/// effective sample count of the model's residual.
+[[nodiscard]] FilterCheck compare_delay_with_lowpass(const DamperModel& model, const EffectSet& set,
+                                                     std::span<const double> params,
+                                                     std::span<const double> measured_force_n,
+                                                     std::span<const std::size_t> fit_index,
+                                                     std::span<const std::size_t> held_index, double n_eff,
+                                                     double min_delta_bic);
+
+}  // namespace mrd::discrepancy
