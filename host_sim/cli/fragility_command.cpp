@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -50,7 +51,8 @@ none_exceeded | all_exceeded), median_pga_g, beta, their 5 and 95 % bootstrap pe
 exceedances), DIR/fragility_curves.csv (each curve and band at 41 PGAs), one plot per control mode
 and limit state (fragility_<control>_<limit state>.png, a curve per idle time), DIR/summary.json
 (runs, runs_computed, runs_resumed, records, pga_g, idle_years, controls, limit_states, curves,
-ranks, threads_per_rank, wall_s, runs_per_core_hour).)"};
+ranks, threads_per_rank, wall_s, runs_per_core_hour (wall time x ranks x threads), cpu_s_rank0,
+runs_per_cpu_hour (rank 0's runs over its CPU time)).)"};
 
 /// Most runs one study holds.
 constexpr double kMaxRuns = 1.0e8;
@@ -124,7 +126,9 @@ std::vector<std::filesystem::path> record_files(const FragilityOptions& o) {
   return files;
 }
 
-void load_records(const FragilityOptions& o, risk::FragilityPlan& plan) {
+/// The records at the runs' step: the files given, or the stochastic motions
+/// (generated on `threads` threads; each depends only on its seed).
+void load_records(const FragilityOptions& o, risk::FragilityPlan& plan, unsigned threads) {
   const auto files = record_files(o);
   for (const auto& f : files) {
     const auto m = excitation::load_scaled_motion(f, 1.0, plan.base.step_s);
@@ -134,10 +138,18 @@ void load_records(const FragilityOptions& o, risk::FragilityPlan& plan) {
   const unsigned n = o.synthetic ? o.synthetic : 20;
   risk::StochasticMotionRanges ranges;
   ranges.duration_s = o.duration_s;
-  for (unsigned i = 0; i < n; ++i) {
-    const auto m = risk::stochastic_motion(ranges, risk::record_seed(o.seed, i), i);
-    plan.records.push_back({m.name, m.source, excitation::resample_linear(m, plan.base.step_s)});
-  }
+  plan.records.resize(n);
+  std::atomic<unsigned> next{0};
+  const auto worker = [&] {
+    for (unsigned i = next.fetch_add(1); i < n; i = next.fetch_add(1)) {
+      const auto m = risk::stochastic_motion(ranges, risk::record_seed(o.seed, i), i);
+      plan.records[i] = {m.name, m.source, excitation::resample_linear(m, plan.base.step_s)};
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min(threads, n); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
 }
 
 /// Progress of rank 0 on stderr with the time left at its rate: a counter on a
@@ -204,13 +216,13 @@ void execute(const FragilityOptions& o) {
     if (open_error) std::rethrow_exception(open_error);
     throw io::UsageError("--out: rank 0 could not use the output folder");
   }
-  load_records(o, plan);
-  if (static_cast<double>(plan.run_count()) > kMaxRuns) {
-    throw io::UsageError("the study has " + std::to_string(plan.run_count()) + " runs; at most 1e8 are allowed");
-  }
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   risk::StudyRunOptions ro;
   ro.threads = o.threads ? o.threads : std::max(1u, hw / static_cast<unsigned>(std::max(1, cluster.local_size())));
+  load_records(o, plan, ro.threads);
+  if (static_cast<double>(plan.run_count()) > kMaxRuns) {
+    throw io::UsageError("the study has " + std::to_string(plan.run_count()) + " runs; at most 1e8 are allowed");
+  }
   ro.journal_dir = o.journal.empty() ? std::filesystem::path(o.out_dir + ".journal") : std::filesystem::path(o.journal);
   if (root) {
     std::printf("fragility: %zu records x %zu PGA levels x %zu idle times x %zu control modes = %zu runs on %d rank(s) x %u thread(s)\n",
@@ -237,6 +249,8 @@ void execute(const FragilityOptions& o) {
   session.computed = result.computed;
   session.resumed = result.resumed;
   session.wall_s = result.wall_s;
+  session.computed_rank0 = result.computed_here;
+  session.cpu_s_rank0 = result.cpu_s;
   session.ranks = cluster.size();
   session.threads_per_rank = ro.threads;
   session.bootstrap = o.bootstrap;
@@ -247,9 +261,11 @@ void execute(const FragilityOptions& o) {
   std::error_code ec;
   std::filesystem::remove_all(ro.journal_dir, ec);
   const double core_h = result.wall_s * cluster.size() * ro.threads / 3600.0;
-  std::printf("fragility: %zu runs computed, %zu resumed, in %.2f s on %d rank(s) x %u thread(s): %.0f runs per core-hour\n",
+  std::printf("fragility: %zu runs computed, %zu resumed, in %.2f s on %d rank(s) x %u thread(s): %.0f runs per "
+              "core-hour of wall time, %.0f per CPU-hour (rank 0)\n",
               result.computed, result.resumed, result.wall_s, cluster.size(), ro.threads,
-              core_h > 0 ? static_cast<double>(result.computed) / core_h : 0.0);
+              core_h > 0 ? static_cast<double>(result.computed) / core_h : 0.0,
+              result.cpu_s > 0 ? static_cast<double>(result.computed_here) / result.cpu_s * 3600.0 : 0.0);
   std::printf("wrote %s/runs.csv, fragility.csv, fragility_curves.csv and summary.json\n", o.out_dir.c_str());
 }
 

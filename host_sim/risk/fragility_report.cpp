@@ -114,6 +114,10 @@ nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<Li
           {"wall_s", session.wall_s},
           {"runs_per_core_hour", session.computed > 0 && core_s > 0 ? nlohmann::json(static_cast<double>(session.computed) / core_s * 3600.0)
                                                                      : nlohmann::json()},
+          {"cpu_s_rank0", session.cpu_s_rank0},
+          {"runs_per_cpu_hour", session.computed_rank0 > 0 && session.cpu_s_rank0 > 0
+                                    ? nlohmann::json(static_cast<double>(session.computed_rank0) / session.cpu_s_rank0 * 3600.0)
+                                    : nlohmann::json()},
           {"files", {"runs.csv", "fragility.csv", "fragility_curves.csv", "summary.json"}}};
 }
 

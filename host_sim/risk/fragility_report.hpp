@@ -30,6 +30,8 @@ std::string fragility_curves_csv(const FragilityPlan& plan, const std::vector<Li
 struct FragilitySession {
   std::size_t computed = 0, resumed = 0;
   double wall_s = 0.0;
+  std::size_t computed_rank0 = 0;  ///< runs rank 0 simulated
+  double cpu_s_rank0 = 0.0;        ///< CPU time rank 0 spent on them, s
   int ranks = 1;
   unsigned threads_per_rank = 1;
   unsigned bootstrap = 0;

@@ -1,5 +1,7 @@
 #include "host_sim/risk/study_runner.hpp"
 
+#include <sys/resource.h>
+
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -8,6 +10,17 @@
 #include "host_sim/risk/run_journal.hpp"
 
 namespace mrd::risk {
+namespace {
+
+/// User + system CPU time of this process, s.
+double process_cpu_s() {
+  rusage u{};
+  ::getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+}  // namespace
 
 std::vector<std::size_t> rank_share(std::size_t run_count, int rank, int size) {
   std::vector<std::size_t> runs;
@@ -20,6 +33,7 @@ std::vector<std::size_t> rank_share(std::size_t run_count, int rank, int size) {
 
 StudyRunResult run_study(const FragilityPlan& plan, const Cluster& cluster, const StudyRunOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0_s = process_cpu_s();
   const std::size_t count = plan.run_count();
   const std::uint64_t fingerprint = plan.fingerprint();
   const auto attempt =
@@ -85,6 +99,8 @@ StudyRunResult run_study(const FragilityPlan& plan, const Cluster& cluster, cons
   }
 
   StudyRunResult result;
+  result.computed_here = pending.size();
+  result.cpu_s = process_cpu_s() - cpu0_s;
   result.runs = cluster.gather(count, share, metrics);
   // Every run missing from the journal at the start is computed in this session.
   std::size_t resumed = 0;

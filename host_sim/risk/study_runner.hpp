@@ -41,6 +41,8 @@ struct StudyRunResult {
   std::size_t resumed = 0;       ///< runs found in the journal, over all ranks (rank 0)
   std::size_t computed = 0;      ///< runs simulated in this session, over all ranks (rank 0)
   double wall_s = 0.0;           ///< of this session, rank 0
+  std::size_t computed_here = 0; ///< runs this process simulated
+  double cpu_s = 0.0;            ///< CPU time (user + system) this process spent on them, s
 };
 
 /// The runs of rank `rank` of `size` (see the split above).
