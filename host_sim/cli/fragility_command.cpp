@@ -161,10 +161,11 @@ class ProgressPrinter {
     const bool last = p.done == p.total;
     if (!tty_ && !last && p.elapsed_s < last_s_ + 5.0) return;
     last_s_ = p.elapsed_s;
-    const double left_s = p.done ? p.elapsed_s / static_cast<double>(p.done) * static_cast<double>(p.total - p.done) : 0;
-    std::fprintf(stderr, "%sfragility: %zu/%zu runs of rank 0 (%d rank(s), %zu runs in the study), %.0f s, about %.0f s left%s",
-                 tty_ ? "\r" : "", p.done, p.total, ranks_, study_runs_, p.elapsed_s, left_s,
-                 tty_ && !last ? "" : "\n");
+    const double left_s =
+        p.done ? p.elapsed_s / static_cast<double>(p.done) * static_cast<double>(p.total - p.done) : 0;
+    std::fprintf(
+        stderr, "%sfragility: %zu/%zu runs of rank 0 (%d rank(s), %zu runs in the study), %.0f s, about %.0f s left%s",
+        tty_ ? "\r" : "", p.done, p.total, ranks_, study_runs_, p.elapsed_s, left_s, tty_ && !last ? "" : "\n");
   }
 
  private:
@@ -225,9 +226,11 @@ void execute(const FragilityOptions& o) {
   }
   ro.journal_dir = o.journal.empty() ? std::filesystem::path(o.out_dir + ".journal") : std::filesystem::path(o.journal);
   if (root) {
-    std::printf("fragility: %zu records x %zu PGA levels x %zu idle times x %zu control modes = %zu runs on %d rank(s) x %u thread(s)\n",
-                plan.records.size(), plan.pga_g.size(), plan.idle_years.size(), plan.modes.size(), plan.run_count(),
-                cluster.size(), ro.threads);
+    std::printf(
+        "fragility: %zu records x %zu PGA levels x %zu idle times x %zu control modes = %zu runs on %d rank(s) x %u "
+        "thread(s)\n",
+        plan.records.size(), plan.pga_g.size(), plan.idle_years.size(), plan.modes.size(), plan.run_count(),
+        cluster.size(), ro.threads);
     std::fflush(stdout);
     ro.progress = ProgressPrinter(cluster.size(), plan.run_count());
   }
@@ -261,18 +264,17 @@ void execute(const FragilityOptions& o) {
   std::error_code ec;
   std::filesystem::remove_all(ro.journal_dir, ec);
   const double core_h = result.wall_s * cluster.size() * ro.threads / 3600.0;
-  std::printf("fragility: %zu runs computed, %zu resumed, in %.2f s on %d rank(s) x %u thread(s): %.0f runs per "
-              "core-hour of wall time, %.0f per CPU-hour (rank 0)\n",
-              result.computed, result.resumed, result.wall_s, cluster.size(), ro.threads,
-              core_h > 0 ? static_cast<double>(result.computed) / core_h : 0.0,
-              result.cpu_s > 0 ? static_cast<double>(result.computed_here) / result.cpu_s * 3600.0 : 0.0);
+  std::printf(
+      "fragility: %zu runs computed, %zu resumed, in %.2f s on %d rank(s) x %u thread(s): %.0f runs per "
+      "core-hour of wall time, %.0f per CPU-hour (rank 0)\n",
+      result.computed, result.resumed, result.wall_s, cluster.size(), ro.threads,
+      core_h > 0 ? static_cast<double>(result.computed) / core_h : 0.0,
+      result.cpu_s > 0 ? static_cast<double>(result.computed_here) / result.cpu_s * 3600.0 : 0.0);
   std::printf("wrote %s/runs.csv, fragility.csv, fragility_curves.csv and summary.json\n", o.out_dir.c_str());
 }
 
 }  // namespace
 
-Command add_fragility_command(CLI::App& parent) {
-  return make_command(parent, kFragilityHelp, add_options, execute);
-}
+Command add_fragility_command(CLI::App& parent) { return make_command(parent, kFragilityHelp, add_options, execute); }
 
 }  // namespace mrd::cli

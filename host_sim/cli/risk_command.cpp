@@ -113,15 +113,12 @@ void execute(const RiskOptions& o) {
   const risk::HazardCurve hazard = o.hazard.empty() ? risk::default_hazard_curve() : risk::read_hazard_csv(o.hazard);
   compute_print_write(
       "risk", o.out_dir, [&] { return risk::compute_risk(rows, o.control, hazard, schedule::run_schedule(so)); },
-      print_summary, [](const std::filesystem::path& dir, const risk::RiskResult& r) {
-        return risk::write_risk_outputs(dir, r);
-      });
+      print_summary,
+      [](const std::filesystem::path& dir, const risk::RiskResult& r) { return risk::write_risk_outputs(dir, r); });
 }
 
 }  // namespace
 
-Command add_risk_command(CLI::App& parent) {
-  return make_command(parent, kRiskHelp, add_options, execute);
-}
+Command add_risk_command(CLI::App& parent) { return make_command(parent, kRiskHelp, add_options, execute); }
 
 }  // namespace mrd::cli

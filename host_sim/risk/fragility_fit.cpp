@@ -18,9 +18,12 @@ std::vector<LimitState> default_limit_states(double isolation_gap_m, double floo
 
 double metric_value(const RunMetrics& m, Metric metric) noexcept {
   switch (metric) {
-    case Metric::kBaseDisplacement: return m.peak_base_displacement_m;
-    case Metric::kFloorAccel: return m.peak_floor_accel_m_s2;
-    case Metric::kStoryDrift: return m.peak_story_drift_m;
+    case Metric::kBaseDisplacement:
+      return m.peak_base_displacement_m;
+    case Metric::kFloorAccel:
+      return m.peak_floor_accel_m_s2;
+    case Metric::kStoryDrift:
+      return m.peak_story_drift_m;
   }
   return 0.0;
 }

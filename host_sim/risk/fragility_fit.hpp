@@ -46,7 +46,8 @@ struct FragilityCurve {
 struct BootstrapOptions {
   unsigned resamples = 200;
   std::uint64_t seed = 1;
-  int eval_points = 41;  ///< band and curve evaluated at log-spaced PGAs from half the lowest level to twice the highest
+  int eval_points =
+      41;  ///< band and curve evaluated at log-spaced PGAs from half the lowest level to twice the highest
 };
 
 /// Every curve, ordered mode-major, then idle time, then limit state.

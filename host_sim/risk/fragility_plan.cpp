@@ -62,8 +62,8 @@ RunMetrics simulate_one(const FragilityPlan& plan, const RunKey& k, run::Control
     }
   }
   const plant::PlantSummary s = p.summary();
-  return {s.peak_base_displacement_m, s.peak_damper_force_n, s.peak_superstructure_accel_m_s2,
-          s.peak_base_accel_m_s2, drift};
+  return {s.peak_base_displacement_m, s.peak_damper_force_n, s.peak_superstructure_accel_m_s2, s.peak_base_accel_m_s2,
+          drift};
 }
 
 }  // namespace

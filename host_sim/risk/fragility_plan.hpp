@@ -44,12 +44,10 @@ struct FragilityPlan {
   std::vector<double> pga_g;       ///< intensity levels, g, increasing
   std::vector<double> idle_years;  ///< idle times, years, increasing
   std::vector<control::ControlMode> modes;
-  plant::PlantSpec base{};         ///< step, building, damper, settling (idle_time_s set per run)
-  std::uint64_t seed = 1;          ///< study seed (synthetic records, bootstrap)
+  plant::PlantSpec base{};  ///< step, building, damper, settling (idle_time_s set per run)
+  std::uint64_t seed = 1;   ///< study seed (synthetic records, bootstrap)
 
-  std::size_t run_count() const noexcept {
-    return modes.size() * idle_years.size() * pga_g.size() * records.size();
-  }
+  std::size_t run_count() const noexcept { return modes.size() * idle_years.size() * pga_g.size() * records.size(); }
   /// Run `run`'s factors: index = ((mode·n_idle + idle)·n_pga + pga)·n_records + record.
   RunKey key(std::size_t run) const noexcept;
   std::size_t index(const RunKey& k) const noexcept;

@@ -53,8 +53,8 @@ std::string fragility_csv(const FragilityPlan& plan, const std::vector<LimitStat
     const bool fitted = c.fit.status == FitStatus::kFitted;
     s += std::string(mode_label(plan, c.mode)) + ',' + limit_states[c.limit_state].name + ',' +
          num(limit_states[c.limit_state].threshold) + ',' + num(plan.idle_years[c.idle]) + ',' +
-         fit_status_name(c.fit.status) + ',' + num(c.fit.median_im) + ',' + (fitted ? num(c.fit.beta) : "nan") +
-         ',' + num(c.band.median_low) + ',' + num(c.band.median_high) + ',' + num(c.band.beta_low) + ',' +
+         fit_status_name(c.fit.status) + ',' + num(c.fit.median_im) + ',' + (fitted ? num(c.fit.beta) : "nan") + ',' +
+         num(c.band.median_low) + ',' + num(c.band.median_high) + ',' + num(c.band.beta_low) + ',' +
          num(c.band.beta_high) + ',' + std::to_string(runs) + ',' + std::to_string(exceed) + '\n';
   }
   return s;
@@ -66,8 +66,8 @@ std::string fragility_curves_csv(const FragilityPlan& plan, const std::vector<Li
   for (const auto& c : curves) {
     for (std::size_t i = 0; i < c.band.im.size(); ++i) {
       s += std::string(mode_label(plan, c.mode)) + ',' + limit_states[c.limit_state].name + ',' +
-           num(plan.idle_years[c.idle]) + ',' + num(c.band.im[i]) + ',' + num(c.fit.probability(c.band.im[i])) +
-           ',' + num(c.band.p_low[i]) + ',' + num(c.band.p_high[i]) + '\n';
+           num(plan.idle_years[c.idle]) + ',' + num(c.band.im[i]) + ',' + num(c.fit.probability(c.band.im[i])) + ',' +
+           num(c.band.p_low[i]) + ',' + num(c.band.p_high[i]) + '\n';
     }
   }
   return s;
@@ -112,12 +112,14 @@ nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<Li
           {"ranks", session.ranks},
           {"threads_per_rank", session.threads_per_rank},
           {"wall_s", session.wall_s},
-          {"runs_per_core_hour", session.computed > 0 && core_s > 0 ? nlohmann::json(static_cast<double>(session.computed) / core_s * 3600.0)
-                                                                     : nlohmann::json()},
+          {"runs_per_core_hour", session.computed > 0 && core_s > 0
+                                     ? nlohmann::json(static_cast<double>(session.computed) / core_s * 3600.0)
+                                     : nlohmann::json()},
           {"cpu_s_rank0", session.cpu_s_rank0},
-          {"runs_per_cpu_hour", session.computed_rank0 > 0 && session.cpu_s_rank0 > 0
-                                    ? nlohmann::json(static_cast<double>(session.computed_rank0) / session.cpu_s_rank0 * 3600.0)
-                                    : nlohmann::json()},
+          {"runs_per_cpu_hour",
+           session.computed_rank0 > 0 && session.cpu_s_rank0 > 0
+               ? nlohmann::json(static_cast<double>(session.computed_rank0) / session.cpu_s_rank0 * 3600.0)
+               : nlohmann::json()},
           {"files", {"runs.csv", "fragility.csv", "fragility_curves.csv", "summary.json"}}};
 }
 

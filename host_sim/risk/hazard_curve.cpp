@@ -41,10 +41,11 @@ HazardCurve default_hazard_curve() {
   HazardCurve c;
   const double k0 = default_hazard_k0();
   char text[200];
-  std::snprintf(text, sizeof text,
-                "illustrative default site: lambda(PGA) = %.6g * PGA_g^-%.3g per year (%.3g g at %.0f %% in %.0f years)",
-                k0, kDefaultHazardSlope, kDefaultHazardAnchorPga_g, kDefaultHazardAnchorProbability * 100.0,
-                kDefaultHazardAnchorYears);
+  std::snprintf(
+      text, sizeof text,
+      "illustrative default site: lambda(PGA) = %.6g * PGA_g^-%.3g per year (%.3g g at %.0f %% in %.0f years)", k0,
+      kDefaultHazardSlope, kDefaultHazardAnchorPga_g, kDefaultHazardAnchorProbability * 100.0,
+      kDefaultHazardAnchorYears);
   c.source = text;
   constexpr int kPoints = 60;
   const double lo = std::log(0.01), hi = std::log(5.0);

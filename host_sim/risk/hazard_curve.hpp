@@ -23,8 +23,8 @@
 namespace mrd::risk {
 
 struct HazardCurve {
-  std::string source;                  ///< file, or the default site's description
-  std::vector<double> pga_g;           ///< increasing, g
+  std::string source;                    ///< file, or the default site's description
+  std::vector<double> pga_g;             ///< increasing, g
   std::vector<double> annual_frequency;  ///< λ at each point, 1/year
 
   /// λ(x) by log-log interpolation; beyond the ends, the end segments' power
@@ -56,7 +56,6 @@ HazardCurve read_hazard_csv(const std::filesystem::path& path);
 /// the curve split in `subdivisions` log-spaced pieces, P taken at each
 /// piece's geometric midpoint times the drop of λ across it (exact for the
 /// log-log interpolated λ), plus the tail term. 1/year.
-double limit_state_frequency(const HazardCurve& curve, const std::function<double(double)>& p,
-                             int subdivisions = 64);
+double limit_state_frequency(const HazardCurve& curve, const std::function<double(double)>& p, int subdivisions = 64);
 
 }  // namespace mrd::risk

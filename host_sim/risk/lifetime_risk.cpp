@@ -132,7 +132,8 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
     if (!by_state.count(row.limit_state)) r.limit_states.push_back(row.limit_state);
     by_state[row.limit_state].push_back({row.idle_years, row.fit});
   }
-  if (r.limit_states.empty()) throw io::UsageError("--control: no fragility curves for control mode '" + r.control + "'");
+  if (r.limit_states.empty())
+    throw io::UsageError("--control: no fragility curves for control mode '" + r.control + "'");
   for (const auto& name : r.limit_states) {
     auto& curves = by_state[name];
     std::sort(curves.begin(), curves.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -164,8 +165,8 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
     pr.name = p.name;
     pr.cycles_per_year = p.mixing_cycles_per_year;
     for (std::size_t k = 0; k < grid.size(); ++k) {
-      pr.idle_fraction.push_back({grid[k], k + 1 < grid.size() ? grid[k + 1] : std::numeric_limits<double>::infinity(),
-                                  0.0});
+      pr.idle_fraction.push_back(
+          {grid[k], k + 1 < grid.size() ? grid[k + 1] : std::numeric_limits<double>::infinity(), 0.0});
     }
     std::map<std::string, double> sums;
     double tau_sum = 0.0;
@@ -190,7 +191,8 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
   ref.name = kReference;
   ref.cycles_per_year = std::numeric_limits<double>::quiet_NaN();
   ref.idle_fraction.push_back({0.0, 0.0, 1.0});
-  for (const auto& name : r.limit_states) ref.annual_exceedance[name] = frequency_at(grid, r.frequency_at_idle[name], 0.0);
+  for (const auto& name : r.limit_states)
+    ref.annual_exceedance[name] = frequency_at(grid, r.frequency_at_idle[name], 0.0);
   r.policies.push_back(std::move(ref));
   r.schedule = std::move(sched);
   return r;
@@ -276,8 +278,8 @@ std::vector<std::string> write_risk_outputs(const std::filesystem::path& dir, co
   report::write_file_atomically(dir / "report.md", md);
 
   report::PlotSpec spec;
-  spec.title = "Annual frequency of exceedance against the idle time the damper meets the earthquake with (" +
-               r.control + ")";
+  spec.title =
+      "Annual frequency of exceedance against the idle time the damper meets the earthquake with (" + r.control + ")";
   spec.x_label = "equivalent idle time [years]";
   spec.y_label = "annual exceedance [1/year]";
   for (const auto& n : r.limit_states) {

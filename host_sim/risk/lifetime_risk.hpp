@@ -48,7 +48,7 @@ struct IdleBin {
 
 struct PolicyRisk {
   std::string name;
-  double cycles_per_year = 0.0;             ///< NaN for the always-fully-mixed reference
+  double cycles_per_year = 0.0;  ///< NaN for the always-fully-mixed reference
   double mean_equivalent_idle_years = 0.0;
   std::map<std::string, double> annual_exceedance;  ///< limit state → 1/year
   std::vector<IdleBin> idle_fraction;
@@ -57,11 +57,11 @@ struct PolicyRisk {
 struct RiskResult {
   std::string control;
   std::string hazard_source;
-  std::vector<std::string> limit_states;   ///< in fragility.csv order
-  std::vector<double> idle_years;          ///< τ_k of the fragility study
+  std::vector<std::string> limit_states;                         ///< in fragility.csv order
+  std::vector<double> idle_years;                                ///< τ_k of the fragility study
   std::map<std::string, std::vector<double>> frequency_at_idle;  ///< λ_LS(τ_k), limit state → per τ_k
-  double days_beyond_study_fraction = 0.0; ///< days whose τ exceeds the last τ_k (λ held there)
-  std::vector<PolicyRisk> policies;        ///< the schedule's policies, then always-fully-mixed
+  double days_beyond_study_fraction = 0.0;  ///< days whose τ exceeds the last τ_k (λ held there)
+  std::vector<PolicyRisk> policies;         ///< the schedule's policies, then always-fully-mixed
   schedule::ScheduleResult schedule;
 };
 

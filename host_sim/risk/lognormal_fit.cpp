@@ -66,18 +66,24 @@ double normal_cdf(double z) noexcept { return 0.5 * std::erfc(-z / std::numbers:
 
 const char* fit_status_name(FitStatus s) noexcept {
   switch (s) {
-    case FitStatus::kFitted: return "fitted";
-    case FitStatus::kNoneExceeded: return "none_exceeded";
-    case FitStatus::kAllExceeded: return "all_exceeded";
+    case FitStatus::kFitted:
+      return "fitted";
+    case FitStatus::kNoneExceeded:
+      return "none_exceeded";
+    case FitStatus::kAllExceeded:
+      return "all_exceeded";
   }
   return "unknown";
 }
 
 double LognormalFit::probability(double im) const noexcept {
   switch (status) {
-    case FitStatus::kNoneExceeded: return 0.0;
-    case FitStatus::kAllExceeded: return 1.0;
-    case FitStatus::kFitted: break;
+    case FitStatus::kNoneExceeded:
+      return 0.0;
+    case FitStatus::kAllExceeded:
+      return 1.0;
+    case FitStatus::kFitted:
+      break;
   }
   if (!(im > 0.0)) return 0.0;
   return normal_cdf(std::log(im / median_im) / beta);

@@ -21,9 +21,9 @@ double normal_cdf(double z) noexcept;
 
 /// Counts at one intensity level.
 struct LevelCounts {
-  double im = 0.0;       ///< intensity (PGA in g here), > 0
-  unsigned runs = 0;     ///< n_j
-  unsigned exceed = 0;   ///< z_j ≤ n_j
+  double im = 0.0;      ///< intensity (PGA in g here), > 0
+  unsigned runs = 0;    ///< n_j
+  unsigned exceed = 0;  ///< z_j ≤ n_j
 };
 
 enum class FitStatus {
@@ -66,8 +66,8 @@ using ExceedanceTable = std::vector<std::vector<std::uint8_t>>;
 /// Percentile band of P(LS | IM) at given intensities.
 struct FragilityBand {
   std::vector<double> im;
-  std::vector<double> p_low;   ///< 5th percentile
-  std::vector<double> p_high;  ///< 95th percentile
+  std::vector<double> p_low;                   ///< 5th percentile
+  std::vector<double> p_high;                  ///< 95th percentile
   double median_low = 0.0, median_high = 0.0;  ///< 5th/95th percentile of θ (+∞ when none exceeded)
   double beta_low = 0.0, beta_high = 0.0;      ///< of β over the fitted resamples
 };

@@ -81,8 +81,7 @@ unsigned journal_file_count(const std::filesystem::path& dir) {
   return n;
 }
 
-JournalWriter::JournalWriter(const std::filesystem::path& dir, std::uint64_t fingerprint, unsigned attempt,
-                             int rank)
+JournalWriter::JournalWriter(const std::filesystem::path& dir, std::uint64_t fingerprint, unsigned attempt, int rank)
     : fingerprint_(fingerprint) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -100,8 +99,8 @@ void JournalWriter::append(std::uint64_t run, const RunMetrics& m) {
   encode_journal_record(fingerprint_, run, m, b);
   const ssize_t n = ::write(fd_, b, kJournalRecordBytes);
   if (n != static_cast<ssize_t>(kJournalRecordBytes)) {
-    throw io::UsageError(path_.string() + ": cannot append to the study journal: " +
-                         (n < 0 ? std::strerror(errno) : "short write"));
+    throw io::UsageError(path_.string() +
+                         ": cannot append to the study journal: " + (n < 0 ? std::strerror(errno) : "short write"));
   }
 }
 

@@ -100,8 +100,7 @@ excitation::GroundMotion stochastic_motion(const StochasticMotionRanges& r, std:
   std::snprintf(source, sizeof source,
                 "evolving-spectrum model (Rezaeian & Der Kiureghian 2008): seed=%llu f_mid=%.4g Hz f'=%.4g Hz/s "
                 "zeta=%.4g t_peak=%.4g s duration=%.4g s",
-                static_cast<unsigned long long>(seed), p.f_mid_hz, p.f_slope_hz_s, p.zeta, p.peak_time_s,
-                r.duration_s);
+                static_cast<unsigned long long>(seed), p.f_mid_hz, p.f_slope_hz_s, p.zeta, p.peak_time_s, r.duration_s);
   m.source = source;
   return excitation::scaled_to_pga(m, units::kStandardGravity_m_s2);
 }

@@ -34,15 +34,15 @@
 namespace mrd::risk {
 
 struct StochasticMotionRanges {
-  double dt_s = 0.01;          ///< generation step, s
-  double duration_s = 30.0;    ///< s
-  double f_mid_lo_hz = 1.5, f_mid_hi_hz = 5.0;        ///< f_mid, Hz (at t_mid = t_p)
+  double dt_s = 0.01;                                     ///< generation step, s
+  double duration_s = 30.0;                               ///< s
+  double f_mid_lo_hz = 1.5, f_mid_hi_hz = 5.0;            ///< f_mid, Hz (at t_mid = t_p)
   double f_slope_lo_hz_s = -0.10, f_slope_hi_hz_s = 0.0;  ///< f', Hz/s
-  double f_min_hz = 0.3;                               ///< floor of the drifting frequency, Hz
-  double zeta_lo = 0.2, zeta_hi = 0.6;                 ///< ζ of the filter
-  double peak_time_lo_s = 3.0, peak_time_hi_s = 8.0;   ///< t_p, s
-  double envelope_shape = 3.0;                         ///< α of the gamma envelope
-  double high_pass_hz = 0.2;                           ///< f_c, Hz
+  double f_min_hz = 0.3;                                  ///< floor of the drifting frequency, Hz
+  double zeta_lo = 0.2, zeta_hi = 0.6;                    ///< ζ of the filter
+  double peak_time_lo_s = 3.0, peak_time_hi_s = 8.0;      ///< t_p, s
+  double envelope_shape = 3.0;                            ///< α of the gamma envelope
+  double high_pass_hz = 0.2;                              ///< f_c, Hz
 };
 
 /// The drawn parameters of one record.

@@ -39,6 +39,8 @@ StudyRunResult run_study(const FragilityPlan& plan, const Cluster& cluster, cons
   const auto attempt =
       static_cast<unsigned>(cluster.broadcast(cluster.rank() == 0 ? journal_file_count(options.journal_dir) : 0));
   const auto kept = load_journal(options.journal_dir, fingerprint, count);
+  // Every rank has read the journals before any rank appends to a new one.
+  (void)cluster.any(false);
 
   const std::vector<std::size_t> share = rank_share(count, cluster.rank(), cluster.size());
   std::vector<RunMetrics> metrics(share.size());
@@ -54,8 +56,7 @@ StudyRunResult run_study(const FragilityPlan& plan, const Cluster& cluster, cons
   if (!pending.empty()) {
     JournalWriter journal(options.journal_dir, fingerprint, attempt, cluster.rank());
     const std::size_t chunks = (pending.size() + kChunkRuns - 1) / kChunkRuns;
-    const unsigned threads =
-        static_cast<unsigned>(std::min<std::size_t>(std::max(1u, options.threads), chunks));
+    const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(std::max(1u, options.threads), chunks));
     std::atomic<std::size_t> next{0};
     std::mutex mu;
     std::size_t done = 0;
@@ -80,8 +81,8 @@ StudyRunResult run_study(const FragilityPlan& plan, const Cluster& cluster, cons
           }
           done += runs.size();
           if (options.progress) {
-            options.progress({done, pending.size(),
-                              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
+            options.progress(
+                {done, pending.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
           }
         } catch (...) {
           std::lock_guard<std::mutex> lock(mu);

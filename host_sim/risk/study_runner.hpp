@@ -31,18 +31,18 @@ struct StudyProgress {
 };
 
 struct StudyRunOptions {
-  unsigned threads = 1;                   ///< worker threads of this rank (≥ 1)
-  std::filesystem::path journal_dir;      ///< resume store (see run_journal.hpp)
+  unsigned threads = 1;                                ///< worker threads of this rank (≥ 1)
+  std::filesystem::path journal_dir;                   ///< resume store (see run_journal.hpp)
   std::function<void(const StudyProgress&)> progress;  ///< called under a lock, on worker threads
 };
 
 struct StudyRunResult {
-  std::vector<RunMetrics> runs;  ///< every run, in run order (rank 0 only; empty elsewhere)
-  std::size_t resumed = 0;       ///< runs found in the journal, over all ranks (rank 0)
-  std::size_t computed = 0;      ///< runs simulated in this session, over all ranks (rank 0)
-  double wall_s = 0.0;           ///< of this session, rank 0
-  std::size_t computed_here = 0; ///< runs this process simulated
-  double cpu_s = 0.0;            ///< CPU time (user + system) this process spent on them, s
+  std::vector<RunMetrics> runs;   ///< every run, in run order (rank 0 only; empty elsewhere)
+  std::size_t resumed = 0;        ///< runs found in the journal, over all ranks (rank 0)
+  std::size_t computed = 0;       ///< runs simulated in this session, over all ranks (rank 0)
+  double wall_s = 0.0;            ///< of this session, rank 0
+  std::size_t computed_here = 0;  ///< runs this process simulated
+  double cpu_s = 0.0;             ///< CPU time (user + system) this process spent on them, s
 };
 
 /// The runs of rank `rank` of `size` (see the split above).

@@ -2,14 +2,16 @@
 # `mrd fragility` resumes a study killed part-way (SIGKILL): the second run
 # takes the journal's completed runs and the final runs.csv equals an
 # uninterrupted run's, byte for byte.
-# Usage: fragility_resume_test.sh MRD_BINARY
+# Usage: fragility_resume_test.sh MRD_BINARY [RECORD_SECONDS]
+# (shorter records under the sanitizers, which run 10-30x slower)
 set -euo pipefail
 mrd=$1
+seconds=${2:-20}
 tmp=$(mktemp -d)
 trap 'kill -9 "${pid:-}" 2>/dev/null || true; rm -rf "$tmp"' EXIT
 
-# 8 records x 4 PGAs x 3 idle times x 3 modes = 288 runs of 20 s, one thread.
-study=(fragility --synthetic 8 --duration-s 20 --pga-g 0.1,0.3,0.6,1.0 --idle-years 0,0.5,1
+# 8 records x 4 PGAs x 3 idle times x 3 modes = 288 runs, one thread.
+study=(fragility --synthetic 8 --duration-s "$seconds" --pga-g 0.1,0.3,0.6,1.0 --idle-years 0,0.5,1
        --bootstrap 10 --seed 5 --threads 1)
 total=288
 "$mrd" "${study[@]}" --out "$tmp/whole" >/dev/null 2>&1

@@ -89,17 +89,16 @@ TEST_F(FragilityRiskCli, BadHazardAndFragilityFilesNameTheLine) {
   const fs::path hazard = scratch_.path() / "site.csv";
   std::ofstream(hazard) << "pga_g,annual_frequency\n0.1,0.01\n0.2,zero\n";
   const fs::path out = out_.path() / "risk";
-  auto r = run_mrd("risk --fragility " + frag.string() + " --hazard " + hazard.string() + " --years 2 --out " +
-                       out.string(),
-                   scratch_.path());
+  auto r =
+      run_mrd("risk --fragility " + frag.string() + " --hazard " + hazard.string() + " --years 2 --out " + out.string(),
+              scratch_.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("site.csv:3: field 'annual_frequency': expected a number, got 'zero'"), std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(out));
 
   std::ofstream(hazard) << "pga_g,annual_frequency\n0.1,0.01\n0.5,0.0005\n";
-  r = run_mrd("risk --fragility " + frag.string() + " --hazard " + hazard.string() + " --years 2 --out " +
-                  out.string(),
+  r = run_mrd("risk --fragility " + frag.string() + " --hazard " + hazard.string() + " --years 2 --out " + out.string(),
               scratch_.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto s = nlohmann::json::parse(slurp(out / "summary.json"));

@@ -23,17 +23,20 @@ std::string error_of(const std::string& text) {
 const std::string kHeader = std::string(kFragilityCsvHeader) + "\n";
 
 TEST(RiskCombine, ReadsFragilityCsvAndNamesBadFields) {
-  const auto rows = parse_fragility_csv(kHeader + "semi-active,stroke,0.2921,0.5,fitted,0.8,0.4,0.7,0.9,0.3,0.5,80,12\n"
-                                                  "semi-active,stroke,0.2921,1,none_exceeded,inf,nan,inf,inf,nan,nan,80,0\n",
+  const auto rows = parse_fragility_csv(kHeader +
+                                            "semi-active,stroke,0.2921,0.5,fitted,0.8,0.4,0.7,0.9,0.3,0.5,80,12\n"
+                                            "semi-active,stroke,0.2921,1,none_exceeded,inf,nan,inf,inf,nan,nan,80,0\n",
                                         "f.csv");
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].control, "semi-active");
   EXPECT_DOUBLE_EQ(rows[0].fit.median_im, 0.8);
   EXPECT_DOUBLE_EQ(rows[0].fit.beta, 0.4);
   EXPECT_EQ(rows[1].fit.status, FitStatus::kNoneExceeded);
-  EXPECT_EQ(error_of("a,b\n"), "f.csv:1: expected the header of mrd fragility's fragility.csv "
-                               "('control,limit_state,threshold,idle_years...')");
-  EXPECT_EQ(error_of(kHeader + "m,s,1,0,fitted,x,0.4,,,,,1,1\n"), "f.csv:2: field 'median_pga_g': expected a number, got 'x'");
+  EXPECT_EQ(error_of("a,b\n"),
+            "f.csv:1: expected the header of mrd fragility's fragility.csv "
+            "('control,limit_state,threshold,idle_years...')");
+  EXPECT_EQ(error_of(kHeader + "m,s,1,0,fitted,x,0.4,,,,,1,1\n"),
+            "f.csv:2: field 'median_pga_g': expected a number, got 'x'");
   EXPECT_EQ(error_of(kHeader + "m,s,1,0,fitted,0.5,-1,,,,,1,1\n"),
             "f.csv:2: field 'beta': expected a log-standard deviation > 0");
   EXPECT_EQ(error_of(kHeader + "m,s,1,-2,fitted,0.5,1,,,,,1,1\n"),

@@ -21,7 +21,8 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(RiskHazard, ReadsTheDocumentedFormat) {
-  const HazardCurve c = parse_hazard_csv("\xEF\xBB\xBF# site A\npga_g,annual_frequency\r\n0.1,0.02\n\n0.4,0.001\n", "a.csv");
+  const HazardCurve c =
+      parse_hazard_csv("\xEF\xBB\xBF# site A\npga_g,annual_frequency\r\n0.1,0.02\n\n0.4,0.001\n", "a.csv");
   ASSERT_EQ(c.pga_g.size(), 2u);
   EXPECT_DOUBLE_EQ(c.pga_g[1], 0.4);
   EXPECT_DOUBLE_EQ(c.annual_frequency[0], 0.02);
