@@ -127,8 +127,10 @@ std::vector<std::filesystem::path> record_files(const FragilityOptions& o) {
 }
 
 /// The records at the runs' step: the files given, or the stochastic motions
-/// (generated on `threads` threads; each depends only on its seed).
-void load_records(const FragilityOptions& o, risk::FragilityPlan& plan, unsigned threads) {
+/// (each depends only on its seed: rank r of N makes records r, r + N, ... on
+/// its threads and the ranks share them).
+void load_records(const FragilityOptions& o, risk::FragilityPlan& plan, const risk::Cluster& cluster,
+                  unsigned threads) {
   const auto files = record_files(o);
   for (const auto& f : files) {
     const auto m = excitation::load_scaled_motion(f, 1.0, plan.base.step_s);
@@ -138,18 +140,24 @@ void load_records(const FragilityOptions& o, risk::FragilityPlan& plan, unsigned
   const unsigned n = o.synthetic ? o.synthetic : 20;
   risk::StochasticMotionRanges ranges;
   ranges.duration_s = o.duration_s;
-  plan.records.resize(n);
-  std::atomic<unsigned> next{0};
+  const auto ranks = static_cast<unsigned>(cluster.size());
+  std::vector<std::vector<double>> accel(n);
+  std::atomic<unsigned> next{static_cast<unsigned>(cluster.rank())};
   const auto worker = [&] {
-    for (unsigned i = next.fetch_add(1); i < n; i = next.fetch_add(1)) {
+    for (unsigned i = next.fetch_add(ranks); i < n; i = next.fetch_add(ranks)) {
       const auto m = risk::stochastic_motion(ranges, risk::record_seed(o.seed, i), i);
-      plan.records[i] = {m.name, m.source, excitation::resample_linear(m, plan.base.step_s)};
+      accel[i] = excitation::resample_linear(m, plan.base.step_s);
     }
   };
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < std::min(threads, n); ++t) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
+  cluster.share(accel);
+  for (unsigned i = 0; i < n; ++i) {
+    const auto label = risk::stochastic_motion_label(ranges, risk::record_seed(o.seed, i), i);
+    plan.records.push_back({label.name, label.source, std::move(accel[i])});
+  }
 }
 
 /// Progress of rank 0 on stderr with the time left at its rate: a counter on a
@@ -220,7 +228,7 @@ void execute(const FragilityOptions& o) {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   risk::StudyRunOptions ro;
   ro.threads = o.threads ? o.threads : std::max(1u, hw / static_cast<unsigned>(std::max(1, cluster.local_size())));
-  load_records(o, plan, ro.threads);
+  load_records(o, plan, cluster, ro.threads);
   if (static_cast<double>(plan.run_count()) > kMaxRuns) {
     throw io::UsageError("the study has " + std::to_string(plan.run_count()) + " runs; at most 1e8 are allowed");
   }

@@ -88,6 +88,17 @@ std::vector<RunMetrics> Cluster::gather(std::size_t run_count, const std::vector
   return all;
 }
 
+void Cluster::share(std::vector<std::vector<double>>& data) const {
+  if (!mpi_ || size_ == 1) return;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const int owner = static_cast<int>(i % static_cast<std::size_t>(size_));
+    std::uint64_t length = data[i].size();
+    MPI_Bcast(&length, 1, MPI_UINT64_T, owner, MPI_COMM_WORLD);
+    data[i].resize(length);
+    MPI_Bcast(data[i].data(), static_cast<int>(length), MPI_DOUBLE, owner, MPI_COMM_WORLD);
+  }
+}
+
 void Cluster::abort(int code) const {
   if (mpi_) MPI_Abort(MPI_COMM_WORLD, code);
   std::exit(code);

@@ -35,6 +35,9 @@ class Cluster {
   /// into a vector of `run_count`; other ranks get an empty vector.
   std::vector<RunMetrics> gather(std::size_t run_count, const std::vector<std::size_t>& runs,
                                  const std::vector<RunMetrics>& metrics) const;
+  /// Entry i of `data` from rank i mod N on every rank (each rank fills
+  /// the entries it owns, then all hold all).
+  void share(std::vector<std::vector<double>>& data) const;
   /// Ends every rank of the job with `code` (MPI_Abort); exits without MPI.
   [[noreturn]] void abort(int code) const;
 

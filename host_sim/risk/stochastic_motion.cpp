@@ -61,6 +61,18 @@ StochasticMotionParams draw_stochastic_params(const StochasticMotionRanges& r, s
   return p;
 }
 
+StochasticLabel stochastic_motion_label(const StochasticMotionRanges& r, std::uint64_t seed, std::uint64_t index) {
+  const StochasticMotionParams p = draw_stochastic_params(r, seed);
+  char name[64];
+  std::snprintf(name, sizeof name, "stochastic-%llu", static_cast<unsigned long long>(index));
+  char source[256];
+  std::snprintf(source, sizeof source,
+                "evolving-spectrum model (Rezaeian & Der Kiureghian 2008): seed=%llu f_mid=%.4g Hz f'=%.4g Hz/s "
+                "zeta=%.4g t_peak=%.4g s duration=%.4g s",
+                static_cast<unsigned long long>(seed), p.f_mid_hz, p.f_slope_hz_s, p.zeta, p.peak_time_s, r.duration_s);
+  return {name, source};
+}
+
 excitation::GroundMotion stochastic_motion(const StochasticMotionRanges& r, std::uint64_t seed, std::uint64_t index) {
   const StochasticMotionParams p = draw_stochastic_params(r, seed);
   const auto n = static_cast<std::size_t>(std::floor(r.duration_s / r.dt_s + 1e-9)) + 1;
@@ -93,15 +105,9 @@ excitation::GroundMotion stochastic_motion(const StochasticMotionRanges& r, std:
   excitation::GroundMotion m;
   m.dt_s = r.dt_s;
   m.accel_m_s2 = high_pass(x, r.dt_s, r.high_pass_hz);
-  char name[64];
-  std::snprintf(name, sizeof name, "stochastic-%llu", static_cast<unsigned long long>(index));
-  m.name = name;
-  char source[256];
-  std::snprintf(source, sizeof source,
-                "evolving-spectrum model (Rezaeian & Der Kiureghian 2008): seed=%llu f_mid=%.4g Hz f'=%.4g Hz/s "
-                "zeta=%.4g t_peak=%.4g s duration=%.4g s",
-                static_cast<unsigned long long>(seed), p.f_mid_hz, p.f_slope_hz_s, p.zeta, p.peak_time_s, r.duration_s);
-  m.source = source;
+  const StochasticLabel label = stochastic_motion_label(r, seed, index);
+  m.name = label.name;
+  m.source = label.source;
   return excitation::scaled_to_pga(m, units::kStandardGravity_m_s2);
 }
 

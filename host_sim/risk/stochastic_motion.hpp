@@ -28,6 +28,7 @@
 /// last-bit differences in exp/sin/cos of the platform's libm).
 
 #include <cstdint>
+#include <string>
 
 #include "host_sim/excitation/ground_motion.hpp"
 
@@ -56,8 +57,16 @@ std::uint64_t record_seed(std::uint64_t study_seed, std::uint64_t index) noexcep
 /// Parameters drawn for `seed`.
 StochasticMotionParams draw_stochastic_params(const StochasticMotionRanges& ranges, std::uint64_t seed);
 
+/// A record's name, `stochastic-<index>`, and its source: the model, seed and
+/// drawn parameters.
+struct StochasticLabel {
+  std::string name, source;
+};
+StochasticLabel stochastic_motion_label(const StochasticMotionRanges& ranges, std::uint64_t seed,
+                                        std::uint64_t index);
+
 /// One record, at ranges.dt_s, scaled to a PGA of 1 g, named
-/// `stochastic-<index>` with its parameters and seed in `source`.
+/// as stochastic_motion_label says.
 excitation::GroundMotion stochastic_motion(const StochasticMotionRanges& ranges, std::uint64_t seed,
                                            std::uint64_t index);
 
