@@ -228,6 +228,11 @@ void execute(const FragilityOptions& o) {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   risk::StudyRunOptions ro;
   ro.threads = o.threads ? o.threads : std::max(1u, hw / static_cast<unsigned>(std::max(1, cluster.local_size())));
+  const double records = static_cast<double>(o.records.empty() ? (o.synthetic ? o.synthetic : 20) : o.records.size());
+  if (o.records_dir.empty() &&
+      records * static_cast<double>(plan.pga_g.size() * plan.idle_years.size() * plan.modes.size()) > kMaxRuns) {
+    throw io::UsageError("the study would have more than 1e8 runs; give fewer records, levels, idle times or modes");
+  }
   load_records(o, plan, cluster, ro.threads);
   if (static_cast<double>(plan.run_count()) > kMaxRuns) {
     throw io::UsageError("the study has " + std::to_string(plan.run_count()) + " runs; at most 1e8 are allowed");

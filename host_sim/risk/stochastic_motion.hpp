@@ -62,8 +62,7 @@ StochasticMotionParams draw_stochastic_params(const StochasticMotionRanges& rang
 struct StochasticLabel {
   std::string name, source;
 };
-StochasticLabel stochastic_motion_label(const StochasticMotionRanges& ranges, std::uint64_t seed,
-                                        std::uint64_t index);
+StochasticLabel stochastic_motion_label(const StochasticMotionRanges& ranges, std::uint64_t seed, std::uint64_t index);
 
 /// One record, at ranges.dt_s, scaled to a PGA of 1 g, named
 /// as stochastic_motion_label says.
