@@ -58,6 +58,8 @@ Command add_discrepancy_command(CLI::App& parent);
 Command add_calibrate_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_schedule_command(CLI::App& parent);
+Command add_fragility_command(CLI::App& parent);
+Command add_risk_command(CLI::App& parent);
 
 /// Starts the transaction on the --out folder (report::begin_output) and
 /// returns the staging folder the outputs go to; io::UsageError naming the

@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   commands.push_back(mrd::cli::add_calibrate_command(app));
   commands.push_back(mrd::cli::add_synth_command(app));
   commands.push_back(mrd::cli::add_schedule_command(app));
+  commands.push_back(mrd::cli::add_fragility_command(app));
+  commands.push_back(mrd::cli::add_risk_command(app));
 
   try {
     app.parse(argc, argv);

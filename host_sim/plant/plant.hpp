@@ -126,6 +126,8 @@ class Plant {
   double coil_temperature_rise_k() const noexcept { return thermal_.rise_k(); }
   /// Current the damper's field follows (the coil current on the thesis plant), A.
   double field_current_a() const noexcept { return damper_.current_a(); }
+  /// The building at the state the last advance() reached (floor displacements).
+  const structure::DiscreteBuilding& building() const noexcept { return building_; }
 
  private:
   PlantSpec spec_{};

@@ -1,0 +1,116 @@
+#include "host_sim/risk/fragility_plan.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "host_sim/run/controller.hpp"
+#include "mrd/units.hpp"
+
+namespace mrd::risk {
+namespace {
+
+class Fnv1a {
+ public:
+  void bytes(const void* p, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (std::size_t i = 0; i < n; ++i) h_ = (h_ ^ b[i]) * 0x100000001b3ULL;
+  }
+  void number(double v) { bytes(&v, sizeof v); }
+  void count(std::uint64_t v) { bytes(&v, sizeof v); }
+  void text(const std::string& s) {
+    count(s.size());
+    bytes(s.data(), s.size());
+  }
+  std::uint64_t value() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 0xcbf29ce484222325ULL;
+};
+
+/// One closed-loop run: run::run_closed_loop's tick (sense, controller,
+/// advance) with the peak story drift taken after each advance.
+RunMetrics simulate_one(const FragilityPlan& plan, const RunKey& k, run::Controller& controller,
+                        std::vector<double>& accel) {
+  const auto& rec = plan.records[k.record].accel_1g_m_s2;
+  const double pga = plan.pga_g[k.pga];
+  accel.resize(rec.size());
+  for (std::size_t i = 0; i < rec.size(); ++i) accel[i] = rec[i] * pga;
+
+  plant::PlantSpec spec = plan.base;
+  spec.idle_time_s = units::years_to_s(plan.idle_years[k.idle]);
+  plant::Plant p;
+  p.init(spec);
+  controller.reset();
+  control::ControllerInput in;
+  double drift = 0.0;
+  for (std::size_t n = 0; n < accel.size(); ++n) {
+    const plant::PlantSensors sensors = p.sense(accel[n]);
+    in.tick = n;
+    in.damper_disp_m = sensors.damper_disp_m;
+    in.damper_force_n = sensors.damper_force_n;
+    in.ground_accel_m_s2 = sensors.ground_accel_m_s2;
+    in.base_accel_m_s2 = sensors.base_accel_m_s2;
+    in.coil_current_a = sensors.coil_current_a;
+    const control::ControllerOutput out = controller.step(in);
+    p.advance(plant::CoilDrive{static_cast<double>(out.current_command_a), out.drive_enable});
+    const auto& b = p.building();
+    double below = b.disp_m(0);
+    for (int i = 1; i < structure::kDofs; ++i) {
+      const double x = b.disp_m(i);
+      drift = std::max(drift, std::abs(x - below));
+      below = x;
+    }
+  }
+  const plant::PlantSummary s = p.summary();
+  return {s.peak_base_displacement_m, s.peak_damper_force_n, s.peak_superstructure_accel_m_s2, s.peak_base_accel_m_s2,
+          drift};
+}
+
+}  // namespace
+
+RunKey FragilityPlan::key(std::size_t run) const noexcept {
+  RunKey k;
+  k.record = run % records.size();
+  run /= records.size();
+  k.pga = run % pga_g.size();
+  run /= pga_g.size();
+  k.idle = run % idle_years.size();
+  k.mode = run / idle_years.size();
+  return k;
+}
+
+std::size_t FragilityPlan::index(const RunKey& k) const noexcept {
+  return ((k.mode * idle_years.size() + k.idle) * pga_g.size() + k.pga) * records.size() + k.record;
+}
+
+std::uint64_t FragilityPlan::fingerprint() const {
+  Fnv1a h;
+  h.text("mrd-fragility-1");
+  h.count(records.size());
+  for (const auto& r : records) {
+    h.text(r.name);
+    h.count(r.accel_1g_m_s2.size());
+    h.bytes(r.accel_1g_m_s2.data(), r.accel_1g_m_s2.size() * sizeof(double));
+  }
+  h.count(pga_g.size());
+  for (double v : pga_g) h.number(v);
+  h.count(idle_years.size());
+  for (double v : idle_years) h.number(v);
+  h.count(modes.size());
+  for (auto m : modes) h.count(static_cast<std::uint64_t>(m));
+  h.number(base.step_s);
+  h.count(static_cast<std::uint64_t>(base.kind));
+  h.count(seed);
+  return h.value();
+}
+
+void simulate_runs(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out) {
+  std::vector<double> accel;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunKey k = plan.key(runs[i]);
+    auto controller = run::make_controller(plan.modes[k.mode], plan.base.step_s);
+    out[i] = simulate_one(plan, k, *controller, accel);
+  }
+}
+
+}  // namespace mrd::risk
