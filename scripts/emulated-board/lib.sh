@@ -63,6 +63,7 @@ emu_bin() {
 # Fetches (or finds in the cache) the kernel, busybox and iproute2, and sets
 # emu_vmlinuz, emu_kver, emu_kmod (lib/modules/VERSION) and emu_kconfig.
 emu_fetch() {
+  mkdir -p "$(dirname "$emu_cache")" || emu_fail "cannot create the folder of the cache $emu_cache"
   (flock 9 && "$emu_root/scripts/emulated-board/fetch.sh") 9>"$emu_cache.lock" ||
     emu_fail "kernel, busybox or iproute2 not available (see fetch: above)"
   emu_vmlinuz=$(ls "$emu_cache"/kernel/boot/vmlinuz-* | head -n1)
