@@ -12,7 +12,8 @@
 ///
 /// The mixing task may be any numeric build (BasicMixingTask<Policy>): the
 /// runtime's second template parameter. Its scheduler's transitions and
-/// requests are logged as they happen; the summary line adds its estimate.
+/// requests are logged after the tick that made them (no I/O inside a tick);
+/// the summary line adds its estimate.
 ///
 /// The same runtime runs `mrd-firmware` on a Linux board (SocketCAN, libgpiod,
 /// CLOCK_MONOTONIC) and the in-process `sim` board (in-memory bus and lines,
@@ -90,6 +91,7 @@ class BoardRuntime {
     enable_ = DriveEnableWatch{};
     request_ = MixingRequestEdge{};
     scheduler_state_ = fw::SchedulerState::kIdle;
+    events_ = MixingEvents{};
     saves_ = save_failures_ = 0;
   }
 
@@ -190,19 +192,44 @@ class BoardRuntime {
     protocol::MixingCommand cmd;
     if (request_.changed(out, cmd)) {
       task_.request_mixing(cmd);
-      log_request(cmd);
+      events_.request = {true, task_.tick() - 1, cmd, out.plan.cycles};
     }
     task_.set_maintenance_due(out.maintenance_required);
     task_.set_idle_status(idle_status_of(*mixing_));
     if (out.state != scheduler_state_) {
-      log_transition(scheduler_state_, out.state, out.reason);
+      events_.transition = {true, task_.tick() - 1, scheduler_state_, out.state, out.reason};
       scheduler_state_ = out.state;
     }
   }
 
   /// Saves the mixing task's state when it asks (I/O: outside the tick).
+  /// After the tick: the mixing task's log lines of this tick, then its
+  /// save when due (I/O stays out of the tick).
   void serve_store() noexcept {
+    log_mixing_events();
     if (mixing_ && ports_.store && mixing_->save_due()) (void)save();
+  }
+
+  /// What the mixing task did in a tick, logged after it.
+  struct MixingEvents {
+    struct Request {
+      bool pending = false;
+      std::uint64_t tick = 0;
+      protocol::MixingCommand cmd{};
+      std::uint32_t cycles = 0;
+    } request;
+    struct Transition {
+      bool pending = false;
+      std::uint64_t tick = 0;
+      fw::SchedulerState from = fw::SchedulerState::kIdle, to = fw::SchedulerState::kIdle;
+      fw::MixingEndReason why = fw::MixingEndReason::kNone;
+    } transition;
+  };
+
+  void log_mixing_events() noexcept {
+    if (events_.transition.pending) log_transition(events_.transition);
+    if (events_.request.pending) log_request(events_.request);
+    events_ = MixingEvents{};
   }
 
   bool save() noexcept {
@@ -215,28 +242,29 @@ class BoardRuntime {
     return ok;
   }
 
-  void log_request(const protocol::MixingCommand& cmd) const noexcept {
+  void log_request(const typename MixingEvents::Request& r) const noexcept {
     if (!ports_.log) return;
+    const protocol::MixingCommand& cmd = r.cmd;
     char text[kLogLineSize];
     if (cmd.action == protocol::MixingAction::kStart) {
       std::snprintf(text, sizeof text,
                     "%s: tick %llu: mixing requested: cycles=%u amplitude_m=%.5f frequency_hz=%.2f duration_s=%.0f",
-                    config_.name, static_cast<unsigned long long>(task_.tick() - 1), mixing_->output().plan.cycles,
+                    config_.name, static_cast<unsigned long long>(r.tick), r.cycles,
                     static_cast<double>(cmd.amplitude_m), static_cast<double>(cmd.frequency_hz),
                     static_cast<double>(cmd.duration_s));
     } else {
       std::snprintf(text, sizeof text, "%s: tick %llu: mixing request withdrawn", config_.name,
-                    static_cast<unsigned long long>(task_.tick() - 1));
+                    static_cast<unsigned long long>(r.tick));
     }
     ports_.log->line(text);
   }
 
-  void log_transition(fw::SchedulerState from, fw::SchedulerState to, fw::MixingEndReason why) const noexcept {
+  void log_transition(const typename MixingEvents::Transition& t) const noexcept {
     if (!ports_.log) return;
     char text[kLogLineSize];
     std::snprintf(text, sizeof text, "%s: tick %llu: scheduler %s -> %s (%s)", config_.name,
-                  static_cast<unsigned long long>(task_.tick() - 1), fw::scheduler_state_name(from),
-                  fw::scheduler_state_name(to), fw::mixing_end_reason_name(why));
+                  static_cast<unsigned long long>(t.tick), fw::scheduler_state_name(t.from),
+                  fw::scheduler_state_name(t.to), fw::mixing_end_reason_name(t.why));
     ports_.log->line(text);
   }
 
@@ -261,6 +289,7 @@ class BoardRuntime {
   Mixing* mixing_ = nullptr;
   MixingRequestEdge request_{};
   fw::SchedulerState scheduler_state_ = fw::SchedulerState::kIdle;
+  MixingEvents events_{};
   std::uint32_t saves_ = 0, save_failures_ = 0;
   LoopTiming timing_{};
   DriveEnableWatch enable_{};
