@@ -7,6 +7,10 @@ namespace mrd::discrepancy {
 
 const char* base_law_name(BaseLaw law) noexcept { return law == BaseLaw::bouc_wen ? "bouc_wen" : "bingham"; }
 
+std::string baseline_form_name(const Baseline& b) {
+  return std::string(base_law_name(b.law)) + (b.has_lost_motion() ? "+lost_motion" : "");
+}
+
 double CurrentLaw::at(double current_a, double participant_ratio) const noexcept {
   const double b = participant_ratio * limit;
   return b + (at_zero - b) * std::exp(-rate_per_a * std::fabs(current_a));

@@ -20,6 +20,22 @@
 /// their notation), so that Y is a yield force like the Bingham f_c and x_y is
 /// the displacement over which the force builds after a reversal (pre-yield).
 /// The coil current of both is Eq. 4.5 from the commanded current.
+///
+/// Either form may carry a lost motion at reversals: a share r of its force
+/// acts only once the piston has moved a distance g past the reversal, and g
+/// grows with the force the fluid must take up again,
+/// <pre>
+///   F = F_law · ((1 − r) + r e),   e = engagement of a play operator of total width g = λ Y(i)
+/// </pre>
+/// (e = 0 inside the play, 1 outside it, averaged over the contact window of
+/// damper_model.hpp; Y(i) the yield force at the coil current, PR = 1). On a
+/// force–displacement loop this is a plateau at (1 − r) of the force for g
+/// after each reversal, then the full force; the plateau is longer at higher
+/// current. Physically: a volume the piston must sweep before the valve's
+/// full pressure difference builds again (gas or vapour in the fluid, the
+/// accumulator's give), larger the higher that pressure, while the rest of
+/// the force (seal friction, the share of the flow not held up) follows at
+/// once. λ = 0 or r = 0 is the plain form.
 
 #include <string>
 
@@ -31,6 +47,10 @@ namespace mrd::discrepancy {
 enum class BaseLaw { bingham, bouc_wen };
 
 [[nodiscard]] const char* base_law_name(BaseLaw law) noexcept;
+
+struct Baseline;
+/// The law's name, with "+lost_motion" when the baseline has one.
+[[nodiscard]] std::string baseline_form_name(const Baseline& b);
 
 /// value(I, PR) = PR·limit + (at_zero − PR·limit) exp(−rate |I|), Eq. 4.2–4.3, 5.10–5.11.
 struct CurrentLaw {
@@ -63,6 +83,8 @@ struct Baseline {
   double v_tf_m_s = 0.010;           ///< Eq. 4.4 transition velocity (bingham); low-velocity band (both)
   double yield_disp_m = 0.0;         ///< x_y (bouc_wen)
   double stiffness_n_m = 0.0;        ///< k_0 (bouc_wen)
+  double lost_motion_m_per_n = 0.0;  ///< λ: width of the lost motion at reversals per newton of Y(i), m/N (0 = none)
+  double lost_motion_share = 0.0;    ///< r: share of the force held up by it, [0, 1]
   /// Lag of the force channel behind the motion channels (anti-alias
   /// filters, conditioning, logger), s: the model force is compared at
   /// t − force_delay_s. 0 for the thesis model.
@@ -77,6 +99,7 @@ struct Baseline {
   /// Yield force at the top of the current range, PR = 1: the force scale
   /// the effects' force-valued bounds are measured against, N.
   [[nodiscard]] double force_scale_n() const noexcept;
+  [[nodiscard]] bool has_lost_motion() const noexcept { return lost_motion_m_per_n > 0.0 && lost_motion_share > 0.0; }
 };
 
 /// The thesis's damper: Table 4.1, Eq. 4.5, Table 5.6; range 0–2.5 A (the

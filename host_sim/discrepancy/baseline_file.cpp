@@ -120,6 +120,7 @@ class Table {
     if (!n.is_integer() || !v || *v < 0) fail(origin_, n.source(), field(key), "expected an integer >= 0");
     return static_cast<std::size_t>(*v);
   }
+  [[nodiscard]] bool has(const char* key) const { return t_.get(key) != nullptr; }
   const toml::source_region& where(const char* key) const {
     const toml::node* n = t_.get(key);
     return n ? n->source() : t_.source();
@@ -195,7 +196,8 @@ BaselineFile baseline_file_of(const CalibrationResult& r) {
   f.source_records = r.sources;
   for (const LawFit& fit : r.fits) {
     for (std::size_t i = 0; i < r.sources.size(); ++i)
-      f.fits.push_back({r.sources[i], fit.baseline.law, fit.record_gaps.at(i), r.record_samples.at(i)});
+      f.fits.push_back({r.sources[i], fit.baseline.law, fit.record_gaps.at(i), r.record_samples.at(i),
+                        fit.baseline.has_lost_motion()});
   }
   return f;
 }
@@ -225,6 +227,13 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "yield_disp_m_sigma = " + num(f.sigma.yield_disp_m) + "\n";
     t += "stiffness_n_m = " + num(b.stiffness_n_m) + "\n";
     t += "stiffness_n_m_sigma = " + num(f.sigma.stiffness_n_m) + "\n";
+  }
+  if (b.has_lost_motion()) {
+    t += "\n[lost_motion]  # F = F_law ((1 - share) + share e), e: play of width m_per_n Y(I) at reversals\n";
+    t += "m_per_n = " + num(b.lost_motion_m_per_n) + "\n";
+    t += "m_per_n_sigma = " + num(f.sigma.lost_motion_m_per_n) + "\n";
+    t += "share = " + num(b.lost_motion_share) + "\n";
+    t += "share_sigma = " + num(f.sigma.lost_motion_share) + "\n";
   }
   t += "\n[channels]  # the force channel's lag behind the motion channels\n";
   t += "force_delay_s = " + num(b.force_delay_s) + "\n";
@@ -265,6 +274,7 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "\n[[fit]]\n";
     t += "file = " + quoted(r.file) + "\n";
     t += "law = " + quoted(base_law_name(r.law)) + "\n";
+    if (r.lost_motion) t += "lost_motion = true\n";
     t += "gap = " + num(r.gap) + "\n";
     t += "samples = " + std::to_string(r.samples) + "\n";
   }
@@ -284,9 +294,9 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
   for (const auto& [k, v] : root) {
     const std::string key(k.str());
     if (key != "model" && key != "yield_n" && key != "viscous_ns_m" && key != "bingham" && key != "bouc_wen" &&
-        key != "channels" && key != "coil" && key != "participant_ratio" && key != "validity" && key != "fit")
+        key != "lost_motion" && key != "channels" && key != "coil" && key != "participant_ratio" && key != "validity" && key != "fit")
       fail(origin, v.source(), key,
-           "unknown table (expected model, yield_n, viscous_ns_m, bingham or bouc_wen, channels, coil, "
+           "unknown table (expected model, yield_n, viscous_ns_m, bingham or bouc_wen, lost_motion, channels, coil, "
            "participant_ratio, validity, fit)");
   }
   {
@@ -313,6 +323,15 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       b.stiffness_n_m = t.number("stiffness_n_m");
       f.sigma.stiffness_n_m = t.number("stiffness_n_m_sigma");
     }
+    t.no_unknown_keys();
+  }
+  if (root.get("lost_motion") != nullptr) {
+    Table t(table_of(root, "lost_motion", origin), "lost_motion", origin);
+    b.lost_motion_m_per_n = t.positive("m_per_n");
+    f.sigma.lost_motion_m_per_n = t.number("m_per_n_sigma");
+    b.lost_motion_share = t.positive("share");
+    f.sigma.lost_motion_share = t.number("share_sigma");
+    if (b.lost_motion_share > 1.0) fail(origin, t.where("share"), "lost_motion.share", "expected a share in (0, 1]");
     t.no_unknown_keys();
   }
   {
@@ -380,6 +399,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       RecordFit r;
       r.file = t.string("file");
       r.law = law_named(t.string("law"), origin, t.where("law"), t.field("law"));
+      if (t.has("lost_motion")) r.lost_motion = t.boolean("lost_motion");
       r.gap = t.number("gap");
       r.samples = t.count("samples");
       t.no_unknown_keys();

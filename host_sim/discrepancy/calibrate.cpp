@@ -19,17 +19,18 @@ namespace mrd::discrepancy {
 namespace {
 
 /// The parameters a calibration can fit.
-enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kSlots };
+enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kSlots };
 
 constexpr std::array<const char*, kSlots> kSlotName{
     "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
     "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m",
-    "force_delay_s"};
+    "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share"};
 
 /// Search bounds, SI (the fit works on their logarithms).
-/// The force-channel lag between 10 µs (none, in effect) and 100 ms.
-constexpr std::array<double, kSlots> kLower{1e-3, 1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7, 1e-2, 1e-5};
-constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1};
+/// The force-channel lag between 10 µs (none, in effect) and 100 ms; the
+/// lost motion between 1 nm and 10 mm per kN, its share between 0.1 % and all.
+constexpr std::array<double, kSlots> kLower{1e-3, 1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7, 1e-2, 1e-5, 1e-12, 1e-3};
+constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1, 1e-5, 1.0};
 
 double& slot_ref(Baseline& b, Slot s) {
   switch (s) {
@@ -43,6 +44,8 @@ double& slot_ref(Baseline& b, Slot s) {
     case kXy: return b.yield_disp_m;
     case kK0: return b.stiffness_n_m;
     case kDelay: return b.force_delay_s;
+    case kPlay: return b.lost_motion_m_per_n;
+    case kShare: return b.lost_motion_share;
     default: break;
   }
   return b.v_tf_m_s;
@@ -317,7 +320,9 @@ std::vector<double> log_sigmas(const JointData& d, const Layout& layout, const B
   return sig;
 }
 
-LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
+/// Fits `law` to the records; with `plain` given, the same law with a lost
+/// motion at reversals, started from that plain fit.
+LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt, const LawFit* plain = nullptr) {
   const JointData& d = p.data;
   const std::size_t n_currents = p.currents_a.size();
   const Baseline thesis = thesis_baseline();
@@ -341,6 +346,10 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
   }
   // The force channel's lag: records of one rig share it (filters, logger).
   layout.free.push_back(kDelay);
+  if (plain != nullptr) {
+    layout.free.push_back(kPlay);
+    layout.free.push_back(kShare);
+  }
 
   // Base: the thesis's coil and participant ratio (not identifiable here),
   // current laws from the per-current regression.
@@ -369,17 +378,32 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
   // the force lag at 1 ms and 10 ms (a lag near a period's fraction has
   // neighbouring minima on a sine).
   std::vector<Baseline> starts;
-  for (const double f : {0.02, 0.1, 0.3})
-    for (const double lag_s : {1e-3, 10e-3}) {
-    Baseline s = base;
-    s.force_delay_s = lag_s;
-    if (law == BaseLaw::bingham) {
-      s.v_tf_m_s = f * vmax;
-    } else {
-      s.yield_disp_m = f * amp_min;
-      s.stiffness_n_m = k_start;
-    }
-    starts.push_back(s);
+  if (plain != nullptr) {
+    // From the plain fit: a play at the largest current of 5 % or 20 % of
+    // the smallest half range (a plateau short against the stroke), holding
+    // up a third or two thirds of the force.
+    const double i_top = p.currents_a.empty() ? 0.0 : *std::max_element(p.currents_a.begin(), p.currents_a.end());
+    const double y_top = std::max(std::fabs(plain->baseline.yield_n.at(i_top)), 1e-3);
+    for (const double f : {0.05, 0.2})
+      for (const double share : {0.33, 0.67}) {
+        Baseline s = plain->baseline;
+        s.lost_motion_m_per_n = f * amp_min / y_top;
+        s.lost_motion_share = share;
+        starts.push_back(s);
+      }
+  } else {
+    for (const double f : {0.02, 0.1, 0.3})
+      for (const double lag_s : {1e-3, 10e-3}) {
+        Baseline s = base;
+        s.force_delay_s = lag_s;
+        if (law == BaseLaw::bingham) {
+          s.v_tf_m_s = f * vmax;
+        } else {
+          s.yield_disp_m = f * amp_min;
+          s.stiffness_n_m = k_start;
+        }
+        starts.push_back(s);
+      }
   }
 
   LocalResult best;
@@ -429,6 +453,8 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
   fit.sigma.yield_disp_m = sigma[kXy];
   fit.sigma.stiffness_n_m = sigma[kK0];
   fit.sigma.force_delay_s = sigma[kDelay];
+  fit.sigma.lost_motion_m_per_n = sigma[kPlay];
+  fit.sigma.lost_motion_share = sigma[kShare];
 
   std::vector<Slot> shown{kYa, kYb, kYc, kCa, kCb, kCc};
   if (law == BaseLaw::bingham) {
@@ -438,6 +464,10 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt) {
     shown.push_back(kK0);
   }
   shown.push_back(kDelay);
+  if (plain != nullptr) {
+    shown.push_back(kPlay);
+    shown.push_back(kShare);
+  }
   for (const Slot s : shown)
     fit.params.push_back({kSlotName[s], slot_ref(fit.baseline, s), sigma[s], fitted[s], at_bound[s]});
   return fit;
@@ -518,7 +548,8 @@ ValidityRange validity_range(std::span<const MeasuredData> records, double smoot
   return v;
 }
 
-CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options) {
+CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options,
+                            std::span<const MeasuredData> check) {
   if (records.empty()) throw io::UsageError("calibrate: expected at least one measured record");
   CalibrationResult res;
   const Prepared p = prepare(records, options);
@@ -548,31 +579,97 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     res.fits.push_back(std::move(f));
   }
 
-  // BIC with a common effective sample count (the smaller of the laws'), so
-  // that the laws are judged on the same evidence.
-  double n_eff = res.fits.front().n_eff;
-  for (const auto& f : res.fits) n_eff = std::min(n_eff, f.n_eff);
-  for (auto& f : res.fits) {
-    std::size_t k = 0;
-    for (const auto& q : f.params) k += q.fitted ? 1 : 0;
-    f.bic = bic(f.rss, f.samples, n_eff, k);
+  // BIC with a common effective sample count (the smallest of the fits'), so
+  // that the forms are judged on the same evidence.
+  const auto score = [&res] {
+    double n_eff = res.fits.front().n_eff;
+    for (const auto& f : res.fits) n_eff = std::min(n_eff, f.n_eff);
+    for (auto& f : res.fits) {
+      std::size_t k = 0;
+      for (const auto& q : f.params) k += q.fitted ? 1 : 0;
+      f.bic = bic(f.rss, f.samples, n_eff, k);
+    }
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < res.fits.size(); ++i)
+      if (res.fits[i].bic < res.fits[best].bic) best = i;
+    return best;
+  };
+  res.chosen = score();
+  // The better law again with a lost motion at reversals (baseline.hpp). It
+  // is kept only when it earns its two parameters: the same BIC rule, a play
+  // shorter than the smallest stroke with a share a fit can tell from none
+  // or all (neither on a search bound), and a lower gap on check records it
+  // was not fitted to. Without check records it is reported, not kept: on
+  // the fitted records alone any extra freedom wins against a model-form
+  // error (a smooth tanh transition took it at ΔBIC 10^4).
+  if (options.lost_motion) {
+    const BaseLaw plain_law = res.fits[res.chosen].baseline.law;
+    const LawFit plain = res.fits[res.chosen];
+    LawFit f = fit_law(p, plain_law, options, &plain);
+    f.record_gaps = baseline_gaps(f.baseline, records, options.smoothing_half_window_s);
+    res.fits.push_back(std::move(f));
+    const std::size_t best = score();
+    res.chosen = 0;
+    for (std::size_t i = 1; i + 1 < res.fits.size(); ++i)
+      if (res.fits[i].bic < res.fits[res.chosen].bic) res.chosen = i;
+    const LawFit& lm = res.fits.back();
+    bool plausible = true;
+    for (const ParamEstimate& q : lm.params)
+      if ((q.name == kSlotName[kPlay] || q.name == kSlotName[kShare]) && q.at_bound) plausible = false;
+    const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
+    const double i_top = p.currents_a.empty() ? 0.0 : *std::max_element(p.currents_a.begin(), p.currents_a.end());
+    if (!(lm.baseline.lost_motion_m_per_n * std::fabs(lm.baseline.yield_n.at(i_top)) < 2.0 * amp_min))
+      plausible = false;
+    const auto rms_gap = [&](const Baseline& b) {
+      double s = 0.0;
+      const std::vector<double> g = baseline_gaps(b, check, options.smoothing_half_window_s);
+      for (const double x : g) s += x * x;
+      return std::sqrt(s / static_cast<double>(g.size()));
+    };
+    if (!plausible) {
+      res.notes.push_back(baseline_form_name(lm.baseline) + ": not kept (a lost-motion parameter on its bound, or a "
+                          "play as wide as the stroke)");
+    } else if (best == res.fits.size() - 1 && res.fits[res.chosen].bic - lm.bic >= kBicMargin) {
+      if (check.empty()) {
+        res.notes.push_back(baseline_form_name(lm.baseline) + ": not kept, lower BIC on the fitted records (delta " +
+                            io::format_number("%.1f", res.fits[res.chosen].bic - lm.bic) +
+                            ") but no --check records to show that it generalizes");
+      } else {
+        const double with = rms_gap(lm.baseline);
+        const double without = rms_gap(res.fits[res.chosen].baseline);
+        const std::string numbers = "RMS gap on the check records " + io::format_number("%.4f", with) + " against " +
+                                    io::format_number("%.4f", without) + " without";
+        if (with < without) {
+          res.chosen = best;
+          res.notes.push_back(baseline_form_name(lm.baseline) + ": kept, it generalizes (" + numbers + ")");
+        } else {
+          res.notes.push_back(baseline_form_name(lm.baseline) + ": not kept, lower BIC on the fitted records but " +
+                              "it does not generalize (" + numbers + ")");
+        }
+      }
+    }
   }
-  res.chosen = 0;
-  for (std::size_t i = 1; i < res.fits.size(); ++i)
-    if (res.fits[i].bic < res.fits[res.chosen].bic) res.chosen = i;
-  if (res.fits.size() == 1) {
-    res.choice_reason = std::string("law given: ") + base_law_name(res.fits[0].baseline.law);
-  } else {
+  {
     const LawFit& c = res.fits[res.chosen];
-    const LawFit& o = res.fits[1 - res.chosen];
-    res.choice_reason = std::string(base_law_name(c.baseline.law)) + ": lower BIC (" +
-                        io::format_number("%.1f", c.bic) + " against " + io::format_number("%.1f", o.bic) + " for " +
-                        base_law_name(o.baseline.law) + ", delta " + io::format_number("%.1f", o.bic - c.bic) + ")";
+    const std::string given = options.law ? std::string("law given: ") + base_law_name(*options.law) : "";
+    if (res.fits.size() == 1) {
+      res.choice_reason = given;
+    } else {
+      res.choice_reason = (given.empty() ? "" : given + "; ") + baseline_form_name(c.baseline) + ": lowest BIC (" +
+                          io::format_number("%.1f", c.bic);
+      for (std::size_t i = 0; i < res.fits.size(); ++i) {
+        if (i == res.chosen) continue;
+        const LawFit& o = res.fits[i];
+        res.choice_reason += "; " + io::format_number("%.1f", o.bic) + " for " + baseline_form_name(o.baseline) +
+                             ", delta " + io::format_number("%.1f", o.bic - c.bic);
+      }
+      res.choice_reason += ")";
+    }
   }
   for (const LawFit& f : res.fits) {
     for (const ParamEstimate& q : f.params) {
       if (q.at_bound)
-        res.notes.push_back(std::string(base_law_name(f.baseline.law)) + ": " + q.name + " = " +
+        res.notes.push_back(baseline_form_name(f.baseline) + ": " + q.name + " = " +
                             io::format_number("%.4g", q.value) +
                             " ended on its search bound (not identified by these records; its sigma is not "
                             "meaningful)");

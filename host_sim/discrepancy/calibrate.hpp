@@ -47,6 +47,8 @@ struct BaselineSigmas {
   double yield_disp_m = 0.0;
   double stiffness_n_m = 0.0;
   double force_delay_s = 0.0;
+  double lost_motion_m_per_n = 0.0;
+  double lost_motion_share = 0.0;
 };
 
 /// Which parameters of the current laws were fitted.
@@ -73,13 +75,21 @@ struct LawFit {
 
 struct CalibrateOptions {
   std::optional<BaseLaw> law;  ///< nullopt: fit both, choose the lower BIC
+  /// Also fit the chosen law with a lost motion at reversals (baseline.hpp),
+  /// kept when it lowers the BIC by at least kBicMargin and the gap on the
+  /// check records (calibrate()).
+  bool lost_motion = true;
   std::size_t samples_per_record = 4000;
   double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s;
   std::string name = "calibrated";  ///< Baseline::name of the result
 };
 
+/// BIC improvement a lost motion needs to join the calibrated baseline (the
+/// ΔBIC ≥ 10 "very strong" evidence of Kass & Raftery 1995, as for effects).
+inline constexpr double kBicMargin = 10.0;
+
 struct CalibrationResult {
-  std::vector<LawFit> fits;  ///< one per law fitted (bingham first)
+  std::vector<LawFit> fits;  ///< one per law fitted (bingham first), then the lost-motion form
   std::size_t chosen = 0;    ///< index into fits
   std::string choice_reason;
   std::vector<std::string> sources;            ///< record names
@@ -92,7 +102,13 @@ struct CalibrationResult {
 /// Fits the baseline to `records` jointly. The chosen fit's baseline carries
 /// the validity range of the records and expected_gap = its largest
 /// per-record gap. Throws io::UsageError when there is no record.
-[[nodiscard]] CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options = {});
+///
+/// `check` records (the same damper, not fitted) judge whether the lost
+/// motion generalizes: it is kept only if it also lowers the RMS over them of
+/// the per-record gaps; without check records it is fitted and reported but
+/// never kept.
+[[nodiscard]] CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options = {},
+                                          std::span<const MeasuredData> check = {});
 
 /// normalized_rms_gap of `baseline` on each record at full rate.
 [[nodiscard]] std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const MeasuredData> records,

@@ -22,7 +22,7 @@ json fit_json(const LawFit& f, const CalibrationResult& r) {
     params[p.name] = {{"value", p.value}, {"sigma", p.sigma}, {"fitted", p.fitted}, {"at_bound", p.at_bound}};
   json gaps = json::array();
   for (std::size_t i = 0; i < r.sources.size(); ++i) gaps.push_back({{"file", r.sources[i]}, {"gap", f.record_gaps[i]}});
-  return {{"law", base_law_name(f.baseline.law)},
+  return {{"law", baseline_form_name(f.baseline)},
           {"parameters", params},
           {"record_gaps", gaps},
           {"expected_gap", f.baseline.expected_gap},
@@ -53,7 +53,7 @@ void plot_record(const std::filesystem::path& png, const MeasuredData& data, con
   for (const LawFit& f : r.fits) {
     const DamperModel m(in, f.baseline);
     m.simulate(EffectSet{}, {}, ws, force);
-    const std::string label = base_law_name(f.baseline.law);
+    const std::string label = baseline_form_name(f.baseline);
     fv.series.push_back({label, v_mm_s, thin(force, ls, 1e-3)});
     fx.series.push_back({label, x_mm, thin(force, ls, 1e-3)});
   }
@@ -71,11 +71,11 @@ void cell(std::string& md, std::string_view text) {
 
 std::string markdown(const CalibrationResult& r, const HeldOut& h, bool plots) {
   std::string md = "# Damper calibration\n\n";
-  md += "Chosen law: **" + std::string(base_law_name(r.best().baseline.law)) + "** (" + r.choice_reason + ").\n\n";
+  md += "Chosen law: **" + std::string(baseline_form_name(r.best().baseline)) + "** (" + r.choice_reason + ").\n\n";
   for (const std::string& n : r.notes) md += "- " + n + "\n";
   md += "\n## Parameters (value ± standard error)\n\n";
   for (const LawFit& f : r.fits) {
-    md += "### " + std::string(base_law_name(f.baseline.law)) + "\n\n| parameter | value | sigma | |\n|---|---|---|---|\n";
+    md += "### " + std::string(baseline_form_name(f.baseline)) + "\n\n| parameter | value | sigma | |\n|---|---|---|---|\n";
     for (const ParamEstimate& p : f.params)
       md += "| " + p.name + " | " + g4(p.value) + " | " + (p.fitted ? g4(p.sigma) : "-") + " | " +
             (p.fitted ? (p.at_bound ? "at its search bound" : "") : "held") + " |\n";
@@ -83,7 +83,7 @@ std::string markdown(const CalibrationResult& r, const HeldOut& h, bool plots) {
           io::format_number("%.0f", f.n_eff) + ".\n\n";
   }
   md += "## Gap per record (normalized RMS of model - measured force)\n\n| record |";
-  for (const LawFit& f : r.fits) cell(md, base_law_name(f.baseline.law));
+  for (const LawFit& f : r.fits) cell(md, baseline_form_name(f.baseline));
   md += "\n|---|";
   for (std::size_t i = 0; i < r.fits.size(); ++i) md += "---|";
   md += "\n";
@@ -126,11 +126,11 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h) {
   json held = json::array();
   for (std::size_t i = 0; i < h.sources.size(); ++i) {
     json g = json::object();
-    for (std::size_t l = 0; l < r.fits.size(); ++l) g[base_law_name(r.fits[l].baseline.law)] = h.gaps[l][i];
+    for (std::size_t l = 0; l < r.fits.size(); ++l) g[baseline_form_name(r.fits[l].baseline)] = h.gaps[l][i];
     held.push_back({{"file", h.sources[i]}, {"gap", g}});
   }
   const ValidityRange& v = r.best().baseline.range;
-  return {{"chosen_law", base_law_name(r.best().baseline.law)},
+  return {{"chosen_law", baseline_form_name(r.best().baseline)},
           {"choice_reason", r.choice_reason},
           {"records", r.sources},
           {"currents_a", r.currents_a},

@@ -86,49 +86,62 @@ void DamperModel::coefficients(const std::vector<double>& current_a, std::vector
   }
 }
 
-void DamperModel::backlash_motion(double half_gap_m, ModelWorkspace& ws) const {
-  const std::size_t n = size();
-  ws.disp_m.resize(n);
-  ws.vel_m_s.resize(n);
-  // Play operator: the rod stays put until the actuator reaches a side of the gap.
-  double rod = in_.disp_m[0];
+namespace {
+
+/// Play operator of half width half_gap_m on x: the driven side's
+/// displacement (`driven`), its engaged fraction per sample (`engaged`, the
+/// driven side's share of the driving side's central difference, continuous
+/// in the gap) and that fraction averaged over ±kContactHalfWindow_s, at
+/// least one sample each side (`engaged_avg`): contact is not instantaneous,
+/// the driven side takes up the motion over a few milliseconds. The average
+/// also keeps the force smooth in the gap and in the delay between samples,
+/// which the fit needs (a one-sample jump leaves sample-spaced local minima).
+/// `half_gap_m` holds one value (a constant gap) or one per sample.
+void play_operator(std::span<const double> time_s, std::span<const double> x, std::span<const double> half_gap_m,
+                   std::vector<double>& driven, std::vector<double>& engaged, std::vector<double>& engaged_avg) {
+  const std::size_t n = x.size();
+  driven.resize(n);
+  double rod = n > 0 ? x[0] : 0.0;
   for (std::size_t k = 0; k < n; ++k) {
-    const double x = in_.disp_m[k];
-    if (x - rod > half_gap_m) {
-      rod = x - half_gap_m;
-    } else if (rod - x > half_gap_m) {
-      rod = x + half_gap_m;
+    const double h = half_gap_m.size() == 1 ? half_gap_m[0] : half_gap_m[k];
+    if (x[k] - rod > h) {
+      rod = x[k] - h;
+    } else if (rod - x[k] > h) {
+      rod = x[k] + h;
     }
-    ws.disp_m[k] = rod;
+    driven[k] = rod;
   }
-  // Engaged fraction: the rod's share of the actuator's central difference,
-  // continuous in the gap.
-  ws.engaged.resize(n);
+  engaged.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t a = k > 0 ? k - 1 : 0;
     const std::size_t b = k + 1 < n ? k + 1 : n - 1;
-    const double dx = in_.disp_m[b] - in_.disp_m[a];
-    const double dr = ws.disp_m[b] - ws.disp_m[a];
-    double engaged = 1.0;
-    if (std::fabs(dx) > 1e-15) engaged = std::clamp(dr / dx, 0.0, 1.0);
-    else if (dr == 0.0 && half_gap_m > 0.0) engaged = 0.0;
-    ws.engaged[k] = engaged;
+    const double dx = x[b] - x[a];
+    const double dr = driven[b] - driven[a];
+    double e = 1.0;
+    const double h = half_gap_m.size() == 1 ? half_gap_m[0] : half_gap_m[k];
+    if (std::fabs(dx) > 1e-15) e = std::clamp(dr / dx, 0.0, 1.0);
+    else if (dr == 0.0 && h > 0.0) e = 0.0;
+    engaged[k] = e;
   }
-  // Contact is not instantaneous: the engagement is averaged over
-  // ±kContactHalfWindow_s (at least one sample each side), so the rod takes
-  // up the actuator's velocity over a few milliseconds. This also keeps the
-  // force smooth in the gap and the delay between samples, which the fit
-  // needs (a one-sample jump leaves sample-spaced local minima).
-  ws.vel_m_s.assign(n, 0.0);
+  engaged_avg.assign(n, 0.0);
   std::size_t lo = 0;
   std::size_t hi = 0;
   double sum = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
-    const double t = in_.time_s[k];
-    while (hi < n && (in_.time_s[hi] - t <= kContactHalfWindow_s || hi <= k + 1)) sum += ws.engaged[hi++];
-    while (lo < k && (t - in_.time_s[lo] > kContactHalfWindow_s && lo + 1 < k)) sum -= ws.engaged[lo++];
-    ws.vel_m_s[k] = in_.vel_m_s[k] * sum / static_cast<double>(hi - lo);
+    const double t = time_s[k];
+    while (hi < n && (time_s[hi] - t <= kContactHalfWindow_s || hi <= k + 1)) sum += engaged[hi++];
+    while (lo < k && (t - time_s[lo] > kContactHalfWindow_s && lo + 1 < k)) sum -= engaged[lo++];
+    engaged_avg[k] = sum / static_cast<double>(hi - lo);
   }
+}
+
+}  // namespace
+
+void DamperModel::backlash_motion(double half_gap_m, ModelWorkspace& ws) const {
+  // The rod stays put until the actuator reaches a side of the gap; it moves
+  // at the actuator's velocity times the averaged engagement.
+  play_operator(in_.time_s, in_.disp_m, std::span<const double>(&half_gap_m, 1), ws.disp_m, ws.engaged, ws.vel_m_s);
+  for (std::size_t k = 0; k < size(); ++k) ws.vel_m_s[k] *= in_.vel_m_s[k];
 }
 
 void DamperModel::raw_force(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws) const {
@@ -176,6 +189,16 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double x_y = preyield ? param(Effect::preyield_hysteresis, 0, 0.0) : p_.yield_disp_m;
   const double asym = param(Effect::direction_asymmetry, 0, 0.0);
   const double k_0 = p_.stiffness_n_m;
+  // Lost motion at reversals (baseline.hpp): the held-up share's engagement,
+  // on the damper's own motion (after any mounting play).
+  const bool lost_motion = p_.has_lost_motion();
+  const double share = std::clamp(p_.lost_motion_share, 0.0, 1.0);
+  if (lost_motion) {
+    ws.lm_half_gap.resize(n);
+    for (std::size_t k = 0; k < n; ++k) ws.lm_half_gap[k] = 0.5 * p_.lost_motion_m_per_n * std::fabs(a_y[k] + b_y[k]);
+    play_operator(in_.time_s, std::span<const double>(xd, n), ws.lm_half_gap, ws.lm_driven, ws.lm_engaged,
+                  ws.lm_factor);
+  }
 
   ws.force_n.resize(n);
   double energy_j = 0.0;
@@ -204,6 +227,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       const double tf = av < v_tf ? av / v_tf : 1.0;  // Eq. 4.4
       fb = tf * (fy * sgn + cv * v);                 // Eq. 4.1, 5.12
     }
+    if (lost_motion) fb *= (1.0 - share) + share * ws.lm_factor[k];
     if (asym != 0.0) fb *= v > 0.0 ? 1.0 + asym : (v < 0.0 ? 1.0 - asym : 1.0);
     ws.force_n[k] = fb + elastic + k_gas * xd[k] + offset;
     if (idle) {

@@ -14,6 +14,7 @@
 ///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
 ///   F_b[k]   = TF(v_d) (φ_y Y(i, PR) sgn v_d + φ_v C(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12   (bingham)
 ///            = φ_y Y(i, PR) z[k] + φ_v C(i, PR) v_d + k_0 x_d,  z[k+1] = bouc_wen_step   (bouc_wen)
+///   F_b[k]  ×= (1 − r) + r e_lm[k]   (the baseline's lost motion, width λ Y(i) on x_d, baseline.hpp)
 ///   F_b[k]  ×= 1 + a sgn v_d                                                   (direction_asymmetry)
 ///   F_b: the bouc_wen form with x_y fitted, on either baseline              (preyield_hysteresis)
 ///   F[k]     = F_b[k] + k_gas x_d[k] + F_0                                   (gas_spring, force_offset)
@@ -55,6 +56,7 @@ inline constexpr double kContactHalfWindow_s = 0.003;
 /// Scratch space for one thread's evaluations.
 struct ModelWorkspace {
   std::vector<double> current_a, a_y, b_y, a_c, b_c, disp_m, vel_m_s, engaged, force_n;
+  std::vector<double> lm_half_gap, lm_driven, lm_engaged, lm_factor;  ///< the baseline's lost motion
 };
 
 class DamperModel {

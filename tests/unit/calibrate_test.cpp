@@ -115,7 +115,10 @@ TEST(Calibrate, RecoversABinghamDamperWithinItsUncertainty) {
   CalibrateOptions opt = test_options();
   opt.law = BaseLaw::bingham;
   const CalibrationResult r = calibrate(recs, opt);
-  ASSERT_EQ(r.fits.size(), 1u);
+  // The law, then the law with a lost motion, which this damper does not
+  // have: it must not be kept.
+  ASSERT_EQ(r.fits.size(), 2u);
+  EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
   EXPECT_EQ(r.currents_a.size(), 5u);
   expect_recovered(truth, r.best());
   // 3 % white noise: the normalized gap is about 0.03 on every record.
@@ -126,9 +129,48 @@ TEST(Calibrate, RecoversABoucWenDamperAndAutoPrefersIt) {
   const Baseline truth = small_damper(BaseLaw::bouc_wen);
   const std::vector<MeasuredData> recs = synth_set(truth);
   const CalibrationResult r = calibrate(recs, test_options());
-  ASSERT_EQ(r.fits.size(), 2u);
+  // Both laws, then the better one with a lost motion, which this damper
+  // does not have: it must not be kept.
+  ASSERT_EQ(r.fits.size(), 3u);
   EXPECT_EQ(r.best().baseline.law, BaseLaw::bouc_wen) << r.choice_reason;
+  EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
   expect_recovered(truth, r.best());
+}
+
+TEST(Calibrate, RecoversALostMotionAndKeepsIt) {
+  // λ = 2e-7 m/N: at 1 A, Y = 1500 − 1400 e^−1.5 = 1187.6 N, a play of
+  // 0.24 mm on the 2 mm and 5 mm strokes; half the force held up.
+  Baseline truth = small_damper(BaseLaw::bingham);
+  truth.lost_motion_m_per_n = 2e-7;
+  truth.lost_motion_share = 0.5;
+  const std::vector<MeasuredData> recs = synth_set(truth);
+  CalibrateOptions opt = test_options();
+  opt.law = BaseLaw::bingham;
+  // Check records: other strokes and frequencies of the same damper.
+  std::vector<MeasuredData> check;
+  unsigned seed = 100;
+  for (const double i : {0.0, 0.5, 1.0}) check.push_back(synth_record(truth, 0.0035, 2.0, i, 3.0, 0.03, seed++));
+  // Without them the lost motion is fitted but not kept.
+  const CalibrationResult alone = calibrate(recs, opt);
+  ASSERT_EQ(alone.fits.size(), 2u);
+  EXPECT_FALSE(alone.best().baseline.has_lost_motion()) << alone.choice_reason;
+  const CalibrationResult r = calibrate(recs, opt, check);
+  ASSERT_EQ(r.fits.size(), 2u);
+  ASSERT_TRUE(r.best().baseline.has_lost_motion()) << r.choice_reason;
+  std::size_t checked = 0;
+  for (const ParamEstimate& p : r.best().params) {
+    const double want = p.name == "lost_motion_m_per_n" ? truth.lost_motion_m_per_n
+                        : p.name == "lost_motion_share" ? truth.lost_motion_share
+                                                        : -1.0;
+    if (want < 0.0) continue;
+    ++checked;
+    EXPECT_FALSE(p.at_bound) << p.name;
+    EXPECT_LE(std::fabs(p.value - want), 3.0 * p.sigma) << p.name << " = " << p.value << " ± " << p.sigma;
+    EXPECT_LT(std::fabs(p.value - want), 0.1 * want) << p.name << " = " << p.value;
+  }
+  EXPECT_EQ(checked, 2u);
+  // 3 % white noise: with the lost motion the gap is the noise's.
+  for (const double g : r.best().record_gaps) EXPECT_NEAR(g, 0.03, 0.006);
 }
 
 TEST(Calibrate, OneCurrentGivesConstantLawsAndSaysSo) {
@@ -177,9 +219,16 @@ TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
   std::vector<MeasuredData> fit = lab_family("2mm_5Hz");
   for (auto& d : lab_family("25mm_0p25Hz")) fit.push_back(std::move(d));
   const std::vector<MeasuredData> held = lab_family("5mm_3Hz");
-  const CalibrationResult r = calibrate(fit, test_options());
-  ASSERT_EQ(r.fits.size(), 2u);
+  const CalibrationResult r = calibrate(fit, test_options(), held);
+  ASSERT_EQ(r.fits.size(), 3u);
   EXPECT_EQ(r.currents_a.size(), 5u);
+  // The lost motion lowers the BIC on the 2 mm and 25 mm records but not
+  // the gap on the 5 mm ones (measured: RMS 0.227 with it, 0.200 without):
+  // it does not generalize from these two families and is not kept.
+  EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
+  bool said = false;
+  for (const std::string& n : r.notes) said = said || n.find("does not generalize") != std::string::npos;
+  EXPECT_TRUE(said);
 
   // The thesis's 200 kN damper is about 100× too strong for these records
   // (README): its gap is far above 1.
@@ -189,11 +238,11 @@ TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
   // records show just after each reversal, nor one pre-yield length for
   // 2 mm and 25 mm strokes, so the gap stays far from the noise level.
   // Measured, with the force lag fitted (about 7 ms): Bingham 0.12–0.27,
-  // Bouc–Wen 0.29–0.45 (of the five). Bounds: 0.35 and 0.50, to allow for
-  // the start values and the thinning.
+  // Bouc–Wen 0.29–0.45, Bingham with lost motion 0.13–0.28 (of the five).
+  // Bounds: 0.35 and 0.50, to allow for the start values and the thinning.
   for (const LawFit& f : r.fits) {
     const double bound = f.baseline.law == BaseLaw::bingham ? 0.35 : 0.50;
-    for (const double g : baseline_gaps(f.baseline, held)) EXPECT_LT(g, bound) << base_law_name(f.baseline.law);
+    for (const double g : baseline_gaps(f.baseline, held)) EXPECT_LT(g, bound) << baseline_form_name(f.baseline);
   }
 
   // Independent facts: the records' own peaks at 1 A (1.40 kN at 2 mm / 5 Hz,
@@ -219,6 +268,37 @@ TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
   EXPECT_LT(r.best().baseline.range.velocity_max_m_s, 0.07);
 }
 
+TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
+  ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
+  // Calibrated on the 2 mm / 5 Hz and 5 mm / 3 Hz records, whose loops show
+  // the plateau after each reversal; judged on the 25 mm / 0.25 Hz records.
+  std::vector<MeasuredData> fit = lab_family("2mm_5Hz");
+  for (auto& d : lab_family("5mm_3Hz")) fit.push_back(std::move(d));
+  const std::vector<MeasuredData> held = lab_family("25mm_0p25Hz");
+  CalibrateOptions opt = test_options();
+  opt.law = BaseLaw::bingham;
+  const CalibrationResult r = calibrate(fit, opt, held);
+  ASSERT_EQ(r.fits.size(), 2u);
+  ASSERT_TRUE(r.best().baseline.has_lost_motion()) << r.choice_reason;
+  // The plateau read off the 2 mm / 1 A loop (force–displacement, docs/
+  // discrepancy/lab_calibration_2mm_5Hz_1A_loops.png): about 0.5 of 1.3 kN,
+  // so a held-up share near 0.6, for about 0.3 mm, at Y(1 A) ≈ 0.84 kN of the
+  // plain fit, λ ≈ 3.6e-7 m/N. The fit must land in the same range: share
+  // 0.3–0.8, play at 1 A 0.1–0.6 mm.
+  const Baseline& b = r.best().baseline;
+  EXPECT_GT(b.lost_motion_share, 0.3);
+  EXPECT_LT(b.lost_motion_share, 0.8);
+  const double play_m = b.lost_motion_m_per_n * b.yield_n.at(1.0);
+  EXPECT_GT(play_m, 0.1e-3);
+  EXPECT_LT(play_m, 0.6e-3);
+  // On every held-out record with current (the 0 A one is friction-like, no
+  // plateau) the gap is lower with the lost motion than without (measured:
+  // 19.4 → 16.6, 16.7 → 13.6, 18.0 → 14.7, 19.7 → 16.4 %).
+  const std::vector<double> with = baseline_gaps(r.fits[1].baseline, held);
+  const std::vector<double> without = baseline_gaps(r.fits[0].baseline, held);
+  for (std::size_t i = 1; i < held.size(); ++i) EXPECT_LT(with[i], without[i]) << held[i].source;
+}
+
 // ---- damper.toml ------------------------------------------------------------
 
 BaselineFile sample_file(BaseLaw law) {
@@ -235,6 +315,13 @@ BaselineFile sample_file(BaseLaw law) {
   f.viscous_fitted = {true, true, false};
   f.source_records = {"a.csv", "b \"quoted\".csv"};
   f.fits = {{"a.csv", BaseLaw::bingham, 0.1, 4000}, {"a.csv", BaseLaw::bouc_wen, 0.2, 4000}};
+  if (law == BaseLaw::bingham) {
+    f.baseline.lost_motion_m_per_n = 3e-7;
+    f.baseline.lost_motion_share = 0.45;
+    f.sigma.lost_motion_m_per_n = 2e-8;
+    f.sigma.lost_motion_share = 0.03;
+    f.fits.push_back({"a.csv", BaseLaw::bingham, 0.08, 4000, true});
+  }
   return f;
 }
 
@@ -271,7 +358,15 @@ TEST(BaselineFile, RoundTripsExactly) {
     EXPECT_TRUE(g.viscous_fitted.limit);
     EXPECT_FALSE(g.coil_identified);
     EXPECT_EQ(g.source_records, f.source_records);
-    ASSERT_EQ(g.fits.size(), 2u);
+    EXPECT_EQ(b.lost_motion_m_per_n, a.lost_motion_m_per_n);
+    EXPECT_EQ(b.lost_motion_share, a.lost_motion_share);
+    EXPECT_EQ(g.sigma.lost_motion_share, f.sigma.lost_motion_share);
+    EXPECT_EQ(b.has_lost_motion(), law == BaseLaw::bingham);
+    ASSERT_EQ(g.fits.size(), law == BaseLaw::bingham ? 3u : 2u);
+    EXPECT_FALSE(g.fits[0].lost_motion);
+    if (law == BaseLaw::bingham) {
+      EXPECT_TRUE(g.fits[2].lost_motion);
+    }
     EXPECT_EQ(g.fits[1].law, BaseLaw::bouc_wen);
     EXPECT_EQ(g.fits[1].gap, 0.2);
     EXPECT_EQ(g.fits[1].samples, 4000u);
@@ -323,6 +418,8 @@ TEST(BaselineFile, RefusesBadFieldsNamingFileLineAndField) {
       {"current_max_a = 1.0", "current_max_a = inf", "current_max_a", "validity.current_max_a", "finite"},
       {"tau_fast_s = 0.03", "tau_fast_s = 0.03\ntau_fastest_s = 0.01", "tau_fastest_s", "coil.tau_fastest_s",
        "unknown key"},
+      {"share = 0.45", "share = 1.5", "share = ", "lost_motion.share", "expected a share in (0, 1]"},
+      {"m_per_n = 3e-07", "m_per_n = 0", "m_per_n = ", "lost_motion.m_per_n", "expected a number > 0"},
   };
   for (const Case& c : cases) {
     const std::string text = edited(c.from, c.to);

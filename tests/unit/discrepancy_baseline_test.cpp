@@ -71,6 +71,48 @@ TEST(DiscrepancyBaseline, BoucWenModelForceAtSteadyMotion) {
   EXPECT_NEAR(DamperModel(in, b).force_ratio(), 1364.665 / 141.171e3, 1e-5);
 }
 
+// Lost motion at reversals (baseline.hpp), by hand. A triangle wave of
+// ±2 mm at 20 mm/s (0.2 s per stroke), 1 kHz, at 1 A; Bingham with a
+// transition velocity far below 20 mm/s and no viscous term, so the plain
+// force is Y sgn v = ±1364.66 N (Y(1 A) as above). λ = 2.2e-7 m/N gives a
+// play of g = λ Y = 0.3002 mm: after a reversal the held-up share r = 0.6
+// acts only once the motion has gone 0.300 mm, 15 ms at 20 mm/s. So 4–10 ms
+// after the reversal (clear of the ±3 ms contact window) the force is
+// (1 − r) Y = 545.87 N in the new direction, and from 20 ms on (the play
+// ends at 15.01 ms, plus the window) it is Y.
+TEST(DiscrepancyBaseline, LostMotionHoldsUpItsShareForItsPlay) {
+  Baseline b;
+  b.yield_n = {500.0, 1500.0, 2.0};
+  b.viscous_ns_m = {0.0, 0.0, 1.0};
+  b.v_tf_m_s = 1e-5;
+  b.lost_motion_m_per_n = 2.2e-7;
+  b.lost_motion_share = 0.6;
+  ModelInput in;
+  const double v = 0.02;
+  for (int k = 0; k <= 800; ++k) {
+    const double t = k * 1e-3;
+    const double phase = std::fmod(t, 0.4);  // up 0.2 s from −2 mm, down 0.2 s
+    in.time_s.push_back(t);
+    in.disp_m.push_back(phase < 0.2 ? -0.002 + v * phase : 0.002 - v * (phase - 0.2));
+    in.vel_m_s.push_back(phase < 0.2 ? v : -v);
+    in.current_cmd_a.push_back(1.0);
+  }
+  const DamperModel model(in, b);
+  ModelWorkspace ws;
+  std::vector<double> f;
+  model.simulate(EffectSet{}, {}, ws, f);
+  const double y = 1364.665;
+  // Reversals at 200 ms (to compression) and 400 ms (to extension).
+  for (int ms = 204; ms <= 210; ++ms) EXPECT_NEAR(f[ms], -0.4 * y, 0.5) << ms << " ms";
+  for (int ms = 220; ms <= 396; ms += 4) EXPECT_NEAR(f[ms], -y, 0.5) << ms << " ms";
+  for (int ms = 404; ms <= 410; ++ms) EXPECT_NEAR(f[ms], 0.4 * y, 0.5) << ms << " ms";
+  for (int ms = 420; ms <= 596; ms += 4) EXPECT_NEAR(f[ms], y, 0.5) << ms << " ms";
+  // Without the share (r = 0) the same record gives the plain law.
+  b.lost_motion_share = 0.0;
+  DamperModel(in, b).simulate(EffectSet{}, {}, ws, f);
+  EXPECT_NEAR(f[205], -y, 0.5);
+}
+
 TEST(DiscrepancyBaseline, SplitHoldsOutThreeBlocksInTen) {
   std::vector<double> t;
   for (int k = 0; k < 4000; ++k) t.push_back(k * 0.01);  // 40 s: blocks of ~1 s
