@@ -320,6 +320,13 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
                                       {"held_out_reduction", r.filter_check.held_out_reduction},
                                       {"lowpass_better", r.filter_check.lowpass_better}};
   }
+  if (r.filter_check.compliance_checked) {
+    // filter_check.hpp: the selected delay or pre-yield hysteresis against a series compliance in its place.
+    j["selected_against_compliance"] = json{{"compliance_m_per_n", r.filter_check.compliance_m_per_n},
+                                            {"delta_bic", r.filter_check.compliance_delta_bic},
+                                            {"held_out_reduction", r.filter_check.compliance_held_out_reduction},
+                                            {"compliance_better", r.filter_check.compliance_better}};
+  }
   j["regions"] = json::array();
   for (const auto& s : r.regions) j["regions"].push_back(region_json(s));
   j["time_windows"] = json::array();

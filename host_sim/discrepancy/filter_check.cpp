@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace mrd::discrepancy {
 namespace {
@@ -18,7 +19,129 @@ double rss_over(std::span<const double> measured, std::span<const double> model,
   return s;
 }
 
+/// Minimizes f(ln p) over [lo, hi] (ln p): a log grid of `grid` points, then
+/// golden-section refinement between the best point's neighbours. Returns
+/// the best p and its value.
+template <class F>
+std::pair<double, double> minimize_log(F&& f, double lo, double hi, int grid, int steps) {
+  const double l0 = std::log(lo);
+  const double step = (std::log(hi) - l0) / (grid - 1);
+  int best = 0;
+  double best_v = 0.0;
+  for (int g = 0; g < grid; ++g) {
+    const double r = f(std::exp(l0 + step * g));
+    if (g == 0 || r < best_v) {
+      best = g;
+      best_v = r;
+    }
+  }
+  double a = l0 + step * std::max(best - 1, 0);
+  double b = l0 + step * std::min(best + 1, grid - 1);
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - phi * (b - a);
+  double d = a + phi * (b - a);
+  double rc = f(std::exp(c));
+  double rd = f(std::exp(d));
+  for (int it = 0; it < steps; ++it) {
+    if (rc < rd) {
+      b = d;
+      d = c;
+      rd = rc;
+      c = b - phi * (b - a);
+      rc = f(std::exp(c));
+    } else {
+      a = c;
+      c = d;
+      rc = rd;
+      d = a + phi * (b - a);
+      rd = f(std::exp(d));
+    }
+  }
+  double p = std::exp(l0 + step * best);
+  if (std::min(rc, rd) < best_v) {
+    p = std::exp(rc < rd ? c : d);
+    best_v = std::min(rc, rd);
+  }
+  return {p, best_v};
+}
+
+/// Series compliances searched, as the spring's deflection at the
+/// baseline's force scale: 0.1 µm to 50 mm.
+constexpr double kDeflectionMin_m = 1e-7;
+constexpr double kDeflectionMax_m = 0.05;
+
+/// `force` delayed by `delay_s` (linear interpolation; before the record, its first value).
+void delayed(std::span<const double> t, std::span<const double> force, double delay_s, std::vector<double>& out) {
+  const std::size_t n = t.size();
+  out.resize(n);
+  std::size_t p = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double target = t[k] - delay_s;
+    if (delay_s <= 0.0) {
+      out[k] = force[k];
+      continue;
+    }
+    if (target <= t[0]) {
+      out[k] = force[0];
+      continue;
+    }
+    while (p + 1 < n && t[p + 1] <= target) ++p;
+    if (p + 1 >= n) {
+      out[k] = force[n - 1];
+      continue;
+    }
+    const double w = (target - t[p]) / (t[p + 1] - t[p]);
+    out[k] = force[p] + w * (force[p + 1] - force[p]);
+  }
+}
+
 }  // namespace
+
+void series_compliance_force(const DamperModel& model, double compliance_m_per_n, std::vector<double>& force_n) {
+  const ModelInput& in = model.input();
+  const Baseline& b = model.baseline();
+  const std::vector<double>& current = model.baseline_current_a();
+  const std::size_t n = in.time_s.size();
+  std::vector<double> raw(n, 0.0);
+  const double c = std::max(compliance_m_per_n, 0.0);
+  // Eq. 4.1–4.4 at sample k and the damper's velocity v.
+  const double v_tf = b.v_tf_m_s;
+  const auto law_at = [&](std::size_t k, double v) {
+    const double fy = b.yield_n.at(current[k]);
+    const double cv = b.viscous_ns_m.at(current[k]);
+    const double av = std::fabs(v);
+    const double sgn = v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
+    return (av < v_tf ? av / v_tf : 1.0) * (fy * sgn + cv * v);
+  };
+  // The record starts in a steady state: the spring carries the force the
+  // damper gives at the actuator's velocity (starting it unloaded leaves a
+  // transient that lasts until the damper first yields).
+  if (n > 0) raw[0] = law_at(0, in.vel_m_s[0]);
+  double y = n > 0 ? in.disp_m[0] - c * raw[0] : 0.0;
+  for (std::size_t k = 1; k < n; ++k) {
+    const double dt = in.time_s[k] - in.time_s[k - 1];
+    const auto law = [&](double v) { return law_at(k, v); };
+    const double x = in.disp_m[k];
+    // Implicit Euler: F = law((x − cF − y)/dt). h(F) = F − law(...) rises
+    // with F, so the root lies between 0 and law at F = 0: bisection.
+    const auto v_of = [&](double f) { return (x - c * f - y) / dt; };
+    double lo = 0.0;
+    double hi = law(v_of(0.0));
+    if (hi < lo) std::swap(lo, hi);
+    for (int it = 0; it < 60 && hi - lo > 1e-9 * (1.0 + std::fabs(hi)); ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid - law(v_of(mid)) > 0.0) {
+        hi = mid;
+      } else {
+        lo = mid;
+      }
+    }
+    const double f = 0.5 * (lo + hi);
+    raw[k] = f;
+    y = x - c * f;
+  }
+  delayed(in.time_s, raw, std::max(b.force_delay_s, 0.0), force_n);
+}
 
 void first_order_lowpass(std::span<const double> time_s, std::span<const double> u, double tau_s,
                          std::vector<double>& y) {
@@ -109,7 +232,38 @@ FilterCheck compare_delay_with_lowpass(const DamperModel& model, const EffectSet
   out.delta_bic = n_eff * std::log(std::max(rss_delay, 1e-300) / std::max(best_rss, 1e-300));
   out.held_out_reduction = held_delay > 0.0 ? 1.0 - held_lowpass / held_delay : 0.0;
   out.lowpass_better = out.delta_bic >= min_delta_bic && out.held_out_reduction > 0.0;
+
   return out;
+}
+
+
+void compare_with_compliance(const DamperModel& model, const EffectSet& set, std::span<const double> params,
+                             std::span<const double> measured_force_n, std::span<const std::size_t> fit_index,
+                             std::span<const std::size_t> held_index, double n_eff, double min_delta_bic,
+                             FilterCheck& out) {
+  const Baseline& base = model.baseline();
+  if (!(set.contains(Effect::time_delay) || set.contains(Effect::preyield_hysteresis))) return;
+  if (base.law != BaseLaw::bingham || base.has_lost_motion() || !(base.force_scale_n() > 0.0)) return;
+  if (const auto off = set.offset(Effect::time_delay)) out.delay_s = params[*off];
+  ModelWorkspace ws;
+  std::vector<double> selected;
+  model.simulate(set, params, ws, selected);
+  const double rss_sel = rss_over(measured_force_n, selected, fit_index);
+  const double held_sel = rss_over(measured_force_n, selected, held_index);
+  out.compliance_checked = true;
+  std::vector<double> compliant;
+  const auto rss_c = [&](double comp) {
+    series_compliance_force(model, comp, compliant);
+    return rss_over(measured_force_n, compliant, fit_index);
+  };
+  const double scale = base.force_scale_n();
+  const auto [comp, rss_comp] = minimize_log(rss_c, kDeflectionMin_m / scale, kDeflectionMax_m / scale, 24, 16);
+  out.compliance_m_per_n = comp;
+  series_compliance_force(model, comp, compliant);
+  const double held_comp = rss_over(measured_force_n, compliant, held_index);
+  out.compliance_delta_bic = n_eff * std::log(std::max(rss_sel, 1e-300) / std::max(rss_comp, 1e-300));
+  out.compliance_held_out_reduction = held_sel > 0.0 ? 1.0 - held_comp / held_sel : 0.0;
+  out.compliance_better = out.compliance_delta_bic >= min_delta_bic && out.compliance_held_out_reduction > 0.0;
 }
 
 }  // namespace mrd::discrepancy

@@ -20,6 +20,23 @@
 /// was fitted jointly with the other effects and the low-pass was not, so
 /// the comparison leans towards the delay.
 
+///
+/// The same test against a series compliance of the force path (the fluid
+/// column's or the mounting's stiffness k between the actuator and a damper
+/// that follows the baseline law): F = k (x − y), F = F_baseline(ẏ), solved
+/// implicitly per sample. At small compliance this too is close to a delay
+/// (post-yield a Maxwell element lags by C/k), but after each reversal the
+/// force builds along the spring, F ≈ k Δx, for as long as the damper is
+/// pre-yield, which no delay and no low-pass does. It replaces the delay in
+/// the same way, one parameter (1/k), with the same rule. The same spring
+/// also looks like pre-yield hysteresis (the force built over a
+/// displacement after each reversal), with one difference: a spring's
+/// build-up length is the force it must carry over k, so it grows with the
+/// current, while x_y is one length. So the compliance replaces a selected
+/// time_delay or preyield_hysteresis. It is only tried on the Bingham
+/// baseline without lost motion, with every selected effect left out (the
+/// comparison leans towards the selected model, which has them).
+
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -36,7 +53,17 @@ struct FilterCheck {
   double delta_bic = 0.0;         ///< n_eff ln(RSS_delay / RSS_lowpass), fit samples
   double held_out_reduction = 0.0;  ///< 1 − RSS_lowpass / RSS_delay, held-out samples
   bool lowpass_better = false;
+  bool compliance_checked = false;       ///< the baseline allowed the compliance test
+  double compliance_m_per_n = 0.0;       ///< the best series compliance 1/k
+  double compliance_delta_bic = 0.0;     ///< n_eff ln(RSS_selected / RSS_compliance), fit samples
+  double compliance_held_out_reduction = 0.0;  ///< 1 − RSS_compliance / RSS_selected, held-out samples
+  bool compliance_better = false;
 };
+
+/// Baseline force (no effects) through a series compliance of
+/// `compliance_m_per_n`, N, at every sample, the baseline's force lag
+/// applied. Requires the Bingham law without lost motion.
+void series_compliance_force(const DamperModel& model, double compliance_m_per_n, std::vector<double>& force_n);
 
 /// First-order low-pass y' = (u − y)/τ of `u` sampled at `time_s`, exact
 /// for an input linear between samples; y starts at u[0].
@@ -52,5 +79,12 @@ void first_order_lowpass(std::span<const double> time_s, std::span<const double>
                                                      std::span<const std::size_t> fit_index,
                                                      std::span<const std::size_t> held_index, double n_eff,
                                                      double min_delta_bic);
+
+/// The compliance test above, when `set` holds time_delay or
+/// preyield_hysteresis (fills the compliance fields of `out`; delay_s too).
+void compare_with_compliance(const DamperModel& model, const EffectSet& set, std::span<const double> params,
+                             std::span<const double> measured_force_n, std::span<const std::size_t> fit_index,
+                             std::span<const std::size_t> held_index, double n_eff, double min_delta_bic,
+                             FilterCheck& out);
 
 }  // namespace mrd::discrepancy

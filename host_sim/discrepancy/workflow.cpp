@@ -558,7 +558,16 @@ void decide_verdict(DiscrepancyResult& res, const Selection& current, const Sele
                            percent(fc.held_out_reduction) +
                            " lower). A filter or a compliance in the force path is not in the catalogue.");
   }
-  if (!fc.lowpass_better && (left <= kLeftOverNoise * noise || left <= kLeftOverRemoved * removed)) {
+  if (fc.compliance_better) {
+    res.findings.push_back(label + " leaves a spring's shape: the baseline through a series compliance of " +
+                           format_number("%.3g", fc.compliance_m_per_n) + " m/N (k = " +
+                           format_number("%.3g", fc.compliance_m_per_n > 0.0 ? 1.0 / fc.compliance_m_per_n : 0.0) +
+                           " N/m) in its place fits better (delta BIC " + format_number("%.1f", fc.compliance_delta_bic) +
+                           ", held-out residual power " + percent(fc.compliance_held_out_reduction) +
+                           " lower). A compliance in the force path is not in the catalogue.");
+  }
+  const bool not_a_delay = fc.lowpass_better || fc.compliance_better;
+  if (!not_a_delay && (left <= kLeftOverNoise * noise || left <= kLeftOverRemoved * removed)) {
     res.verdict = Verdict::explained;
     res.findings.push_back(label + " " + numbers + ".");
     if (sa.structured_share >= kStructuredShare) describe_residual(res, sa, true);
@@ -623,12 +632,14 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
                                base_rms};
     forward_selection(ctx, current, ws, res.rounds);
     backward_check(ctx, current, ws, res.dropped);
-    if (current.set.contains(Effect::time_delay)) {
+    if (current.set.contains(Effect::time_delay) || current.set.contains(Effect::preyield_hysteresis)) {
       std::vector<double> resid;
       (void)fit_rss(fd, current.set, current.params, ws, &resid);
+      const double n_eff = noise_effective_samples(fit_times, resid);
       res.filter_check = compare_delay_with_lowpass(model, current.set, current.params, data.force_n, fd.index,
-                                                    held.index, noise_effective_samples(fit_times, resid),
-                                                    opt.min_delta_bic);
+                                                    held.index, n_eff, opt.min_delta_bic);
+      compare_with_compliance(model, current.set, current.params, data.force_n, fd.index, held.index, n_eff,
+                              opt.min_delta_bic, res.filter_check);
     }
   }
   res.effects = current.set.effects;

@@ -40,10 +40,10 @@ namespace {
 // The targets are the project's goals for the workflow; the study prints the
 // rates against them. The floors come from seed sets CI does not run,
 // measured with this generator and workflow: seeds 7000-7059 gave right set
-// 20/20, out-of-catalogue unexplained 6/7; seeds 9000-9059 gave 15/16 and
-// 7/8 (false positives 0/10 on both). Each floor is the lower of the two less
-// one case (14/16 = 0.875, 5/7 = 0.71), rounded down, so a regression on the
-// CI set (5000-5059: 16/17, 7/8) of more than a case or two fails the test.
+// 20/20, out-of-catalogue unexplained 7/7; seeds 9000-9059 gave 15/16 and
+// 8/8 (false positives 0/10 on both). Each floor is the lower of the two less
+// one case (14/16 = 0.875, 6/7 = 0.857), rounded down, so a regression on the
+// CI set (5000-5059: 16/17, 8/8) of more than a case fails the test.
 /// Stated detection limit: effects at or above this ENR must be found.
 constexpr double kDetectionLimitEnr = 4.0;
 /// Right set named, single catalogue effects at or above the limit.
@@ -53,7 +53,7 @@ constexpr double kFloorRightSetRate = 0.85;
 constexpr double kMaxFalsePositiveRate = 0.05;
 /// Out-of-catalogue effects at or above the limit answered "unexplained".
 constexpr double kTargetOutOfCatalogueUnexplainedRate = 0.90;
-constexpr double kFloorOutOfCatalogueUnexplainedRate = 0.70;
+constexpr double kFloorOutOfCatalogueUnexplainedRate = 0.85;
 
 constexpr std::size_t kCases = MRD_INDEPENDENT_STUDY_CASES;
 /// ENR bin edges: <1, 1–2, 2–4, 4–8, 8–16, ≥16.
@@ -180,6 +180,10 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
                     r.filter_check.delay_s, r.filter_check.tau_s, r.filter_check.delta_bic,
                     r.filter_check.held_out_reduction);
       }
+      if (r.filter_check.compliance_checked)
+        std::printf("  selected against a series compliance: %.3g m/N, delta BIC %.1f, held-out %.3f\n",
+                    r.filter_check.compliance_m_per_n, r.filter_check.compliance_delta_bic,
+                    r.filter_check.compliance_held_out_reduction);
     }
     const std::string named = named_label(r);
     const std::string verdict = verdict_of(r);

@@ -190,6 +190,40 @@ TEST(FirstOrderLowpass, ExactOnARamp) {
   EXPECT_NEAR(y.back(), 0.04006737947, 1e-12);
 }
 
+TEST(SeriesCompliance, ClosedFormAfterAReversal) {
+  // Bingham with Y = 1000 N at every current, C = 0, v_TF = 1 mm/s, through
+  // a spring of 1/c = 1 MN/m; the actuator moves at V = 50 mm/s for 0.2 s,
+  // then at −V, sampled at 10 kHz. Steady before the reversal: F = Y. After
+  // it, while |F| < Y the damper is pre-yield, a dashpot of Y/v_TF
+  // (Eq. 4.4), in series with the spring: dF/dt = k(−V − F v_TF/Y), so
+  //   F(t) = −V Y/v_TF + (Y + V Y/v_TF) e^(−t/τ),  τ = Y/(k v_TF) = 1 s,
+  // until F = −Y at t* = τ ln((V + v_TF)/(V − v_TF)) = ln(51/49) = 40.0 ms;
+  // after that the damper yields and F = −Y. At t = 20 ms:
+  //   −50000 + 51000 e^(−0.02) = −50000 + 51000 · 0.980198673 = −9.868 N.
+  Baseline b;
+  b.yield_n = {1000.0, 1000.0, 1.0};
+  b.viscous_ns_m = {0.0, 0.0, 1.0};
+  b.v_tf_m_s = 0.001;
+  ModelInput in;
+  const double v = 0.05;
+  for (int k = 0; k <= 4000; ++k) {
+    const double t = k * 1e-4;
+    in.time_s.push_back(t);
+    in.disp_m.push_back(k <= 2000 ? v * t : v * (0.4 - t));
+    in.vel_m_s.push_back(k < 2000 ? v : -v);
+    in.current_cmd_a.push_back(0.0);
+  }
+  const DamperModel model(in, b);
+  std::vector<double> f;
+  series_compliance_force(model, 1e-6, f);
+  EXPECT_NEAR(f[1000], 1000.0, 1e-6);  // steady, before the reversal
+  EXPECT_NEAR(f[2200], -9.868, 2.0);   // implicit Euler at 0.1 ms against τ = 1 s: ~0.5 N
+  EXPECT_NEAR(f[2100], -50000.0 + 51000.0 * std::exp(-0.01), 2.0);
+  EXPECT_NEAR(f[2600], -1000.0, 1e-3);  // yielded
+  // The spring's own rate just after the reversal: dF/dt ≈ −k V = −50 kN/s.
+  EXPECT_NEAR((f[2010] - f[2000]) / 1e-3, -50.0e3 * (1.0 + 0.001 / 0.05), 1.5e3);
+}
+
 /// The separating test of filter_check.hpp on the baseline's force, 15 ms
 /// late or through a 15 ms low-pass, with 300 N of white noise: a delay is
 /// fitted to each, and only the low-passed record is better described by a
@@ -215,8 +249,10 @@ FilterCheck delay_fitted_then_checked(bool lowpass) {
   (void)fit_rss(fd, set, fit.params, ws, &resid);
   std::vector<double> fit_times;
   for (const std::size_t k : fd.index) fit_times.push_back(c.model.input().time_s[k]);
-  return compare_delay_with_lowpass(c.model, set, fit.params, measured, fd.index, split.held_out,
-                                    noise_effective_samples(fit_times, resid), 10.0);
+  const double n_eff = noise_effective_samples(fit_times, resid);
+  FilterCheck out = compare_delay_with_lowpass(c.model, set, fit.params, measured, fd.index, split.held_out, n_eff, 10.0);
+  compare_with_compliance(c.model, set, fit.params, measured, fd.index, split.held_out, n_eff, 10.0, out);
+  return out;
 }
 
 TEST(FilterCheck, ALowpassIsToldFromADelay) {
@@ -232,6 +268,9 @@ TEST(FilterCheck, APureDelayStaysADelay) {
   const FilterCheck f = delay_fitted_then_checked(false);
   EXPECT_TRUE(f.checked);
   EXPECT_FALSE(f.lowpass_better);
+  // Nor is a series compliance a better description of a pure delay.
+  EXPECT_TRUE(f.compliance_checked);
+  EXPECT_FALSE(f.compliance_better) << f.compliance_m_per_n << " m/N, delta BIC " << f.compliance_delta_bic;
   EXPECT_NEAR(f.delay_s, 0.015, 0.001);
   EXPECT_LT(f.delta_bic, 0.0);
 }
