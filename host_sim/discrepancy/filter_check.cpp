@@ -185,44 +185,7 @@ FilterCheck compare_delay_with_lowpass(const DamperModel& model, const EffectSet
     return rss_over(measured_force_n, filtered, fit_index);
   };
   // Log grid, then golden section on ln τ between the best point's neighbours.
-  const double l0 = std::log(kTauMin_s);
-  const double step = (std::log(kTauMax_s) - l0) / (kTauGrid - 1);
-  int best = 0;
-  double best_rss = 0.0;
-  for (int g = 0; g < kTauGrid; ++g) {
-    const double r = rss_at(std::exp(l0 + step * g));
-    if (g == 0 || r < best_rss) {
-      best = g;
-      best_rss = r;
-    }
-  }
-  double a = l0 + step * std::max(best - 1, 0);
-  double b = l0 + step * std::min(best + 1, kTauGrid - 1);
-  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - phi * (b - a);
-  double d = a + phi * (b - a);
-  double rc = rss_at(std::exp(c));
-  double rd = rss_at(std::exp(d));
-  for (int it = 0; it < kGoldenSteps; ++it) {
-    if (rc < rd) {
-      b = d;
-      d = c;
-      rd = rc;
-      c = b - phi * (b - a);
-      rc = rss_at(std::exp(c));
-    } else {
-      a = c;
-      c = d;
-      rc = rd;
-      d = a + phi * (b - a);
-      rd = rss_at(std::exp(d));
-    }
-  }
-  double tau_s = std::exp(l0 + step * best);
-  if (std::min(rc, rd) < best_rss) {
-    tau_s = std::exp(rc < rd ? c : d);
-    best_rss = std::min(rc, rd);
-  }
+  const auto [tau_s, best_rss] = minimize_log(rss_at, kTauMin_s, kTauMax_s, kTauGrid, kGoldenSteps);
   out.tau_s = tau_s;
 
   const double rss_delay = rss_over(measured_force_n, with_delay, fit_index);
