@@ -5,6 +5,7 @@
 
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/cli/schedule_world_options.hpp"
 #include "host_sim/io/usage_error.hpp"
 #include "host_sim/risk/hazard_curve.hpp"
 #include "host_sim/risk/lifetime_risk.hpp"
@@ -37,34 +38,9 @@ struct RiskOptions {
   std::string fragility;
   std::string hazard;
   std::string control;
-  double years = 50.0;
-  std::uint64_t seed = 1;
-  double threshold = 0.8;
-  double interval_days = 0.0;
-  double earthquakes_per_year = 0.5;
-  std::string actuator = "yes";
-  double ambient_litres_per_day = 0.005;
+  ScheduleWorldOptions world;
   std::string out_dir;
 };
-
-schedule::ScheduleOptions schedule_options(const RiskOptions& o) {
-  require_finite_at_least("--years", o.years, 0.0);
-  if (!(o.years > 0.0) || o.years > 1000.0) throw io::UsageError("--years: expected a number of years > 0 and <= 1000");
-  require_finite_at_least("--threshold", o.threshold, 0.0);
-  require_finite_at_least("--interval-days", o.interval_days, 0.0);
-  require_finite_at_least("--earthquakes-per-year", o.earthquakes_per_year, 0.0);
-  require_finite_at_least("--ambient-litres-per-day", o.ambient_litres_per_day, 0.0);
-  require_choice("--actuator", o.actuator, {"yes", "no"});
-  schedule::ScheduleOptions so;
-  so.world.years = o.years;
-  so.world.seed = o.seed;
-  so.world.earthquakes_per_year = o.earthquakes_per_year;
-  so.world.ambient_median_m3_per_day = o.ambient_litres_per_day * 1e-3;
-  so.threshold = o.threshold;
-  so.interval_days = o.interval_days;
-  so.actuator = o.actuator == "yes";
-  return so;
-}
 
 void print_summary(const risk::RiskResult& r) {
   std::printf("mrd risk: control %s, %.4g years of service (schedule seed %llu)\n  hazard: %s\n\n", r.control.c_str(),
@@ -92,20 +68,20 @@ void add_options(CLI::App& app, RiskOptions& o) {
   app.add_option("--fragility", o.fragility, "fragility.csv of mrd fragility, or its folder")->required();
   app.add_option("--hazard", o.hazard, "Hazard curve CSV (default: the illustrative site)");
   app.add_option("--control", o.control, "Control mode of the curves (default: the first in the file)");
-  app.add_option("--years", o.years, "Service life, years (> 0, <= 1000)")->capture_default_str();
-  app.add_option("--seed", o.seed, "Seed of mrd schedule's world")->capture_default_str();
-  app.add_option("--threshold", o.threshold, "Capacity fraction the policies keep")->capture_default_str();
-  app.add_option("--interval-days", o.interval_days, "Fixed policy's interval, days (default: searched)");
-  app.add_option("--earthquakes-per-year", o.earthquakes_per_year, "Earthquakes that mix the fluid, 1/year")
+  app.add_option("--years", o.world.years, "Service life, years (> 0, <= 1000)")->capture_default_str();
+  app.add_option("--seed", o.world.seed, "Seed of mrd schedule's world")->capture_default_str();
+  app.add_option("--threshold", o.world.threshold, "Capacity fraction the policies keep")->capture_default_str();
+  app.add_option("--interval-days", o.world.interval_days, "Fixed policy's interval, days (default: searched)");
+  app.add_option("--earthquakes-per-year", o.world.earthquakes_per_year, "Earthquakes that mix the fluid, 1/year")
       ->capture_default_str();
-  app.add_option("--actuator", o.actuator, "Mixing actuator fitted: yes | no")->capture_default_str();
-  app.add_option("--ambient-litres-per-day", o.ambient_litres_per_day, "Median ambient volume credited a day, L")
+  app.add_option("--actuator", o.world.actuator, "Mixing actuator fitted: yes | no")->capture_default_str();
+  app.add_option("--ambient-litres-per-day", o.world.ambient_litres_per_day, "Median ambient volume credited a day, L")
       ->capture_default_str();
   add_out_option(app, o.out_dir, "Folder for summary.json, risk.csv, report.md, risk.png");
 }
 
 void execute(const RiskOptions& o) {
-  const schedule::ScheduleOptions so = schedule_options(o);
+  const schedule::ScheduleOptions so = schedule_world_options(o.world);
   std::filesystem::path fragility_path = o.fragility;
   std::error_code ec;
   if (std::filesystem::is_directory(fragility_path, ec)) fragility_path /= "fragility.csv";

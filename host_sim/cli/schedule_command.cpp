@@ -4,6 +4,7 @@
 
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/cli/schedule_world_options.hpp"
 #include "host_sim/io/usage_error.hpp"
 #include "host_sim/schedule/schedule_report.hpp"
 
@@ -57,13 +58,7 @@ Files: DIR/capacity.csv (daily minimum capacity per policy), DIR/earthquakes.csv
 earthquake met per policy), DIR/capacity.png (capacity over time).)"};
 
 struct ScheduleCliOptions {
-  double years = 50.0;
-  double threshold = 0.8;
-  double interval_days = 0.0;
-  std::uint64_t seed = 1;
-  double earthquakes_per_year = 0.5;
-  std::string actuator = "yes";
-  double ambient_litres_per_day = 0.005;
+  ScheduleWorldOptions world;
   double maintenance_days = 7.0;
   double lead_hours = 2.0;
   std::string numeric = "double";
@@ -106,24 +101,10 @@ void print_summary(const TimedSchedule& t) {
 /// The run the options ask for; throws io::UsageError for a bad option
 /// (schedule::run_schedule checks the threshold, interval and horizons).
 schedule::ScheduleOptions schedule_options(const ScheduleCliOptions& o) {
-  require_finite_at_least("--years", o.years, 0.0);
-  if (!(o.years > 0.0) || o.years > 1000.0) throw io::UsageError("--years: expected a number of years > 0 and <= 1000");
-  require_finite_at_least("--threshold", o.threshold, 0.0);
-  require_finite_at_least("--interval-days", o.interval_days, 0.0);
-  require_finite_at_least("--earthquakes-per-year", o.earthquakes_per_year, 0.0);
-  require_finite_at_least("--ambient-litres-per-day", o.ambient_litres_per_day, 0.0);
+  schedule::ScheduleOptions so = schedule_world_options(o.world);
   require_finite_at_least("--maintenance-days", o.maintenance_days, 0.0);
   require_finite_at_least("--lead-hours", o.lead_hours, 0.0);
-  require_choice("--actuator", o.actuator, {"yes", "no"});
   require_choice("--numeric", o.numeric, {"double", "float", "fixed"});
-  schedule::ScheduleOptions so;
-  so.world.years = o.years;
-  so.world.seed = o.seed;
-  so.world.earthquakes_per_year = o.earthquakes_per_year;
-  so.world.ambient_median_m3_per_day = o.ambient_litres_per_day * 1e-3;
-  so.threshold = o.threshold;
-  so.interval_days = o.interval_days;
-  so.actuator = o.actuator == "yes";
   so.maintenance_days = o.maintenance_days;
   so.lead_hours = o.lead_hours;
   so.numeric = schedule::parse_numeric_build(o.numeric);
@@ -131,11 +112,11 @@ schedule::ScheduleOptions schedule_options(const ScheduleCliOptions& o) {
 }
 
 void add_options(CLI::App& app, ScheduleCliOptions& o) {
-  app.add_option("--years", o.years, "Simulated service life, years (> 0, <= 1000)")->capture_default_str();
-  app.add_option("--threshold", o.threshold, "Capacity fraction to keep, > 0 and <= 0.99")->capture_default_str();
-  app.add_option("--interval-days", o.interval_days,
+  app.add_option("--years", o.world.years, "Simulated service life, years (> 0, <= 1000)")->capture_default_str();
+  app.add_option("--threshold", o.world.threshold, "Capacity fraction to keep, > 0 and <= 0.99")->capture_default_str();
+  app.add_option("--interval-days", o.world.interval_days,
                   "Fixed policy's interval, days (default: the longest that keeps the threshold)");
-  app.add_option("--seed", o.seed, "Seed of the random world (earthquakes, ambient motion), >= 0")
+  app.add_option("--seed", o.world.seed, "Seed of the random world (earthquakes, ambient motion), >= 0")
       ->check(CLI::Validator(
           [](std::string& s) {
             const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
@@ -143,10 +124,10 @@ void add_options(CLI::App& app, ScheduleCliOptions& o) {
           },
           "UINT"))
       ->capture_default_str();
-  app.add_option("--earthquakes-per-year", o.earthquakes_per_year, "Mean earthquake rate (Poisson), 1/year")
+  app.add_option("--earthquakes-per-year", o.world.earthquakes_per_year, "Mean earthquake rate (Poisson), 1/year")
       ->capture_default_str();
-  app.add_option("--actuator", o.actuator, "Mixing actuator fitted: yes | no")->capture_default_str();
-  app.add_option("--ambient-litres-per-day", o.ambient_litres_per_day,
+  app.add_option("--actuator", o.world.actuator, "Mixing actuator fitted: yes | no")->capture_default_str();
+  app.add_option("--ambient-litres-per-day", o.world.ambient_litres_per_day,
                   "Median displaced volume of ambient motion credited per day, L (log-normal, sigma 1)")
       ->capture_default_str();
   app.add_option("--maintenance-days", o.maintenance_days, "Maintenance request to visit, days (no actuator)")
