@@ -129,6 +129,28 @@ emu_resolve_modules() {
   printf '%s\n' "${order[@]}"
 }
 
+# The closed-loop scenarios' common start (run.sh, kvaser.sh): the ground-
+# motion record $1 readable, a fresh output folder $2, mrd-firmware and the
+# two peer simulators cross-built (log in $2/build.log), the kernel fetched.
+emu_closed_loop_prepare() {
+  local record=$1 out=$2
+  [[ -r $record ]] || emu_fail "ground-motion record $record not readable"
+  rm -rf "$out" && mkdir -p "$out"
+  emu_cross_build "$out/build.log" mrd-firmware mrd-plant-sim mrd-drive-sim
+  emu_fetch
+}
+
+# The closed-loop initramfs tree $1 (emu_rootfs with modules $2 and $4 as its
+# third argument) holding the three programs, the emulated board's board
+# file and the record $3 as /mrd/record.csv.
+emu_closed_loop_rootfs() {
+  local rootfs=$1 modules=$2 record=$3 with_ip=${4:-}
+  emu_rootfs "$rootfs" "$modules" "$with_ip"
+  cp "$(emu_bin mrd-firmware)" "$(emu_bin mrd-plant-sim)" "$(emu_bin mrd-drive-sim)" "$rootfs/mrd/"
+  cp "$emu_root/boards/emulated-arm64/board.toml" "$rootfs/mrd/board.toml"
+  cp "$record" "$rootfs/mrd/record.csv"
+}
+
 # Makes the initramfs tree $1: busybox, the modules named in $2 (space
 # separated, loaded in dependency order by /init), and /sbin/ip from iproute2
 # when $3 is "ip". /init starts with the prelude (mounts, modules) and then

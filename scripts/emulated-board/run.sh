@@ -26,16 +26,10 @@ runs=${MRD_EMU_RUNS:-"passive-on:0.25 semi-active:0.5"}
 duration_s=${MRD_EMU_DURATION_S:-10}
 
 emu_require_tools
-[[ -r $record ]] || emu_fail "ground-motion record $record not readable"
-rm -rf "$out" && mkdir -p "$out"
-emu_cross_build "$out/build.log" mrd-firmware mrd-plant-sim mrd-drive-sim
-emu_fetch
+emu_closed_loop_prepare "$record" "$out"
 
 rootfs=$out/rootfs
-emu_rootfs "$rootfs" "can can-raw vcan"
-cp "$(emu_bin mrd-firmware)" "$(emu_bin mrd-plant-sim)" "$(emu_bin mrd-drive-sim)" "$rootfs/mrd/"
-cp "$emu_root/boards/emulated-arm64/board.toml" "$rootfs/mrd/board.toml"
-cp "$record" "$rootfs/mrd/record.csv"
+emu_closed_loop_rootfs "$rootfs" "can can-raw vcan" "$record"
 {
   echo "DURATION=$duration_s"
   echo "RUNS=\"$runs\""
