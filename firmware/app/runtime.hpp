@@ -202,7 +202,6 @@ class BoardRuntime {
     }
   }
 
-  /// Saves the mixing task's state when it asks (I/O: outside the tick).
   /// After the tick: the mixing task's log lines of this tick, then its
   /// save when due (I/O stays out of the tick).
   void serve_store() noexcept {

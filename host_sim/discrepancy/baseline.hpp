@@ -102,6 +102,17 @@ struct Baseline {
   [[nodiscard]] bool has_lost_motion() const noexcept { return lost_motion_m_per_n > 0.0 && lost_motion_share > 0.0; }
 };
 
+/// Bingham force at velocity v for a yield force and viscous coefficient
+/// already evaluated at the current: TF(v) (Y sgn v + C v), Eq. 4.1 and the
+/// transition function of Eq. 4.4 (|v|/v_TF below v_TF, 1 above).
+[[nodiscard]] inline double bingham_force_n(double v_m_s, double yield_n, double viscous_ns_m,
+                                            double v_tf_m_s) noexcept {
+  const double av = v_m_s < 0.0 ? -v_m_s : v_m_s;
+  const double sgn = v_m_s > 0.0 ? 1.0 : (v_m_s < 0.0 ? -1.0 : 0.0);
+  const double tf = av < v_tf_m_s ? av / v_tf_m_s : 1.0;
+  return tf * (yield_n * sgn + viscous_ns_m * v_m_s);
+}
+
 /// The thesis's damper: Table 4.1, Eq. 4.5, Table 5.6; range 0–2.5 A (the
 /// drive's rating, §3.1), |v| ≤ 0.2491 m/s (Table 3.1), 200 kN.
 [[nodiscard]] Baseline thesis_baseline();

@@ -291,6 +291,11 @@ Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& 
   return p;
 }
 
+/// The largest current in the records, A (0 with none).
+double top_current_a(const Prepared& p) {
+  return p.currents_a.empty() ? 0.0 : *std::max_element(p.currents_a.begin(), p.currents_a.end());
+}
+
 /// Standard errors of the free parameters (in ln value), from σ² (JᵀJ)⁻¹ n/n_eff.
 std::vector<double> log_sigmas(const JointData& d, const Layout& layout, const Baseline& base,
                                const std::vector<double>& theta, double rss, double n_eff) {
@@ -382,8 +387,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt, cons
     // From the plain fit: a play at the largest current of 5 % or 20 % of
     // the smallest half range (a plateau short against the stroke), holding
     // up a third or two thirds of the force.
-    const double i_top = p.currents_a.empty() ? 0.0 : *std::max_element(p.currents_a.begin(), p.currents_a.end());
-    const double y_top = std::max(std::fabs(plain->baseline.yield_n.at(i_top)), 1e-3);
+    const double y_top = std::max(std::fabs(plain->baseline.yield_n.at(top_current_a(p))), 1e-3);
     for (const double f : {0.05, 0.2})
       for (const double share : {0.33, 0.67}) {
         Baseline s = plain->baseline;
@@ -617,8 +621,7 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     for (const ParamEstimate& q : lm.params)
       if ((q.name == kSlotName[kPlay] || q.name == kSlotName[kShare]) && q.at_bound) plausible = false;
     const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
-    const double i_top = p.currents_a.empty() ? 0.0 : *std::max_element(p.currents_a.begin(), p.currents_a.end());
-    if (!(lm.baseline.lost_motion_m_per_n * std::fabs(lm.baseline.yield_n.at(i_top)) < 2.0 * amp_min))
+    if (!(lm.baseline.lost_motion_m_per_n * std::fabs(lm.baseline.yield_n.at(top_current_a(p))) < 2.0 * amp_min))
       plausible = false;
     const auto rms_gap = [&](const Baseline& b) {
       double s = 0.0;

@@ -223,9 +223,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       elastic = k_0 * xd[k];
       z = bouc_wen_step(z, v, dt, x_y);
     } else {
-      const double sgn = v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
-      const double tf = av < v_tf ? av / v_tf : 1.0;  // Eq. 4.4
-      fb = tf * (fy * sgn + cv * v);                 // Eq. 4.1, 5.12
+      fb = bingham_force_n(v, fy, cv, v_tf);  // Eq. 4.1, 4.4, 5.12
     }
     if (lost_motion) fb *= (1.0 - share) + share * ws.lm_factor[k];
     if (asym != 0.0) fb *= v > 0.0 ? 1.0 + asym : (v < 0.0 ? 1.0 - asym : 1.0);
@@ -250,26 +248,31 @@ void DamperModel::simulate_at(const EffectSet& set, std::span<const double> para
   raw_force(set, params, ws);
   const auto off = set.offset(Effect::time_delay);
   const double delay_s = std::max(p_.force_delay_s, 0.0) + (off ? std::max(params[*off], 0.0) : 0.0);
+  delay_force(in_.time_s, ws.force_n, delay_s, index, force_n);
+}
+
+void delay_force(std::span<const double> time_s, std::span<const double> force_n, double delay_s,
+                 std::span<const std::size_t> index, std::span<double> out) {
   if (delay_s == 0.0) {
-    for (std::size_t j = 0; j < index.size(); ++j) force_n[j] = ws.force_n[index[j]];
+    for (std::size_t j = 0; j < index.size(); ++j) out[j] = force_n[index[j]];
     return;
   }
-  const auto& t = in_.time_s;
+  const auto& t = time_s;
   const std::size_t n = t.size();
   std::size_t p = 0;  // t[p] <= target, moving forward with ascending targets
   for (std::size_t j = 0; j < index.size(); ++j) {
     const double target = t[index[j]] - delay_s;
     if (target <= t[0]) {
-      force_n[j] = ws.force_n[0];
+      out[j] = force_n[0];
       continue;
     }
     while (p + 1 < n && t[p + 1] <= target) ++p;
     if (p + 1 >= n) {
-      force_n[j] = ws.force_n[n - 1];
+      out[j] = force_n[n - 1];
       continue;
     }
     const double w = (target - t[p]) / (t[p + 1] - t[p]);
-    force_n[j] = ws.force_n[p] + w * (ws.force_n[p + 1] - ws.force_n[p]);
+    out[j] = force_n[p] + w * (force_n[p + 1] - force_n[p]);
   }
 }
 

@@ -103,6 +103,12 @@ class DamperModel {
   std::vector<double> base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_;
 };
 
+/// `force_n` (sampled at `time_s`) delayed by `delay_s` at the samples
+/// `index` (ascending): linear interpolation, the first value before the
+/// record, the last after it. A delay of 0 copies.
+void delay_force(std::span<const double> time_s, std::span<const double> force_n, double delay_s,
+                 std::span<const std::size_t> index, std::span<double> out);
+
 /// Normalized RMS of a − b over the samples: sqrt(Σ(a−b)² / Σ a²).
 [[nodiscard]] double normalized_rms_gap(std::span<const double> measured, std::span<const double> model);
 

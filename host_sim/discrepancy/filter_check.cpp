@@ -70,31 +70,6 @@ std::pair<double, double> minimize_log(F&& f, double lo, double hi, int grid, in
 constexpr double kDeflectionMin_m = 1e-7;
 constexpr double kDeflectionMax_m = 0.05;
 
-/// `force` delayed by `delay_s` (linear interpolation; before the record, its first value).
-void delayed(std::span<const double> t, std::span<const double> force, double delay_s, std::vector<double>& out) {
-  const std::size_t n = t.size();
-  out.resize(n);
-  std::size_t p = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double target = t[k] - delay_s;
-    if (delay_s <= 0.0) {
-      out[k] = force[k];
-      continue;
-    }
-    if (target <= t[0]) {
-      out[k] = force[0];
-      continue;
-    }
-    while (p + 1 < n && t[p + 1] <= target) ++p;
-    if (p + 1 >= n) {
-      out[k] = force[n - 1];
-      continue;
-    }
-    const double w = (target - t[p]) / (t[p + 1] - t[p]);
-    out[k] = force[p] + w * (force[p + 1] - force[p]);
-  }
-}
-
 }  // namespace
 
 void series_compliance_force(const DamperModel& model, double compliance_m_per_n, std::vector<double>& force_n) {
@@ -104,33 +79,28 @@ void series_compliance_force(const DamperModel& model, double compliance_m_per_n
   const std::size_t n = in.time_s.size();
   std::vector<double> raw(n, 0.0);
   const double c = std::max(compliance_m_per_n, 0.0);
-  // Eq. 4.1–4.4 at sample k and the damper's velocity v.
   const double v_tf = b.v_tf_m_s;
-  const auto law_at = [&](std::size_t k, double v) {
-    const double fy = b.yield_n.at(current[k]);
-    const double cv = b.viscous_ns_m.at(current[k]);
-    const double av = std::fabs(v);
-    const double sgn = v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
-    return (av < v_tf ? av / v_tf : 1.0) * (fy * sgn + cv * v);
-  };
   // The record starts in a steady state: the spring carries the force the
   // damper gives at the actuator's velocity (starting it unloaded leaves a
   // transient that lasts until the damper first yields).
-  if (n > 0) raw[0] = law_at(0, in.vel_m_s[0]);
+  if (n > 0)
+    raw[0] = bingham_force_n(in.vel_m_s[0], b.yield_n.at(current[0]), b.viscous_ns_m.at(current[0]), v_tf);
   double y = n > 0 ? in.disp_m[0] - c * raw[0] : 0.0;
   for (std::size_t k = 1; k < n; ++k) {
     const double dt = in.time_s[k] - in.time_s[k - 1];
-    const auto law = [&](double v) { return law_at(k, v); };
+    const double fy = b.yield_n.at(current[k]);
+    const double cv = b.viscous_ns_m.at(current[k]);
     const double x = in.disp_m[k];
-    // Implicit Euler: F = law((x − cF − y)/dt). h(F) = F − law(...) rises
-    // with F, so the root lies between 0 and law at F = 0: bisection.
-    const auto v_of = [&](double f) { return (x - c * f - y) / dt; };
+    // Implicit Euler: F = law((x − cF − y)/dt), the law Eq. 4.1–4.4 at the
+    // damper's velocity. h(F) = F − law(...) rises with F, so the root lies
+    // between 0 and the law at F = 0: bisection.
+    const auto law_at_force = [&](double f) { return bingham_force_n((x - c * f - y) / dt, fy, cv, v_tf); };
     double lo = 0.0;
-    double hi = law(v_of(0.0));
+    double hi = law_at_force(0.0);
     if (hi < lo) std::swap(lo, hi);
     for (int it = 0; it < 60 && hi - lo > 1e-9 * (1.0 + std::fabs(hi)); ++it) {
       const double mid = 0.5 * (lo + hi);
-      if (mid - law(v_of(mid)) > 0.0) {
+      if (mid - law_at_force(mid) > 0.0) {
         hi = mid;
       } else {
         lo = mid;
@@ -140,7 +110,10 @@ void series_compliance_force(const DamperModel& model, double compliance_m_per_n
     raw[k] = f;
     y = x - c * f;
   }
-  delayed(in.time_s, raw, std::max(b.force_delay_s, 0.0), force_n);
+  std::vector<std::size_t> all(n);
+  for (std::size_t k = 0; k < n; ++k) all[k] = k;
+  force_n.resize(n);
+  delay_force(in.time_s, raw, std::max(b.force_delay_s, 0.0), all, force_n);
 }
 
 void first_order_lowpass(std::span<const double> time_s, std::span<const double> u, double tau_s,
@@ -195,10 +168,8 @@ FilterCheck compare_delay_with_lowpass(const DamperModel& model, const EffectSet
   out.delta_bic = n_eff * std::log(std::max(rss_delay, 1e-300) / std::max(best_rss, 1e-300));
   out.held_out_reduction = held_delay > 0.0 ? 1.0 - held_lowpass / held_delay : 0.0;
   out.lowpass_better = out.delta_bic >= min_delta_bic && out.held_out_reduction > 0.0;
-
   return out;
 }
-
 
 void compare_with_compliance(const DamperModel& model, const EffectSet& set, std::span<const double> params,
                              std::span<const double> measured_force_n, std::span<const std::size_t> fit_index,
