@@ -143,8 +143,17 @@ Registry& registry() {
 
 std::string errno_text(int err) { return std::strerror(err); }
 
-std::string staging_prefix(const fs::path& target) { return "." + target.filename().string() + ".staging-"; }
-std::string old_prefix(const fs::path& target) { return "." + target.filename().string() + ".old-"; }
+/// "." + name + suffix, built by appending (GCC 12's -Wrestrict misreads the
+/// inlined `const char* + std::string&&` at -O3).
+std::string hidden_name(const fs::path& target, const char* suffix) {
+  std::string s(".");
+  s += target.filename().string();
+  s += suffix;
+  return s;
+}
+
+std::string staging_prefix(const fs::path& target) { return hidden_name(target, ".staging-"); }
+std::string old_prefix(const fs::path& target) { return hidden_name(target, ".old-"); }
 
 bool process_gone(const std::string& pid_text) {
   if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9) {
