@@ -19,8 +19,7 @@ using control::ControlMode;
 using control::ControllerInput;
 using control::ControllerOutput;
 
-constexpr double kPi = units::kPi;
-constexpr double kOmegaF = 2.0 * kPi * 0.2508;
+constexpr double kRildOmegaF = 2.0 * units::kPi * 0.2508;
 
 template <class Policy>
 class DamperControllerTest : public ::testing::Test {};
@@ -28,7 +27,7 @@ using Policies = ::testing::Types<num::Float32Policy, num::Fixed32Policy>;
 TYPED_TEST_SUITE(DamperControllerTest, Policies);
 
 /// A clean sample of a sinusoidal stroke x = A sin(ω t) with a viscous force.
-ControllerInput sine_input(std::uint64_t tick, double amplitude_m = 0.04, double omega = kOmegaF) {
+ControllerInput sine_input(std::uint64_t tick, double amplitude_m = 0.04, double omega = kRildOmegaF) {
   const double t = static_cast<double>(tick) * 1e-3;
   ControllerInput in;
   in.tick = tick;
@@ -96,7 +95,7 @@ TYPED_TEST(DamperControllerTest, RejectsBadConfigurationsAndStaysSafe) {
   EXPECT_EQ(init_with([&](ControllerConfig& c) { c.stiffness_n_m = nan; }), ConfigError::kStiffness);
   EXPECT_EQ(init_with([](ControllerConfig& c) { c.loss_factor = -0.8; }), ConfigError::kLossFactor);
   // ω_f at Nyquist (π/T): Tustin cannot place the pole.
-  EXPECT_EQ(init_with([](ControllerConfig& c) { c.filter_freq_rad_s = kPi / 1e-3; }), ConfigError::kFilterFrequency);
+  EXPECT_EQ(init_with([](ControllerConfig& c) { c.filter_freq_rad_s = units::kPi / 1e-3; }), ConfigError::kFilterFrequency);
   EXPECT_EQ(init_with([](ControllerConfig& c) { c.velocity_cutoff_hz = 600.0; }), ConfigError::kVelocityFilter);
   EXPECT_EQ(init_with([](ControllerConfig& c) { c.stuck_ticks = 1; }), ConfigError::kSensorLimits);
 }
@@ -178,10 +177,10 @@ std::pair<double, double> track_imposed_sine(double amplitude_m, double* max_com
   double peak = 0.0, err2 = 0.0, fd2 = 0.0, max_cmd = 0.0;
   for (std::uint64_t k = 0; k < n; ++k) {
     const double t = static_cast<double>(k) * 1e-3;
-    const double v = amplitude_m * kOmegaF * std::cos(kOmegaF * t);
+    const double v = amplitude_m * kRildOmegaF * std::cos(kRildOmegaF * t);
     ControllerInput in;
     in.tick = k;
-    in.damper_disp_m = static_cast<float>(amplitude_m * std::sin(kOmegaF * t));
+    in.damper_disp_m = static_cast<float>(amplitude_m * std::sin(kRildOmegaF * t));
     in.damper_force_n = static_cast<float>(damper.force_n(v));
     in.ground_accel_m_s2 = 1.0f;
     in.coil_current_a = static_cast<float>(damper.current_a());
@@ -223,7 +222,7 @@ TEST(DamperControllerAgreement, FixedPointFollowsFloatOnASineSweep) {
   const int n = 60000;
   for (int k = 0; k < n; ++k) {
     const double t = k * 1e-3;
-    const double phase = 2.0 * kPi * (0.05 * t + 0.5 * (4.95 / 60.0) * t * t);
+    const double phase = 2.0 * units::kPi * (0.05 * t + 0.5 * (4.95 / 60.0) * t * t);
     const double freq = 0.05 + 4.95 * t / 60.0;
     ControllerInput in;
     in.tick = static_cast<std::uint64_t>(k);

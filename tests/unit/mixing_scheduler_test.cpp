@@ -15,7 +15,7 @@
 namespace mrd::fw {
 namespace {
 
-constexpr double kDt = 1.0e-3;
+constexpr double kControlStepS = 1.0e-3;
 constexpr double kArea = 0.01062;  // m², the calibrated ∫Q area
 
 // ------------------------------------------------ plan
@@ -80,7 +80,7 @@ class Scheduler : public ::testing::Test {
   }
   /// Ticks without change for `seconds`.
   void wait(double seconds, double forecast, double volume_m3 = 0.0) {
-    const auto n = static_cast<int>(seconds / kDt);
+    const auto n = static_cast<int>(seconds / kControlStepS);
     for (int k = 0; k < n; ++k) tick(forecast, volume_m3);
   }
   /// Brings the scheduler into `running` with a cycle planned.
@@ -397,14 +397,14 @@ struct Loop {
     for (std::uint64_t tick = 0; tick < ticks; ++tick) {
       double x = 0.0;
       if (moving && tick - start_tick <= stroke_ticks) {
-        const double tau = static_cast<double>(tick - start_tick) * kDt;
+        const double tau = static_cast<double>(tick - start_tick) * kControlStepS;
         x = last_plan.amplitude_m * std::sin(2.0 * units::kPi * last_plan.frequency_hz * tau);
       } else {
         moving = false;
       }
       IdleEstimatorInput ei;
       ei.tick = tick;
-      ei.rtc_s = 1.7e9 + static_cast<double>(tick) * kDt;
+      ei.rtc_s = 1.7e9 + static_cast<double>(tick) * kControlStepS;
       ei.damper_disp_m = x;
       ei.mixing_active = moving;
       est.step(ei);
@@ -421,7 +421,7 @@ struct Loop {
         start_tick = tick + 1;
         last_plan = o.plan;
         if (plans++ == 0) first_plan = o.plan;
-        stroke_ticks = static_cast<std::uint64_t>(std::llround(last_plan.duration_s / kDt));
+        stroke_ticks = static_cast<std::uint64_t>(std::llround(last_plan.duration_s / kControlStepS));
       }
       if (o.state == SchedulerState::kConfirmed && confirmed_id != o.request_id) {
         confirmed_id = o.request_id;

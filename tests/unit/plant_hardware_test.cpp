@@ -19,7 +19,7 @@ constexpr double kVel_m_s = 0.1;
 /// The least time to raise the coil current from 0 to `to_a` with the whole
 /// bus across it: ∫_0^I L(i)/(72 V − 4.8 Ω · i) di, L(i) = (25/3)(3/5)^i H
 /// (through the thesis's 5.0 H at 1 A and 3.0 H at 2 A), midpoint rule.
-double slew_bound_s(double to_a) {
+double slew_bound_by_hand_s(double to_a) {
   const int n = 20000;
   const double h = to_a / n;
   double t = 0.0;
@@ -90,8 +90,8 @@ TEST(HardwarePlant, StepResponseBesideEq45) {
   EXPECT_NEAR(t90_th, 0.7 * std::log(5.0), 2e-3);
   const double t63_hw = time_to(hw.coil_a, 0.0, 2.5, 0.63), t90_hw = time_to(hw.coil_a, 0.0, 2.5, 0.9);
   for (const auto& [t_hw, level_a] : {std::pair{t63_hw, 0.63 * 2.5}, std::pair{t90_hw, 0.9 * 2.5}}) {
-    EXPECT_GE(t_hw, slew_bound_s(level_a)) << level_a;
-    EXPECT_LE(t_hw, slew_bound_s(level_a) + 1.5e-3) << level_a;
+    EXPECT_GE(t_hw, slew_bound_by_hand_s(level_a)) << level_a;
+    EXPECT_LE(t_hw, slew_bound_by_hand_s(level_a) + 1.5e-3) << level_a;
   }
 
   const double f_end_th = th.force_n.back(), f_end_hw = hw.force_n.back();

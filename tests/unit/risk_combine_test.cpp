@@ -11,7 +11,7 @@
 namespace mrd::risk {
 namespace {
 
-std::string error_of(const std::string& text) {
+std::string fragility_error_of(const std::string& text) {
   try {
     (void)parse_fragility_csv(text, "f.csv");
   } catch (const io::UsageError& e) {
@@ -32,19 +32,19 @@ TEST(RiskCombine, ReadsFragilityCsvAndNamesBadFields) {
   EXPECT_DOUBLE_EQ(rows[0].fit.median_im, 0.8);
   EXPECT_DOUBLE_EQ(rows[0].fit.beta, 0.4);
   EXPECT_EQ(rows[1].fit.status, FitStatus::kNoneExceeded);
-  EXPECT_EQ(error_of("a,b\n"),
+  EXPECT_EQ(fragility_error_of("a,b\n"),
             "f.csv:1: expected the header of mrd fragility's fragility.csv "
             "('control,limit_state,threshold,idle_years...')");
-  EXPECT_EQ(error_of(kHeader + "m,s,1,0,fitted,x,0.4,,,,,1,1\n"),
+  EXPECT_EQ(fragility_error_of(kHeader + "m,s,1,0,fitted,x,0.4,,,,,1,1\n"),
             "f.csv:2: field 'median_pga_g': expected a number, got 'x'");
-  EXPECT_EQ(error_of(kHeader + "m,s,1,0,fitted,0.5,-1,,,,,1,1\n"),
+  EXPECT_EQ(fragility_error_of(kHeader + "m,s,1,0,fitted,0.5,-1,,,,,1,1\n"),
             "f.csv:2: field 'beta': expected a log-standard deviation > 0");
-  EXPECT_EQ(error_of(kHeader + "m,s,1,-2,fitted,0.5,1,,,,,1,1\n"),
+  EXPECT_EQ(fragility_error_of(kHeader + "m,s,1,-2,fitted,0.5,1,,,,,1,1\n"),
             "f.csv:2: field 'idle_years': expected an idle time >= 0 years");
-  EXPECT_EQ(error_of(kHeader + "m,s,1,0,maybe,0.5,1,,,,,1,1\n"),
+  EXPECT_EQ(fragility_error_of(kHeader + "m,s,1,0,maybe,0.5,1,,,,,1,1\n"),
             "f.csv:2: field 'status': expected fitted, none_exceeded or all_exceeded, got 'maybe'");
-  EXPECT_EQ(error_of(kHeader + "m,s,1\n"), "f.csv:2: expected 13 fields, got 3");
-  EXPECT_EQ(error_of(kHeader), "f.csv: no fragility curves");
+  EXPECT_EQ(fragility_error_of(kHeader + "m,s,1\n"), "f.csv:2: expected 13 fields, got 3");
+  EXPECT_EQ(fragility_error_of(kHeader), "f.csv: no fragility curves");
 }
 
 // λ(τ) between τ_k: linear; outside: the end values.

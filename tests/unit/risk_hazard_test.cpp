@@ -11,7 +11,7 @@
 namespace mrd::risk {
 namespace {
 
-std::string error_of(const std::string& text) {
+std::string hazard_error_of(const std::string& text) {
   try {
     (void)parse_hazard_csv(text, "site.csv");
   } catch (const io::UsageError& e) {
@@ -32,18 +32,18 @@ TEST(RiskHazard, ReadsTheDocumentedFormat) {
 }
 
 TEST(RiskHazard, BadLinesNameFileLineAndField) {
-  EXPECT_EQ(error_of("pga,rate\n"), "site.csv:1: expected the header 'pga_g,annual_frequency', got 'pga,rate'");
-  EXPECT_EQ(error_of("pga_g,annual_frequency\n0.1,0.02\n0.2,x\n"),
+  EXPECT_EQ(hazard_error_of("pga,rate\n"), "site.csv:1: expected the header 'pga_g,annual_frequency', got 'pga,rate'");
+  EXPECT_EQ(hazard_error_of("pga_g,annual_frequency\n0.1,0.02\n0.2,x\n"),
             "site.csv:3: field 'annual_frequency': expected a number, got 'x'");
-  EXPECT_EQ(error_of("pga_g,annual_frequency\n0.2,0.02\n0.1,0.01\n"),
+  EXPECT_EQ(hazard_error_of("pga_g,annual_frequency\n0.2,0.02\n0.1,0.01\n"),
             "site.csv:3: field 'pga_g': expected PGAs that increase from row to row");
-  EXPECT_EQ(error_of("pga_g,annual_frequency\n0.1,0.02\n0.2,0.03\n"),
+  EXPECT_EQ(hazard_error_of("pga_g,annual_frequency\n0.1,0.02\n0.2,0.03\n"),
             "site.csv:3: field 'annual_frequency': expected frequencies that decrease as the PGA grows");
-  EXPECT_EQ(error_of("pga_g,annual_frequency\n-0.1,0.02\n"), "site.csv:2: field 'pga_g': expected a PGA > 0 g");
-  EXPECT_EQ(error_of("pga_g,annual_frequency\n0.1,0.02,3\n"),
+  EXPECT_EQ(hazard_error_of("pga_g,annual_frequency\n-0.1,0.02\n"), "site.csv:2: field 'pga_g': expected a PGA > 0 g");
+  EXPECT_EQ(hazard_error_of("pga_g,annual_frequency\n0.1,0.02,3\n"),
             "site.csv:2: expected 2 fields (pga_g,annual_frequency), got 3");
-  EXPECT_EQ(error_of("pga_g,annual_frequency\n0.1,0.02\n"), "site.csv: expected at least 2 points on the hazard curve");
-  EXPECT_EQ(error_of(""), "site.csv: no header 'pga_g,annual_frequency'");
+  EXPECT_EQ(hazard_error_of("pga_g,annual_frequency\n0.1,0.02\n"), "site.csv: expected at least 2 points on the hazard curve");
+  EXPECT_EQ(hazard_error_of(""), "site.csv: no header 'pga_g,annual_frequency'");
 }
 
 // The default site's anchor: 10 % in 50 years is λ = −ln(0.9)/50 =

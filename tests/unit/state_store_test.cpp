@@ -294,17 +294,17 @@ TEST_F(FileStore, BareFileNameUsesTheCurrentFolder) {
 
 // ------------------------------------------- estimator boot over the file store
 
-constexpr double kRtc0 = 1.7e9;  // an arbitrary wall-clock stamp, s
+constexpr double kStampRtcS = 1.7e9;  // an arbitrary wall-clock stamp, s
 
 IdleEstimatorConfig config() { return IdleEstimatorConfig{}; }
 
 class EstimatorBoot : public FileStore {
  protected:
-  /// A healthy record: τ = 1 day, saved at kRtc0.
+  /// A healthy record: τ = 1 day, saved at kStampRtcS.
   void save_healthy() {
     PersistedIdleState s;
     s.equivalent_idle_ms = 86400000;
-    s.rtc_ms = std::llround(kRtc0 * 1e3);
+    s.rtc_ms = std::llround(kStampRtcS * 1e3);
     s.lifetime_volume = std::int64_t{1} << 39;  // 0.5 m³
     posix::FileStateStore store(path_.string());
     ASSERT_EQ(store.save(encode_state(s)), hal::StoreStatus::kOk);
@@ -328,7 +328,7 @@ class EstimatorBoot : public FileStore {
 
 TEST_F(EstimatorBoot, HealthyRecordAddsTheTimeOff) {
   save_healthy();
-  const auto rep = boot(kRtc0 + 2.0 * 86400.0);
+  const auto rep = boot(kStampRtcS + 2.0 * 86400.0);
   EXPECT_EQ(rep.flags, 0u);
   EXPECT_NEAR(est_.estimate().equivalent_idle_s, 3.0 * 86400.0, 1e-6);  // 1 day stored + 2 days off
   EXPECT_EQ(est_.estimate().lifetime_volume_m3, 0.5);
@@ -336,7 +336,7 @@ TEST_F(EstimatorBoot, HealthyRecordAddsTheTimeOff) {
 }
 
 TEST_F(EstimatorBoot, MissingFileMeansFullySettled) {
-  const auto rep = boot(kRtc0);
+  const auto rep = boot(kStampRtcS);
   EXPECT_EQ(rep.load, hal::StoreStatus::kMissing);
   expect_worst(kIdleNoSavedState);
 }
@@ -344,7 +344,7 @@ TEST_F(EstimatorBoot, MissingFileMeansFullySettled) {
 TEST_F(EstimatorBoot, TruncatedFileMeansFullySettled) {
   save_healthy();
   fs::resize_file(path_, 33);
-  const auto rep = boot(kRtc0 + 10.0);
+  const auto rep = boot(kStampRtcS + 10.0);
   EXPECT_EQ(rep.load, hal::StoreStatus::kWrongSize);
   expect_worst(kIdleCorruptState);
 }
@@ -354,7 +354,7 @@ TEST_F(EstimatorBoot, BitFlipMeansFullySettled) {
   auto bytes = read_bytes();
   bytes[9] ^= 0x10;  // inside τ: CRC catches it
   write_bytes(bytes);
-  const auto rep = boot(kRtc0 + 10.0);
+  const auto rep = boot(kStampRtcS + 10.0);
   EXPECT_EQ(rep.decode, DecodeStatus::kBadCrc);
   expect_worst(kIdleCorruptState);
 }
@@ -367,14 +367,14 @@ TEST_F(EstimatorBoot, WrongVersionMeansFullySettled) {
   std::copy(bytes.begin(), bytes.end(), r.begin());
   r = with_fixed_crc(r);
   write_bytes({r.begin(), r.end()});
-  const auto rep = boot(kRtc0 + 10.0);
+  const auto rep = boot(kStampRtcS + 10.0);
   EXPECT_EQ(rep.decode, DecodeStatus::kBadVersion);
   expect_worst(kIdleCorruptState);
 }
 
 TEST_F(EstimatorBoot, ClockBehindTheStampMeansFullySettled) {
   save_healthy();
-  const auto rep = boot(kRtc0 - 3600.0);
+  const auto rep = boot(kStampRtcS - 3600.0);
   EXPECT_EQ(rep.flags & kIdleClockBackwards, kIdleClockBackwards);
   expect_worst(kIdleClockBackwards);
   // The counters of a record that was itself intact are kept.
@@ -384,14 +384,14 @@ TEST_F(EstimatorBoot, ClockBehindTheStampMeansFullySettled) {
 // Within the tolerance (2 s by default) a clock behind the stamp is jitter.
 TEST_F(EstimatorBoot, ClockJitterWithinToleranceIsAccepted) {
   save_healthy();
-  const auto rep = boot(kRtc0 - 1.0);
+  const auto rep = boot(kStampRtcS - 1.0);
   EXPECT_EQ(rep.flags, 0u);
   EXPECT_NEAR(est_.estimate().equivalent_idle_s, 86400.0, 1e-9);
 }
 
 TEST_F(EstimatorBoot, InvalidClockAtBootMeansFullySettled) {
   save_healthy();
-  boot(kRtc0 + 100.0, false);
+  boot(kStampRtcS + 100.0, false);
   expect_worst(kIdleClockInvalid);
 }
 
@@ -399,7 +399,7 @@ TEST_F(EstimatorBoot, InvalidClockAtBootMeansFullySettled) {
 // next boot starts from the present clock rather than the damaged record.
 TEST_F(EstimatorBoot, WorstCaseIsPersistedAndTheNextBootIsClean) {
   save_healthy();
-  boot(kRtc0 - 3600.0);
+  boot(kStampRtcS - 3600.0);
   {
     posix::FileStateStore store(path_.string());
     ASSERT_EQ(est_.save(store), SaveOutcome::kSaved);
@@ -407,7 +407,7 @@ TEST_F(EstimatorBoot, WorstCaseIsPersistedAndTheNextBootIsClean) {
   IdleEstimator again;
   ASSERT_TRUE(again.init(config()));
   posix::FileStateStore store(path_.string());
-  const auto rep = again.boot(store, 0, kRtc0 - 3600.0 + 60.0, true);
+  const auto rep = again.boot(store, 0, kStampRtcS - 3600.0 + 60.0, true);
   EXPECT_EQ(rep.flags, 0u);
   EXPECT_EQ(again.estimate().equivalent_idle_s, again.model().max_settling_time_s());
 }
