@@ -32,7 +32,7 @@ namespace mrd::discrepancy {
 struct RecordFit {
   std::string file;
   BaseLaw law = BaseLaw::bingham;
-  double gap = 0.0;  ///< normalized_rms_gap at full rate
+  double gap = 0.0;  ///< normalized_rms_gap at full rate, over the record's moving_span
   std::size_t samples = 0;
   bool lost_motion = false;  ///< the law with a lost motion at reversals
 };

@@ -269,16 +269,19 @@ Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& 
   for (const MeasuredData& rec : records) {
     ModelInput in = model_input(rec, opt.smoothing_half_window_s);
     const std::size_t n = rec.size();
-    const std::size_t stride = std::max<std::size_t>(1, opt.samples_per_record > 0 ? n / opt.samples_per_record : 1);
+    // Fitted and normalized over the samples where the actuator moves.
+    const SampleRange moving = moving_span(in.vel_m_s);
+    const std::size_t stride =
+        std::max<std::size_t>(1, opt.samples_per_record > 0 ? moving.size() / opt.samples_per_record : 1);
     std::vector<std::size_t> idx;
-    for (std::size_t k = 0; k < n; k += stride) idx.push_back(k);
+    for (std::size_t k = moving.begin; k < moving.end; k += stride) idx.push_back(k);
     double ss = 0.0, vmax = 0.0;
-    for (const double f : rec.force_n) ss += f * f;
+    for (std::size_t k = moving.begin; k < moving.end; ++k) ss += rec.force_n[k] * rec.force_n[k];
     for (const double v : in.vel_m_s) vmax = std::max(vmax, std::fabs(v));
     const auto [lo, hi] = std::minmax_element(in.disp_m.begin(), in.disp_m.end());
     for (const double c : rec.current_cmd_a) ++count[current_key(c)];
     all += n;
-    p.data.rms_force_n.push_back(ss > 0.0 ? std::sqrt(ss / static_cast<double>(n)) : 1.0);
+    p.data.rms_force_n.push_back(ss > 0.0 ? std::sqrt(ss / static_cast<double>(moving.size())) : 1.0);
     p.data.total += idx.size();
     p.data.index.push_back(std::move(idx));
     p.data.force_n.push_back(rec.force_n);
@@ -487,7 +490,9 @@ std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const Meas
   for (const MeasuredData& rec : records) {
     const DamperModel m(model_input(rec, smoothing_half_window_s), baseline);
     m.simulate(EffectSet{}, {}, ws, force);
-    gaps.push_back(normalized_rms_gap(rec.force_n, force));
+    const SampleRange moving = moving_span(m.input().vel_m_s);
+    gaps.push_back(normalized_rms_gap(std::span<const double>(rec.force_n).subspan(moving.begin, moving.size()),
+                                      std::span<const double>(force).subspan(moving.begin, moving.size())));
   }
   return gaps;
 }

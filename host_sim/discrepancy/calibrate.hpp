@@ -64,7 +64,7 @@ struct LawFit {
   BaselineSigmas sigma;
   CurrentLawFitted yield_fitted, viscous_fitted;
   std::vector<ParamEstimate> params;  ///< every parameter of the law, fitted or held
-  std::vector<double> record_gaps;    ///< normalized_rms_gap per record, full rate
+  std::vector<double> record_gaps;    ///< normalized_rms_gap per record, full rate, over its moving_span
   std::size_t samples = 0;            ///< residuals in the joint fit
   double rss = 0.0;                   ///< Σ of the normalized residuals squared (dimensionless)
   double n_eff = 0.0;                 ///< Σ over records of effective_sample_count(residual)
@@ -110,7 +110,8 @@ struct CalibrationResult {
 [[nodiscard]] CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options = {},
                                           std::span<const MeasuredData> check = {});
 
-/// normalized_rms_gap of `baseline` on each record at full rate.
+/// normalized_rms_gap of `baseline` on each record at full rate, over the
+/// samples where the actuator moves (moving_span, damper_model.hpp).
 [[nodiscard]] std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const MeasuredData> records,
                                                 double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
 

@@ -287,4 +287,17 @@ double normalized_rms_gap(std::span<const double> measured, std::span<const doub
   return ss > 0.0 ? std::sqrt(se / ss) : 0.0;
 }
 
+SampleRange moving_span(std::span<const double> vel_m_s) {
+  const std::size_t n = vel_m_s.size();
+  double peak = 0.0;
+  for (const double v : vel_m_s) peak = std::max(peak, std::fabs(v));
+  const auto moving = [&](double v) { return std::fabs(v) > kMovingShare * peak; };
+  if (!(peak > 0.0) || !std::isfinite(peak)) return {0, n};
+  std::size_t begin = 0;
+  while (begin < n && !moving(vel_m_s[begin])) ++begin;
+  std::size_t end = n;
+  while (end > begin && !moving(vel_m_s[end - 1])) --end;
+  return {begin, end};
+}
+
 }  // namespace mrd::discrepancy

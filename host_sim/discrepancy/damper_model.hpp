@@ -112,4 +112,24 @@ void delay_force(std::span<const double> time_s, std::span<const double> force_n
 /// Normalized RMS of a − b over the samples: sqrt(Σ(a−b)² / Σ a²).
 [[nodiscard]] double normalized_rms_gap(std::span<const double> measured, std::span<const double> model);
 
+/// Samples [begin, end) of a record.
+struct SampleRange {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  [[nodiscard]] std::size_t size() const noexcept { return end - begin; }
+};
+
+/// Share of a record's peak |v| above which the actuator counts as moving.
+inline constexpr double kMovingShare = 0.02;
+
+/// The samples over which the actuator moves: from the first to the last
+/// sample whose |v| exceeds kMovingShare of the record's peak |v|, with the
+/// reversals in between. A characterization record usually starts and ends
+/// with the actuator standing (the lab records keep 0.5 s each side); there
+/// the measured force is what the damper holds at standstill, set by the
+/// motion before the record or the load cell's zero, not the damper's law,
+/// and the fits and gaps leave those samples out. The whole record when
+/// nothing moves.
+[[nodiscard]] SampleRange moving_span(std::span<const double> vel_m_s);
+
 }  // namespace mrd::discrepancy

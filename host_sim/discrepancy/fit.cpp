@@ -110,12 +110,13 @@ FitData make_fit_data(const DamperModel& model, std::span<const double> measured
   return d;
 }
 
-SampleSplit split_samples(std::span<const double> time_s) {
+SampleSplit split_samples(std::span<const double> time_s, SampleRange range) {
   SampleSplit s;
-  if (time_s.empty()) return s;
-  const double t0 = time_s.front();
-  const double span_s = time_s.back() - t0;
-  for (std::size_t k = 0; k < time_s.size(); ++k) {
+  range.end = std::min(range.end, time_s.size());
+  if (range.begin >= range.end) return s;
+  const double t0 = time_s[range.begin];
+  const double span_s = time_s[range.end - 1] - t0;
+  for (std::size_t k = range.begin; k < range.end; ++k) {
     const double u = span_s > 0.0 ? (time_s[k] - t0) / span_s : 0.0;
     const auto block = std::min(static_cast<std::size_t>(u * static_cast<double>(kSplitBlocks)), kSplitBlocks - 1);
     const std::size_t r = block % 10;
@@ -123,6 +124,8 @@ SampleSplit split_samples(std::span<const double> time_s) {
   }
   return s;
 }
+
+SampleSplit split_samples(std::span<const double> time_s) { return split_samples(time_s, {0, time_s.size()}); }
 
 double fit_rss(const FitData& data, const EffectSet& set, std::span<const double> params, ModelWorkspace& ws,
                std::vector<double>* residual_n) {

@@ -31,7 +31,8 @@ struct FitData {
 [[nodiscard]] FitData make_fit_data(const DamperModel& model, std::span<const double> measured_force_n,
                                     std::span<const std::size_t> candidates, std::size_t target);
 
-/// The record cut into kSplitBlocks blocks of equal duration; the blocks
+/// The samples `range` of a record (its moving_span) cut into kSplitBlocks
+/// blocks of equal duration; the blocks
 /// whose index modulo 10 is 2, 5 or 8 (30 % of the record, spread over its
 /// whole length so that effects that act early, such as settling, or late,
 /// such as a thermal fade, are seen on both sides) are held out of every fit
@@ -41,6 +42,8 @@ struct SampleSplit {
   std::vector<std::size_t> train;     ///< ascending
   std::vector<std::size_t> held_out;  ///< ascending
 };
+[[nodiscard]] SampleSplit split_samples(std::span<const double> time_s, SampleRange range);
+/// The whole record split.
 [[nodiscard]] SampleSplit split_samples(std::span<const double> time_s);
 
 struct FitOutcome {

@@ -598,7 +598,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   res.velocity_derived = model.input().velocity_derived;
   res.baseline_name = opt.baseline.name;
   res.expected_gap = opt.baseline.expected_gap;
-  const SampleSplit split = split_samples(data.time_s);
+  const SampleSplit split = split_samples(data.time_s, moving_span(model.input().vel_m_s));
   const FitData fd = make_fit_data(model, data.force_n, split.train, opt.fit_samples);
   const FitData held = make_fit_data(model, data.force_n, split.held_out, 0);
   res.fit_samples = fd.index.size();

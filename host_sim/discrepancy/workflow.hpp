@@ -6,7 +6,10 @@
 /// plausibility checks, a held-out judgement and a final backward check,
 /// and a verdict.
 ///
-/// Held out: 30 % of the record (split_samples, fit.hpp) is never fitted.
+/// Judged: the samples over which the actuator moves (moving_span,
+/// damper_model.hpp); the standstill before and after is neither fitted nor
+/// counted in a gap. Held out: 30 % of those (split_samples, fit.hpp) is
+/// never fitted.
 /// An effect joins the model only if it also removes at least
 /// min_rss_reduction of the held-out residual power.
 ///
