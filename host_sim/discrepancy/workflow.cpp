@@ -14,6 +14,12 @@ namespace {
 
 /// A parameter within this fraction of its range of a bound counts as at it.
 constexpr double kAtBoundFraction = 2e-3;
+/// A parameter within this fraction of its range of its null value counts as
+/// null. Finer than kAtBoundFraction: a free play's range is 10 mm and a play
+/// of 15 µm, resolved by a 1 µm displacement sensor, is a real finding (at
+/// 2e-3 it would read as 20 µm of nothing); whether a small value earns its
+/// place is the BIC's and the held-out samples' judgement.
+constexpr double kNullFraction = 1e-4;
 /// Candidates refitted from several starting points in rounds after the first.
 constexpr std::size_t kRefitted = 2;
 constexpr std::size_t kStarts = 3;
@@ -86,7 +92,7 @@ std::string implausibility(Effect e, std::span<const double> params, double forc
     const ParamInfo p = scaled_param(info.params[i], force_ratio);
     const double range = p.upper - p.lower;
     const double v = params[i];
-    if (std::fabs(v - p.null_value) > kAtBoundFraction * range) all_null = false;
+    if (std::fabs(v - p.null_value) > kNullFraction * range) all_null = false;
     const bool at_lower = v - p.lower <= kAtBoundFraction * range;
     const bool at_upper = p.upper - v <= kAtBoundFraction * range;
     if (at_lower && p.lower != p.null_value) {
