@@ -5,6 +5,7 @@
 // refused when malformed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -123,6 +124,41 @@ TEST(Calibrate, RecoversABinghamDamperWithinItsUncertainty) {
   expect_recovered(truth, r.best());
   // 3 % white noise: the normalized gap is about 0.03 on every record.
   for (const double g : r.best().record_gaps) EXPECT_NEAR(g, 0.03, 0.006);
+}
+
+TEST(Calibrate, GapsLeaveOutTheStandstillBeforeAndAfter) {
+  // A 1 Hz, 5 mm sine at 0.5 A for 3 s with 0.5 s of standstill at x = 0
+  // each side, the force the truth model gives, except that the standstill
+  // away from the motion (the first and last 0.4 s) holds a stiction force
+  // of +300 N before and −250 N after, which no law of velocity predicts.
+  // Over the samples where the actuator moves the model is the record, so
+  // the gap is 0; over the whole record the held forces would count.
+  const Baseline truth = small_damper(BaseLaw::bingham);
+  MeasuredData d;
+  d.source = "padded";
+  const std::size_t n = 4001;  // 4 s at 1 kHz
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * 1e-3;
+    const double tm = std::clamp(t - 0.5, 0.0, 3.0);
+    d.time_s.push_back(t);
+    d.displacement_m.push_back(t < 0.5 || t > 3.5 ? 0.0 : 0.005 * std::sin(2.0 * kPi * tm));
+    d.current_cmd_a.push_back(0.5);
+    d.force_n.push_back(0.0);
+  }
+  const DamperModel m(model_input(d), truth);
+  ModelWorkspace ws;
+  std::vector<double> f;
+  m.simulate(EffectSet{}, {}, ws, f);
+  d.force_n = f;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (d.time_s[k] < 0.4) d.force_n[k] = 300.0;
+    if (d.time_s[k] > 3.6) d.force_n[k] = -250.0;
+  }
+  const std::vector<MeasuredData> recs{d};
+  const std::vector<double> gaps = baseline_gaps(truth, recs);
+  ASSERT_EQ(gaps.size(), 1u);
+  EXPECT_LT(gaps[0], 1e-12);
+  EXPECT_GT(normalized_rms_gap(d.force_n, f), 0.1);
 }
 
 TEST(Calibrate, RecoversABoucWenDamperAndAutoPrefersIt) {

@@ -102,6 +102,11 @@ TEST(Plausibility, Rules) {
   EXPECT_NE(implausibility(Effect::idle_settling, null_sq).find("not identified"), std::string::npos);
   EXPECT_TRUE(implausibility(Effect::idle_settling, full_sq).empty());  // SQ = 1: fully settled, real
   EXPECT_TRUE(implausibility(Effect::idle_settling, some_sq).empty());
+  // Null within 1e-4 of the range: a free play's range is 10 mm, so 1 µm.
+  // 15 µm is a play (a 1 µm sensor resolves it); 0.5 µm is nothing.
+  const std::vector<double> small_play{15e-6}, no_play{0.5e-6};
+  EXPECT_TRUE(implausibility(Effect::backlash, small_play).empty()) << implausibility(Effect::backlash, small_play);
+  EXPECT_NE(implausibility(Effect::backlash, no_play).find("not identified"), std::string::npos);
   const std::vector<double> lag_max{10.0}, delay_max{0.1}, offset_min{-30.0e3};
   EXPECT_NE(implausibility(Effect::coil_lag, lag_max).find("upper physical bound"), std::string::npos);
   EXPECT_NE(implausibility(Effect::time_delay, delay_max).find("upper physical bound"), std::string::npos);

@@ -179,5 +179,26 @@ TEST(DiscrepancyModel, NormalizedRmsGap) {
   EXPECT_NEAR(normalized_rms_gap(m, s), std::sqrt(2.0) / 5.0, 1e-15);
 }
 
+TEST(DiscrepancyModel, MovingSpanLeavesOutTheStandstillEachSide) {
+  // 500 samples at rest, then x = A(1 − cos ωt') for two periods (v = Aω sin ωt'
+  // from 0), then 300 samples at rest. Peak |v| = Aω; the actuator counts as
+  // moving where |sin ωt'| > 0.02, i.e. from t' = asin(0.02)/ω and up to
+  // t' = 2T − asin(0.02)/ω. With T = 1 s, 1 kHz: asin(0.02)/(2π) = 3.18 ms, so
+  // the first moving sample is t' = 4 ms (index 504) and the last is
+  // t' = 1996 ms (index 2496); the end is one past it.
+  const double a = 0.01, w = 2.0 * units::kPi;
+  std::vector<double> v(500, 0.0);
+  for (int k = 0; k <= 2000; ++k) v.push_back(a * w * std::sin(w * k * kDt));
+  v.resize(v.size() + 300, 0.0);
+  const SampleRange r = moving_span(v);
+  EXPECT_EQ(r.begin, 504u);
+  EXPECT_EQ(r.end, 2497u);
+  // Nothing moves: the whole record.
+  const std::vector<double> still(50, 0.0);
+  const SampleRange all = moving_span(still);
+  EXPECT_EQ(all.begin, 0u);
+  EXPECT_EQ(all.end, 50u);
+}
+
 }  // namespace
 }  // namespace mrd::discrepancy
