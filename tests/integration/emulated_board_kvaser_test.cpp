@@ -24,6 +24,8 @@ namespace mrd {
 namespace {
 
 using testing::find_line;
+using testing::kGuestDurationS;
+using testing::kGuestRuns;
 using testing::find_lines;
 using testing::key_values;
 
@@ -56,15 +58,16 @@ TEST(EmulatedBoard, ClosedLoopOverKvaserPciSja1000EqualsTheInProcessSimulation) 
   const auto record = testing::hachinohe_record();
   ASSERT_TRUE(testing::fs::exists(record)) << "shared Hachinohe record not found at " << record;
   const auto out = testing::emulated_out_dir("kvaser");
-  ASSERT_TRUE(testing::run_emulated_script("MRD_EMU_RUNS='" + testing::runs_argument(testing::kGuestRuns) +
-                                               "' MRD_EMU_DURATION_S=" + std::to_string(static_cast<int>(testing::kGuestDurationS)),
+  ASSERT_TRUE(testing::run_emulated_script("MRD_EMU_RUNS='" + testing::runs_argument(kGuestRuns) +
+                                               "' MRD_EMU_DURATION_S=" +
+                                               std::to_string(static_cast<int>(kGuestDurationS)),
                                            "kvaser.sh", {record.string(), out.string()}))
       << "kvaser.sh failed (reason above), see " << out;
   const std::string serial = testing::read_text(out / "serial.txt");
 
   // 1. Peaks against the in-process run.
-  for (std::size_t i = 0; i < std::size(testing::kGuestRuns); ++i)
-    testing::expect_guest_run_equals_in_process(serial, static_cast<int>(i + 1), testing::kGuestRuns[i], record, testing::kGuestDurationS,
+  for (std::size_t i = 0; i < std::size(kGuestRuns); ++i)
+    testing::expect_guest_run_equals_in_process(serial, static_cast<int>(i + 1), kGuestRuns[i], record, kGuestDurationS,
                                                 "emulated board (Kvaser PCI)");
 
   // 2. The controllers as the kernel reports them.
@@ -82,7 +85,7 @@ TEST(EmulatedBoard, ClosedLoopOverKvaserPciSja1000EqualsTheInProcessSimulation) 
   }
   const LinkShow fw = link_show(serial, "link-after-can0"), peers = link_show(serial, "link-after-can1");
   double fw_ticks = 0, fw_frames_rx = 0;
-  for (std::size_t i = 0; i < std::size(testing::kGuestRuns); ++i) {
+  for (std::size_t i = 0; i < std::size(kGuestRuns); ++i) {
     const auto s = key_values(find_line(serial, "[run-" + std::to_string(i + 1) + "-firmware] mrd-firmware: summary"));
     ASSERT_FALSE(s.empty());
     fw_ticks += s.at("ticks");

@@ -24,6 +24,8 @@ namespace mrd {
 namespace {
 
 using testing::find_line;
+using testing::kGuestDurationS;
+using testing::kGuestRuns;
 using testing::key_values;
 
 TEST(EmulatedBoard, ClosedLoopOverSocketCanEqualsTheInProcessSimulation) {
@@ -31,15 +33,16 @@ TEST(EmulatedBoard, ClosedLoopOverSocketCanEqualsTheInProcessSimulation) {
   const auto record = testing::hachinohe_record();
   ASSERT_TRUE(testing::fs::exists(record)) << "shared Hachinohe record not found at " << record;
   const auto out = testing::emulated_out_dir("vcan");
-  ASSERT_TRUE(testing::run_emulated_script("MRD_EMU_RUNS='" + testing::runs_argument(testing::kGuestRuns) +
-                                               "' MRD_EMU_DURATION_S=" + std::to_string(static_cast<int>(testing::kGuestDurationS)),
+  ASSERT_TRUE(testing::run_emulated_script("MRD_EMU_RUNS='" + testing::runs_argument(kGuestRuns) +
+                                               "' MRD_EMU_DURATION_S=" +
+                                               std::to_string(static_cast<int>(kGuestDurationS)),
                                            "run.sh", {record.string(), out.string()}))
       << "run.sh failed (reason above), see " << out;
   const std::string serial = testing::read_text(out / "serial.txt");
 
   // 1. Peaks against the in-process run with the same quantization.
-  for (std::size_t i = 0; i < std::size(testing::kGuestRuns); ++i)
-    testing::expect_guest_run_equals_in_process(serial, static_cast<int>(i + 1), testing::kGuestRuns[i], record, testing::kGuestDurationS,
+  for (std::size_t i = 0; i < std::size(kGuestRuns); ++i)
+    testing::expect_guest_run_equals_in_process(serial, static_cast<int>(i + 1), kGuestRuns[i], record, kGuestDurationS,
                                                 "emulated board (vcan)");
 
   // 2. The kernel saw line 0 of the PL061 driven high by mrd-firmware.
