@@ -497,34 +497,6 @@ std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const Meas
   return gaps;
 }
 
-double dominant_frequency_hz(std::span<const double> time_s, std::span<const double> displacement_m) {
-  const std::size_t n = displacement_m.size();
-  if (n < 3 || time_s.size() != n) return 0.0;
-  double mean = 0.0;
-  for (const double x : displacement_m) mean += x;
-  mean /= static_cast<double>(n);
-  const auto [lo, hi] = std::minmax_element(displacement_m.begin(), displacement_m.end());
-  const double band = 0.1 * 0.5 * (*hi - *lo);
-  if (!(band > 0.0)) return 0.0;
-  int state = 0;
-  std::size_t crossings = 0;
-  double first_s = 0.0, last_s = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double y = displacement_m[k] - mean;
-    const int s = y > band ? 1 : (y < -band ? -1 : 0);
-    if (s != 0 && s != state) {
-      if (state != 0) {
-        if (crossings == 0) first_s = time_s[k];
-        last_s = time_s[k];
-        ++crossings;
-      }
-      state = s;
-    }
-  }
-  // Crossings are half a period apart: (crossings − 1) half periods between the first and the last.
-  return crossings >= 2 && last_s > first_s ? static_cast<double>(crossings - 1) / (2.0 * (last_s - first_s)) : 0.0;
-}
-
 ValidityRange validity_range(std::span<const MeasuredData> records, double smoothing_half_window_s) {
   ValidityRange v;
   bool first = true;

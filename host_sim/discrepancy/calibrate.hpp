@@ -27,6 +27,7 @@
 
 #include "host_sim/discrepancy/baseline.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/motion_timescale.hpp"
 
 namespace mrd::discrepancy {
 
@@ -119,11 +120,5 @@ struct CalibrationResult {
 /// |F|, displacement half ranges and dominant frequencies covered by `records`.
 [[nodiscard]] ValidityRange validity_range(std::span<const MeasuredData> records,
                                            double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
-
-/// Dominant frequency of a displacement record, Hz: crossings of its mean
-/// (with a hysteresis of 10 % of its half range) are half a period apart;
-/// the half periods between the first and the last crossing over their
-/// time. 0 with fewer than two crossings.
-[[nodiscard]] double dominant_frequency_hz(std::span<const double> time_s, std::span<const double> displacement_m);
 
 }  // namespace mrd::discrepancy

@@ -9,7 +9,8 @@ ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s)
   ModelInput in;
   in.time_s = data.time_s;
   in.current_cmd_a = data.current_cmd_a;
-  SmoothedMotion s = smooth_motion(data.time_s, data.displacement_m, smoothing_half_window_s);
+  const double half_window_s = smoothing_half_window_for(data.time_s, data.displacement_m, smoothing_half_window_s);
+  SmoothedMotion s = smooth_motion(data.time_s, data.displacement_m, half_window_s);
   in.disp_m = std::move(s.displacement_m);
   if (data.velocity_m_s.empty()) {
     in.vel_m_s = std::move(s.velocity_m_s);

@@ -32,6 +32,7 @@
 #include "host_sim/discrepancy/baseline.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/motion_timescale.hpp"
 
 namespace mrd::discrepancy {
 
@@ -49,7 +50,9 @@ struct ModelInput {
 inline constexpr double kContactHalfWindow_s = 0.003;
 
 /// Model input from a measured record: displacement smoothed and velocity
-/// derived by smooth_motion() unless the record has a velocity column.
+/// derived by smooth_motion() unless the record has a velocity column, over
+/// ±smoothing_half_window_s or less when the record moves faster
+/// (smoothing_half_window_for, motion_timescale.hpp).
 [[nodiscard]] ModelInput model_input(const MeasuredData& data,
                                      double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
 

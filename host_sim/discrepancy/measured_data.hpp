@@ -95,7 +95,9 @@ void write_measured_mat(const MeasuredData& data, const std::filesystem::path& p
 /// 0.05 mm/s of velocity noise (a quadratic fit over ±20 ms: 0.13 mm/s, and
 /// 1 % low at 2.5 Hz). That matters in the 10 mm/s transition band of
 /// Eq. 4.4, where the force rises by up to 14 kN per mm/s. The quartic fit's
-/// gain stays within 0.3 % of 1 up to 2.5 Hz.
+/// gain stays within 0.3 % of 1 up to 2.5 Hz. Faster records get a shorter
+/// window (smoothing_half_window_for, motion_timescale.hpp); model_input()
+/// chooses it.
 struct SmoothedMotion {
   std::vector<double> displacement_m;
   std::vector<double> velocity_m_s;

@@ -40,15 +40,15 @@ namespace {
 // The targets are the project's goals for the workflow; the study prints the
 // rates against them. The floors come from seed sets CI does not run,
 // measured with this generator and workflow: seeds 7000-7059 gave right set
-// 20/20, out-of-catalogue unexplained 7/7; seeds 9000-9059 gave 15/16 and
+// 20/20, out-of-catalogue unexplained 7/7; seeds 9000-9059 gave 16/16 and
 // 8/8 (false positives 0/10 on both). Each floor is the lower of the two less
-// one case (14/16 = 0.875, 6/7 = 0.857), rounded down, so a regression on the
-// CI set (5000-5059: 16/17, 8/8) of more than a case fails the test.
+// one case (15/16 = 0.9375, 6/7 = 0.857), rounded down, so that any miss
+// beyond the one the CI set has (5000-5059: 16/17, 8/8) fails the test.
 /// Stated detection limit: effects at or above this ENR must be found.
 constexpr double kDetectionLimitEnr = 4.0;
 /// Right set named, single catalogue effects at or above the limit.
 constexpr double kTargetRightSetRate = 0.95;
-constexpr double kFloorRightSetRate = 0.85;
+constexpr double kFloorRightSetRate = 0.93;
 /// Clean records with anything named.
 constexpr double kMaxFalsePositiveRate = 0.05;
 /// Out-of-catalogue effects at or above the limit answered "unexplained".
