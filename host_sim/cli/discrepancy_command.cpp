@@ -20,7 +20,8 @@ or a model calibrated to your damper by 'mrd calibrate', passed with --baseline)
 record lies inside what the baseline describes, localizes where the force gap concentrates, then
 tests named effects added to the model:
   idle_settling        participant ratio from a fitted SQ (Eq. 5.6-5.12)     sq [0-1]
-  backlash             free play in the mounting (5.2 Case 3)                 free_play_m [0-0.01]
+  backlash             free play in the mounting (5.2 Case 3)                 free_play_m [0-0.01],
+                       with a compliant stop over a share of it               contact_share [0-1]
   gas_spring           accumulator stiffness (3.1)                            stiffness_n_m [0-5e6]*
   thermal_fade         yield/viscosity falling with dissipated energy         yield_coeff_per_k, viscous_coeff_per_k
   time_delay           transport delay of the measured force                  delay_s [0-0.1]

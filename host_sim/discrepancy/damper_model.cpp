@@ -89,7 +89,31 @@ void DamperModel::coefficients(const std::vector<double>& current_a, std::vector
 
 namespace {
 
-/// Play operator of half width half_gap_m on x: the driven side's
+/// One step of the play with a soft contact: the actuator moves by dx from a
+/// position u = x − rod inside the gap. Toward a side, u first grows freely
+/// until it is c short of the side, then the contact takes up the motion
+/// linearly with penetration, d rod/dx = 1 − (h − w)/c (w = u·sgn dx), so
+/// h − w decays as exp(−s/c) with the actuator's travel s: the rod reaches
+/// the actuator's velocity over a few contact lengths (a compliant stop).
+/// c → 0 is the hard play. Solved exactly over the step. Returns the rod's
+/// new position, given the actuator's new position x_new.
+double soft_contact_step(double dx, double u, double h, double c, double x_new) {
+  if (dx == 0.0) return x_new - u;
+  const double sgn = dx > 0.0 ? 1.0 : -1.0;
+  double w = u * sgn;         // position toward the moving side
+  double s = std::fabs(dx);   // actuator travel over the step
+  const double knee = h - c;  // where the contact starts
+  if (w < knee) {
+    const double free = std::min(s, knee - w);
+    w += free;
+    s -= free;
+  }
+  if (s > 0.0) w = h - (h - std::min(w, h)) * std::exp(-s / c);
+  return x_new - w * sgn;
+}
+
+/// Play operator of half width half_gap_m on x, with a soft contact over the
+/// last `contact_share` of the gap: the driven side's
 /// displacement (`driven`), its engaged fraction per sample (`engaged`, the
 /// driven side's share of the driving side's central difference, continuous
 /// in the gap) and that fraction averaged over ±kContactHalfWindow_s, at
@@ -99,16 +123,23 @@ namespace {
 /// which the fit needs (a one-sample jump leaves sample-spaced local minima).
 /// `half_gap_m` holds one value (a constant gap) or one per sample.
 void play_operator(std::span<const double> time_s, std::span<const double> x, std::span<const double> half_gap_m,
-                   std::vector<double>& driven, std::vector<double>& engaged, std::vector<double>& engaged_avg) {
+                   double contact_share, std::vector<double>& driven, std::vector<double>& engaged,
+                   std::vector<double>& engaged_avg) {
   const std::size_t n = x.size();
   driven.resize(n);
   double rod = n > 0 ? x[0] : 0.0;
+  const double share = std::clamp(contact_share, 0.0, 1.0);
   for (std::size_t k = 0; k < n; ++k) {
     const double h = half_gap_m.size() == 1 ? half_gap_m[0] : half_gap_m[k];
-    if (x[k] - rod > h) {
-      rod = x[k] - h;
-    } else if (rod - x[k] > h) {
-      rod = x[k] + h;
+    const double c = share * 2.0 * h;  // contact length, m
+    if (c <= 0.0 || k == 0) {
+      if (x[k] - rod > h) {
+        rod = x[k] - h;
+      } else if (rod - x[k] > h) {
+        rod = x[k] + h;
+      }
+    } else {
+      rod = soft_contact_step(x[k] - x[k - 1], x[k - 1] - rod, h, c, x[k]);
     }
     driven[k] = rod;
   }
@@ -128,20 +159,24 @@ void play_operator(std::span<const double> time_s, std::span<const double> x, st
   std::size_t lo = 0;
   std::size_t hi = 0;
   double sum = 0.0;
+  // The window's edge with a nanosecond's slack, so that a sample exactly
+  // 3 ms away counts on both sides whatever the rounding of the time stamps.
+  const double half = kContactHalfWindow_s + 1e-9;
   for (std::size_t k = 0; k < n; ++k) {
     const double t = time_s[k];
-    while (hi < n && (time_s[hi] - t <= kContactHalfWindow_s || hi <= k + 1)) sum += engaged[hi++];
-    while (lo < k && (t - time_s[lo] > kContactHalfWindow_s && lo + 1 < k)) sum -= engaged[lo++];
+    while (hi < n && (time_s[hi] - t <= half || hi <= k + 1)) sum += engaged[hi++];
+    while (lo < k && (t - time_s[lo] > half && lo + 1 < k)) sum -= engaged[lo++];
     engaged_avg[k] = sum / static_cast<double>(hi - lo);
   }
 }
 
 }  // namespace
 
-void DamperModel::backlash_motion(double half_gap_m, ModelWorkspace& ws) const {
+void DamperModel::backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws) const {
   // The rod stays put until the actuator reaches a side of the gap; it moves
   // at the actuator's velocity times the averaged engagement.
-  play_operator(in_.time_s, in_.disp_m, std::span<const double>(&half_gap_m, 1), ws.disp_m, ws.engaged, ws.vel_m_s);
+  play_operator(in_.time_s, in_.disp_m, std::span<const double>(&half_gap_m, 1), contact_share, ws.disp_m, ws.engaged,
+                ws.vel_m_s);
   for (std::size_t k = 0; k < size(); ++k) ws.vel_m_s[k] *= in_.vel_m_s[k];
 }
 
@@ -169,7 +204,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double* xd = in_.disp_m.data();
   const double* vd = in_.vel_m_s.data();
   if (set.contains(Effect::backlash)) {
-    backlash_motion(0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0), ws);
+    backlash_motion(0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0), param(Effect::backlash, 1, 0.0), ws);
     xd = ws.disp_m.data();
     vd = ws.vel_m_s.data();
   }
@@ -197,7 +232,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   if (lost_motion) {
     ws.lm_half_gap.resize(n);
     for (std::size_t k = 0; k < n; ++k) ws.lm_half_gap[k] = 0.5 * p_.lost_motion_m_per_n * std::fabs(a_y[k] + b_y[k]);
-    play_operator(in_.time_s, std::span<const double>(xd, n), ws.lm_half_gap, ws.lm_driven, ws.lm_engaged,
+    play_operator(in_.time_s, std::span<const double>(xd, n), ws.lm_half_gap, 0.0, ws.lm_driven, ws.lm_engaged,
                   ws.lm_factor);
   }
 

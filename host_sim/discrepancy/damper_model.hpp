@@ -8,8 +8,10 @@
 /// Per sample k (step dt_k = t_{k+1} − t_k, inputs held over the step):
 /// <pre>
 ///   i[k+1]   = Eq. 4.5 (ZOH-exact, unity DC gain), τ's scaled by tau_scale   (coil_lag)
-///   x_d, v_d = actuator motion through a play operator of width free_play, the
-///              engagement averaged over ±3 ms (contact compliance)          (backlash)
+///   x_d, v_d = actuator motion through a play operator of width free_play whose
+///              last contact_share of the gap is a compliant stop (the rod takes
+///              up the motion over that length), the engagement averaged over
+///              ±3 ms                                                          (backlash)
 ///   PR[k]    = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q dt),  Eq. 5.6–5.9           (idle_settling)
 ///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
 ///   F_b[k]   = TF(v_d) (φ_y Y(i, PR) sgn v_d + φ_v C(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12   (bingham)
@@ -93,8 +95,9 @@ class DamperModel {
   /// Fills ws.force_n with F[k] before any delay.
   void raw_force(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws) const;
   /// Fills ws.disp_m and ws.vel_m_s with the rod's motion when the mounting
-  /// has a free play of ±half_gap_m (backlash); uses ws.engaged.
-  void backlash_motion(double half_gap_m, ModelWorkspace& ws) const;
+  /// has a free play of ±half_gap_m (backlash) whose last contact_share of
+  /// the gap is a compliant stop; uses ws.engaged.
+  void backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws) const;
   void coefficients(const std::vector<double>& current_a, std::vector<double>& a_y, std::vector<double>& b_y,
                     std::vector<double>& a_c, std::vector<double>& b_c) const;
 

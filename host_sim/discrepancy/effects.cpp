@@ -15,6 +15,9 @@ constexpr std::array kIdleParams{
 constexpr std::array kBacklashParams{
     // Total free play between actuator and damper rod: up to 10 mm of loose bolts.
     ParamInfo{"free_play_m", 0.0, 0.010, 0.0, false, {0.0002, 0.0006, 0.0015, 0.003, 0.006}},
+    // Share of the play over which a compliant stop takes up the motion (damper_model.cpp,
+    // soft_contact_step): 0 is a hard stop (metal on metal), up to 1 (a pad as thick as the play).
+    ParamInfo{"contact_share", 0.0, 1.0, 0.0, false, {0.0, 0.05, 0.15, 0.35, 0.7}},
 };
 constexpr std::array kGasParams{
     // k = γ p A_rod² / V_gas: 1.4 · 5.17 MPa (§3.1) · (π 0.04²)² / V ≈ 0.18 MN/m per litre of gas;
@@ -56,7 +59,7 @@ const std::array<EffectInfo, kEffectCount>& catalogue() {
                  kIdleParams},
       EffectInfo{Effect::backlash, "backlash",
                  "free play in the mounting: the damper stands still until the actuator has crossed the gap after "
-                 "each reversal (§5.2, Case 3)",
+                 "each reversal, against a hard or a compliant stop (§5.2, Case 3)",
                  kBacklashParams},
       EffectInfo{Effect::gas_spring, "gas_spring",
                  "accumulator gas spring: a force proportional to the rod's displacement (§3.1)", kGasParams},

@@ -172,6 +172,10 @@ std::vector<double> draw_params(const EffectSet& set, Rng& rng) {
   for (const Effect e : set.effects) {
     for (std::size_t p = 0; p < effect_info(e).params.size(); ++p) {
       const auto [lo, hi] = synth_range(e, p);
+      if (lo == hi) {  // held, and no draw: the other parameters' draws stay as they were
+        params.push_back(lo);
+        continue;
+      }
       double v = rng.uniform(lo, hi);
       if ((e == Effect::force_offset || e == Effect::direction_asymmetry) && rng.uniform() < 0.5) v = -v;
       params.push_back(v);
@@ -245,7 +249,9 @@ MeasuredData measure(const SynthSpec& spec, const std::vector<double>& t, const 
 std::pair<double, double> synth_range(Effect e, std::size_t i) {
   switch (e) {
     case Effect::idle_settling: return {0.1, 1.0};        // SQ: ~0.04 years idle to fully settled
-    case Effect::backlash: return {0.0006, 0.004};        // total free play, m
+    // Total free play, m; hard stops (a contact share of 0: the independent
+    // study's generator draws compliant ones).
+    case Effect::backlash: return i == 0 ? std::pair{0.0006, 0.004} : std::pair{0.0, 0.0};
     case Effect::gas_spring: return {0.15e6, 1.5e6};      // N/m
     case Effect::thermal_fade: return i == 0 ? std::pair{0.008, 0.02} : std::pair{0.02, 0.05};  // 1/K
     case Effect::time_delay: return {0.004, 0.030};       // s

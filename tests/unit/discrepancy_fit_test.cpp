@@ -89,13 +89,17 @@ TEST_P(FitRecovers, TheParametersThatMadeTheRecord) {
 INSTANTIATE_TEST_SUITE_P(
     Effects, FitRecovers,
     ::testing::Values(Recovery{Effect::idle_settling, {0.45}, {0.005}},
-                      Recovery{Effect::backlash, {0.0018}, {0.00005}},
+                      Recovery{Effect::backlash, {0.0018, 0.0}, {0.00005, 0.02}},
+                      Recovery{Effect::backlash, {0.0018, 0.3}, {0.0001, 0.03}},
                       Recovery{Effect::gas_spring, {6.0e5}, {2.0e3}},
                       Recovery{Effect::thermal_fade, {0.012, 0.03}, {0.001, 0.003}},
                       Recovery{Effect::time_delay, {0.0123}, {0.0002}},
                       Recovery{Effect::coil_lag, {2.7}, {0.03}},
                       Recovery{Effect::force_offset, {-3500.0}, {20.0}}),
-    [](const auto& p) { return std::string(effect_name(p.param.effect)); });
+    [](const auto& p) {
+      const bool soft = p.param.effect == Effect::backlash && p.param.truth[1] > 0.0;
+      return std::string(effect_name(p.param.effect)) + (soft ? "_compliant_stop" : "");
+    });
 
 TEST(Plausibility, Rules) {
   const std::vector<double> null_sq{0.0}, full_sq{1.0}, some_sq{0.3};
@@ -104,7 +108,7 @@ TEST(Plausibility, Rules) {
   EXPECT_TRUE(implausibility(Effect::idle_settling, some_sq).empty());
   // Null within 1e-4 of the range: a free play's range is 10 mm, so 1 µm.
   // 15 µm is a play (a 1 µm sensor resolves it); 0.5 µm is nothing.
-  const std::vector<double> small_play{15e-6}, no_play{0.5e-6};
+  const std::vector<double> small_play{15e-6, 0.0}, no_play{0.5e-6, 0.0};
   EXPECT_TRUE(implausibility(Effect::backlash, small_play).empty()) << implausibility(Effect::backlash, small_play);
   EXPECT_NE(implausibility(Effect::backlash, no_play).find("not identified"), std::string::npos);
   const std::vector<double> lag_max{10.0}, delay_max{0.1}, offset_min{-30.0e3};

@@ -101,10 +101,10 @@ TEST(DiscrepancyModel, TimeDelayShiftsTheForce) {
 // crosses the whole free play, i.e. for free_play / v0 = 2 mm / 50 mm/s =
 // 40 ms, then follows it again with the baseline force. The engagement is
 // averaged over ±3 ms, so 6 ms are left out at each end.
-TEST(DiscrepancyModel, BacklashHoldsTheRodForTheFreePlay) {
+/// Triangle displacement at ±v0 reversing every half_period_s, 1 A.
+ModelInput triangle_input(std::size_t n, double v0, double half_period_s) {
   ModelInput in;
-  const double v0 = 0.05, half_period_s = 0.8;
-  for (std::size_t k = 0; k < 4000; ++k) {
+  for (std::size_t k = 0; k < n; ++k) {
     const double t = static_cast<double>(k) * kDt;
     const double ph = std::fmod(t, 2 * half_period_s);
     const bool up = ph < half_period_s;
@@ -113,11 +113,16 @@ TEST(DiscrepancyModel, BacklashHoldsTheRodForTheFreePlay) {
     in.vel_m_s.push_back(up ? v0 : -v0);
     in.current_cmd_a.push_back(1.0);
   }
-  const DamperModel model(in);
+  return in;
+}
+
+TEST(DiscrepancyModel, BacklashHoldsTheRodForTheFreePlay) {
+  const double v0 = 0.05;
+  const DamperModel model(triangle_input(4000, v0, 0.8));
   ModelWorkspace ws;
   std::vector<double> base, bl;
   model.simulate(EffectSet{}, {}, ws, base);
-  const std::vector<double> p{0.002};
+  const std::vector<double> p{0.002, 0.0};  // a hard stop
   model.simulate(EffectSet{{Effect::backlash}}, p, ws, bl);
   for (const double rev : {0.8, 1.6, 2.4}) {
     for (double t = rev + 0.0065; t < rev + 0.0335; t += 0.001) {
@@ -128,6 +133,48 @@ TEST(DiscrepancyModel, BacklashHoldsTheRodForTheFreePlay) {
       const auto k = static_cast<std::size_t>(std::lround(t / kDt));
       EXPECT_NEAR(bl[k], base[k], 1e-6) << "t " << t;
     }
+  }
+}
+
+// A compliant stop over a quarter of a 2 mm play (contact length c = 0.5 mm),
+// the same triangle at v0 = 50 mm/s. After a reversal the rod stands still
+// while the actuator crosses 2 mm − c = 1.5 mm (30 ms); from there the stop
+// takes up the motion linearly with penetration, d rod/dx = 1 − (h − w)/c,
+// so the rod's velocity is v0 (1 − exp(−(t − t_c)/τ)), τ = c / v0 = 10 ms.
+// The model's engagement is that velocity's central difference over ±1
+// sample (the exponential's share scaled by sinh(0.1)/0.1) averaged over
+// the 7 samples of ±3 ms (scaled by (1 + 2 cosh 0.1 + 2 cosh 0.2 + 2 cosh
+// 0.3)/7 = 1.02012). The force is then the baseline's at that velocity.
+TEST(DiscrepancyModel, BacklashWithACompliantStopTakesUpTheMotionOverTheContact) {
+  const double v0 = 0.05, tau_s = 0.0005 / v0;
+  const ModelInput in = triangle_input(4000, v0, 0.8);
+  const DamperModel model(in);
+  ModelWorkspace ws;
+  std::vector<double> bl;
+  const std::vector<double> p{0.002, 0.25};
+  model.simulate(EffectSet{{Effect::backlash}}, p, ws, bl);
+  const double a = kDt / tau_s;
+  const double scale = std::sinh(a) / a * (1.0 + 2.0 * (std::cosh(a) + std::cosh(2 * a) + std::cosh(3 * a))) / 7.0;
+  // The expected force: the baseline driven at the rod's velocity.
+  ModelInput rod = in;
+  for (const double rev : {0.8, 1.6, 2.4}) {
+    const double v_act = in.vel_m_s[static_cast<std::size_t>(std::lround((rev + 0.01) / kDt))];  // ±v0
+    for (std::size_t k = 0; k < rod.time_s.size(); ++k) {
+      const double after = in.time_s[k] - (rev + 0.030);
+      if (in.time_s[k] > rev && in.time_s[k] < rev + 0.8)
+        rod.vel_m_s[k] = after < 0.0 ? 0.0 : v_act * (1.0 - scale * std::exp(-after / tau_s));
+    }
+  }
+  std::vector<double> expect;
+  DamperModel(rod).simulate(EffectSet{}, {}, ws, expect);
+  for (const double rev : {0.8, 1.6, 2.4}) {
+    for (double t = rev + 0.034; t < rev + 0.1; t += 0.002) {
+      const auto k = static_cast<std::size_t>(std::lround(t / kDt));
+      EXPECT_NEAR(bl[k], expect[k], 1e-3 * std::fabs(expect[k]) + 1e-6) << "t " << t;
+    }
+    // Still at rest a sample before the contact's reach (t_c − 3 ms − 1 ms).
+    const auto k = static_cast<std::size_t>(std::lround((rev + 0.026) / kDt));
+    EXPECT_NEAR(bl[k], 0.0, 1e-6);
   }
 }
 
