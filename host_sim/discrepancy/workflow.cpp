@@ -137,7 +137,11 @@ namespace {
 
 /// A model whose RMS force falls below this share of the baseline's has
 /// collapsed: the effect has switched the damper off rather than changed it.
-constexpr double kCollapsedForceShare = 0.25;
+/// A tenth: the most settled damper of chapter 5 starts at PR = 0.101
+/// (Eq. 5.6 at SQ = 1, b_initial = 0.1 of Table 5.6) and Y(i, PR) ≥ PR·Y(i, 1),
+/// so a settled damper keeps at least a tenth of its force at every sample;
+/// a weaker model is not a damper any catalogued effect describes.
+constexpr double kCollapsedForceShare = 0.1;
 /// Explained: the structure the effects leave on the held-out samples is at
 /// most kLeftOverNoise of the noise there (the rest of the residual), or at
 /// most kLeftOverRemoved of what they removed.
@@ -192,7 +196,7 @@ std::string collapse_reason(const SelectionContext& ctx, const FitOutcome& f) {
   }
   const double rms = resid.empty() ? 0.0 : std::sqrt(ss / static_cast<double>(resid.size()));
   if (rms < kCollapsedForceShare * ctx.baseline_rms_n) {
-    return "collapses: the model's RMS force " + format_number("%.3g", rms) + " N is below a quarter of the baseline's " +
+    return "collapses: the model's RMS force " + format_number("%.3g", rms) + " N is below a tenth of the baseline's " +
            format_number("%.3g", ctx.baseline_rms_n) + " N";
   }
   return {};

@@ -36,7 +36,8 @@
 /// fully settled state of Eq. 5.5 (idle ≥ T_max), which is a physical state
 /// and not a limit of the fit; it is still flagged. A model whose force
 /// collapses (free play at least the record's stroke, or an RMS force below
-/// a quarter of the baseline's) is rejected.
+/// a tenth of the baseline's, less than the most settled damper of Eq. 5.6
+/// keeps) is rejected.
 ///
 /// Confusable pairs and what separates them (each is a column of the
 /// joint fit, and the independent study checks them):

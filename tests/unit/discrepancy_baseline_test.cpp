@@ -11,6 +11,7 @@
 #include "host_sim/discrepancy/fit.hpp"
 #include "host_sim/discrepancy/signatures.hpp"
 #include "host_sim/discrepancy/workflow.hpp"
+#include "mrd/physics/mr_damper.hpp"
 #include "mrd/units.hpp"
 #include "test_normals.hpp"
 
@@ -233,6 +234,47 @@ TEST(DiscrepancyVerdict, SmoothTransitionIsUnexplained) {
   EXPECT_TRUE(r.effects.empty());
   EXPECT_GE(r.signatures_before.structured_share, kStructuredShare);
   ASSERT_FALSE(r.findings.empty());
+}
+
+// A fully settled damper (idle ≥ T_max, SQ = 1) on a slow, small sine:
+// Eq. 5.6 at SQ = 1 gives PR = 0.1 + 0.9 e^{−7} = 0.1008 at the start, and
+// the record displaces ∫|v| dt · A = 4 · 5 mm · 6 cycles · 0.01062 m² =
+// 1.27 L, so by Eq. 5.9 (Eq. 5.7–5.8: c_PR = 5.474 e^{−3.65} = 0.142 per litre, b_PR =
+// 0.605 + 0.395 e^{−4.5} = 0.609) PR only reaches 0.609 − 0.508 e^{−0.18} = 0.185 at the end. The
+// measured force is about a sixth of the baseline's (between a tenth and a
+// quarter), the weakest a settled damper of chapter 5 gets; it is named
+// idle_settling with SQ near 1, not rejected as a collapsed damper.
+TEST(DiscrepancyVerdict, AFullySettledDamperIsIdleSettlingNotACollapse) {
+  const double dt = 1e-3, w = 2 * units::kPi * 0.3, a = 0.005, current_a = 2.5;
+  physics::MrDamper truth(physics::MrDamperParams{}, dt, 1.0);
+  truth.reset(1.0, current_a);
+  physics::MrDamper mixed(physics::MrDamperParams{}, dt, 0.0);
+  mixed.reset(0.0, current_a);
+  MeasuredData d;
+  d.source = "settled";
+  test::Normals n(5);
+  double ss_truth = 0.0, ss_mixed = 0.0;
+  for (int k = 0; k <= 20000; ++k) {
+    const double t = k * dt;
+    const double v = a * w * std::cos(w * t);
+    const double f = truth.step(current_a, v);
+    const double f0 = mixed.step(current_a, v);
+    ss_truth += f * f;
+    ss_mixed += f0 * f0;
+    d.time_s.push_back(t);
+    d.displacement_m.push_back(a * std::sin(w * t) + 5e-6 * n.next());
+    d.current_cmd_a.push_back(current_a);
+    d.force_n.push_back(f + 300.0 * n.next());
+  }
+  const double share = std::sqrt(ss_truth / ss_mixed);
+  ASSERT_GT(share, 0.1);
+  ASSERT_LT(share, 0.25);
+  const DiscrepancyResult r = run_discrepancy(d);
+  EXPECT_EQ(r.verdict, Verdict::explained) << verdict_name(r.verdict);
+  ASSERT_EQ(r.effects, std::vector<Effect>{Effect::idle_settling}) << EffectSet{r.effects}.label();
+  ASSERT_FALSE(r.params.empty());
+  EXPECT_GT(r.params[0], 0.9);
+  EXPECT_LT(r.gap_validation_after, 0.5 * r.gap_validation_before);
 }
 
 }  // namespace
