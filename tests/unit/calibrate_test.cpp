@@ -265,7 +265,7 @@ TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
   ASSERT_EQ(r.fits.size(), 3u);
   EXPECT_EQ(r.currents_a.size(), 5u);
   // The lost motion lowers the BIC on the 2 mm and 25 mm records but not
-  // the gap on the 5 mm ones (measured: RMS 0.227 with it, 0.200 without):
+  // the gap on the 5 mm ones (measured: RMS 0.219 with it, 0.192 without):
   // it does not generalize from these two families and is not kept.
   EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
   bool said = false;
@@ -335,7 +335,7 @@ TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
   EXPECT_LT(play_m, 0.6e-3);
   // On every held-out record with current (the 0 A one is friction-like, no
   // plateau) the gap is lower with the lost motion than without (measured:
-  // 19.4 → 16.6, 16.7 → 13.6, 18.0 → 14.7, 19.7 → 16.4 %).
+  // 18.7 → 14.8, 16.4 → 12.8, 18.1 → 14.7, 19.9 → 16.6 %).
   const std::vector<double> with = baseline_gaps(r.fits[1].baseline, held);
   const std::vector<double> without = baseline_gaps(r.fits[0].baseline, held);
   for (std::size_t i = 1; i < held.size(); ++i) EXPECT_LT(with[i], without[i]) << held[i].source;
