@@ -54,7 +54,6 @@ LinkShow link_show(const std::string& serial, const std::string& tag) {
 }
 
 TEST(EmulatedBoard, ClosedLoopOverKvaserPciSja1000EqualsTheInProcessSimulation) {
-  MRD_SKIP_IN_SANITIZER_BUILD();
   const auto record = testing::hachinohe_record();
   ASSERT_TRUE(testing::fs::exists(record)) << "shared Hachinohe record not found at " << record;
   const auto out = testing::emulated_out_dir("kvaser");

@@ -45,7 +45,6 @@ double capacity_threshold(const testing::fs::path& board) {
 }
 
 TEST(EmulatedBoard, MonthsBetweenBootsCountAsIdleTimeAndBringAMixingCycle) {
-  MRD_SKIP_IN_SANITIZER_BUILD();
   const auto out = testing::emulated_out_dir("months");
   ASSERT_TRUE(testing::run_emulated_script("", "months.sh", {out.string()}))
       << "months.sh failed (reason above), see " << out;

@@ -16,7 +16,6 @@ namespace {
 constexpr int kTrials = 20;
 
 TEST(EmulatedBoard, PowerCutsWhileSavingLoseNoStateAndCorruptNone) {
-  MRD_SKIP_IN_SANITIZER_BUILD();
   const auto out = testing::emulated_out_dir("power-cuts");
   testing::fs::create_directories(out.parent_path());
   const auto log = out.parent_path() / "power-cuts.log";  // the script empties `out` first

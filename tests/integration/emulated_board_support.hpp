@@ -162,12 +162,3 @@ inline void expect_guest_run_equals_in_process(const std::string& serial, int in
 }
 
 }  // namespace mrd::testing
-
-/// The emulated board cannot run in the sanitizer build (QEMU with the
-/// instrumented cross build would take too long): the only skip.
-#ifdef MRD_SANITIZE_BUILD
-#define MRD_SKIP_IN_SANITIZER_BUILD() \
-  GTEST_SKIP() << "the emulated board runs in the release build only (the ASan/UBSan build cannot run it)"
-#else
-#define MRD_SKIP_IN_SANITIZER_BUILD() (void)0
-#endif

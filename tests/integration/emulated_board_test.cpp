@@ -29,7 +29,6 @@ using testing::kGuestRuns;
 using testing::key_values;
 
 TEST(EmulatedBoard, ClosedLoopOverSocketCanEqualsTheInProcessSimulation) {
-  MRD_SKIP_IN_SANITIZER_BUILD();
   const auto record = testing::hachinohe_record();
   ASSERT_TRUE(testing::fs::exists(record)) << "shared Hachinohe record not found at " << record;
   const auto out = testing::emulated_out_dir("vcan");
