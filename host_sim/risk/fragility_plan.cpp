@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/controller.hpp"
 #include "mrd/units.hpp"
 
@@ -27,8 +28,8 @@ class Fnv1a {
   std::uint64_t h_ = 0xcbf29ce484222325ULL;
 };
 
-/// One closed-loop run: run::run_closed_loop's tick (sense, controller,
-/// advance) with the peak story drift taken after each advance.
+/// One closed-loop run: run::closed_loop_tick with the peak story drift
+/// taken after each advance.
 RunMetrics simulate_one(const FragilityPlan& plan, const RunKey& k, run::Controller& controller,
                         std::vector<double>& accel) {
   const auto& rec = plan.records[k.record].accel_1g_m_s2;
@@ -41,18 +42,9 @@ RunMetrics simulate_one(const FragilityPlan& plan, const RunKey& k, run::Control
   plant::Plant p;
   p.init(spec);
   controller.reset();
-  control::ControllerInput in;
   double drift = 0.0;
   for (std::size_t n = 0; n < accel.size(); ++n) {
-    const plant::PlantSensors sensors = p.sense(accel[n]);
-    in.tick = n;
-    in.damper_disp_m = sensors.damper_disp_m;
-    in.damper_force_n = sensors.damper_force_n;
-    in.ground_accel_m_s2 = sensors.ground_accel_m_s2;
-    in.base_accel_m_s2 = sensors.base_accel_m_s2;
-    in.coil_current_a = sensors.coil_current_a;
-    const control::ControllerOutput out = controller.step(in);
-    p.advance(plant::CoilDrive{static_cast<double>(out.current_command_a), out.drive_enable});
+    (void)run::closed_loop_tick(p, controller, accel[n], n);
     const auto& b = p.building();
     double below = b.disp_m(0);
     for (int i = 1; i < structure::kDofs; ++i) {

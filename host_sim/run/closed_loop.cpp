@@ -16,6 +16,21 @@ void start_record(ClosedLoopRecord& record, std::size_t n) {
 
 }  // namespace
 
+control::ControllerOutput closed_loop_tick(plant::Plant& plant, Controller& controller, double ground_accel_m_s2,
+                                           std::size_t tick) {
+  const plant::PlantSensors sensors = plant.sense(ground_accel_m_s2);
+  control::ControllerInput in;
+  in.tick = tick;
+  in.damper_disp_m = static_cast<float>(sensors.damper_disp_m);
+  in.damper_force_n = static_cast<float>(sensors.damper_force_n);
+  in.ground_accel_m_s2 = static_cast<float>(sensors.ground_accel_m_s2);
+  in.base_accel_m_s2 = static_cast<float>(sensors.base_accel_m_s2);
+  in.coil_current_a = static_cast<float>(sensors.coil_current_a);
+  const control::ControllerOutput out = controller.step(in);
+  plant.advance(coil_drive(out));
+  return out;
+}
+
 plant::PlantSummary run_closed_loop(const plant::PlantSpec& spec, const std::vector<double>& ground_accel_m_s2,
                                     Controller& controller, ClosedLoopRecord* record) {
   plant::Plant plant;
@@ -25,18 +40,8 @@ plant::PlantSummary run_closed_loop(const plant::PlantSpec& spec, const std::vec
   const std::size_t n = ground_accel_m_s2.size();
   if (record) start_record(*record, n);
 
-  control::ControllerInput in;
   for (std::size_t k = 0; k < n; ++k) {
-    const plant::PlantSensors sensors = plant.sense(ground_accel_m_s2[k]);
-    in.tick = k;
-    in.damper_disp_m = sensors.damper_disp_m;
-    in.damper_force_n = sensors.damper_force_n;
-    in.ground_accel_m_s2 = sensors.ground_accel_m_s2;
-    in.base_accel_m_s2 = sensors.base_accel_m_s2;
-    in.coil_current_a = sensors.coil_current_a;
-    const control::ControllerOutput out = controller.step(in);
-    const plant::CoilDrive drive{static_cast<double>(out.current_command_a), out.drive_enable};
-    plant.advance(drive);
+    const control::ControllerOutput out = closed_loop_tick(plant, controller, ground_accel_m_s2[k], k);
 
     if (record) {
       const plant::PlantState& s = plant.state();
@@ -46,7 +51,7 @@ plant::PlantSummary run_closed_loop(const plant::PlantSpec& spec, const std::vec
       record->base_vel_m_s.push_back(s.base_vel_m_s);
       record->damper_force_n.push_back(s.damper_force_n);
       record->desired_force_n.push_back(out.desired_force_n);
-      record->command_a.push_back(plant::command_stage_a(drive));
+      record->command_a.push_back(plant::command_stage_a(coil_drive(out)));
       record->current_a.push_back(s.coil_current_a);
       record->pr.push_back(s.participant_ratio);
       record->roof_accel_m_s2.push_back(plant.roof_accel_m_s2());

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "host_sim/plant/plant.hpp"
+#include "mrd/control/io.hpp"
 
 namespace mrd::run {
 
@@ -22,6 +23,16 @@ struct ClosedLoopRecord {
   std::vector<double> time_s, ground_accel_m_s2, base_disp_m, base_vel_m_s, damper_force_n, desired_force_n,
       command_a, current_a, pr, roof_accel_m_s2, peak_floor_accel_m_s2;
 };
+
+/// The drive a controller output asks for: u[n] as the coil stage sees it.
+[[nodiscard]] inline plant::CoilDrive coil_drive(const control::ControllerOutput& out) noexcept {
+  return plant::CoilDrive{static_cast<double>(out.current_command_a), out.drive_enable};
+}
+
+/// Tick n of the loop: sensors = plant.sense(a_g[n]); u[n] = controller.step(sensors); plant.advance(u[n]).
+/// Returns u[n]. For loops that observe the plant their own way (run_closed_loop, the fragility runs).
+control::ControllerOutput closed_loop_tick(plant::Plant& plant, Controller& controller, double ground_accel_m_s2,
+                                           std::size_t tick);
 
 /// Runs the loop over `ground_accel_m_s2` sampled at `spec.step_s`, after
 /// resetting `controller`. Throws std::invalid_argument for a bad step.
