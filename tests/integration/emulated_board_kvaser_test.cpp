@@ -15,7 +15,7 @@
 // QEMU models no physical layer (no ACK, no error counters, no bus-off): the
 // error paths stay covered by fault injection in the firmware's tests.
 // Fails when QEMU, the cross compiler, the kernel or iproute2 cannot be had;
-// skipped only in the sanitizer build.
+// registered in the release build only (tests/integration/CMakeLists.txt).
 #include <gtest/gtest.h>
 
 #include "emulated_board_support.hpp"

@@ -12,7 +12,7 @@
 //    confirmed and saved;
 //  boot 3, a minute later: --print-state shows what boot 2 saved.
 // Fails when QEMU, the cross compiler, the kernel or mke2fs cannot be had;
-// skipped only in the sanitizer build.
+// registered in the release build only (tests/integration/CMakeLists.txt).
 #include <gtest/gtest.h>
 
 #include "emulated_board_support.hpp"

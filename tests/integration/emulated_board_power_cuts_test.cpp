@@ -5,7 +5,7 @@
 // record: none lost, none corrupt. The seed is fixed so that a failure can be
 // replayed (`power-cuts.sh --trials 20 --seed 12`).
 // Fails when QEMU, the cross compiler, the kernel or mke2fs cannot be had;
-// skipped only in the sanitizer build.
+// registered in the release build only (tests/integration/CMakeLists.txt).
 #include <gtest/gtest.h>
 
 #include "emulated_board_support.hpp"

@@ -14,8 +14,8 @@
 //     (/sys/kernel/debug/gpio) shows line 0 held high by mrd-firmware;
 //  3. after `kill -9` of the free-running firmware the drive applies its safe
 //     current at its first tick past the 20 ms timeout.
-// Fails when QEMU, the cross compiler or the kernel cannot be had; skipped
-// only in the sanitizer build.
+// Fails when QEMU, the cross compiler or the kernel cannot be had; registered
+// in the release build only (tests/integration/CMakeLists.txt).
 #include <gtest/gtest.h>
 
 #include "emulated_board_support.hpp"
