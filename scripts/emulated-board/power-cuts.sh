@@ -50,7 +50,8 @@ cp "$(emu_bin mrd-firmware)" "$rootfs/mrd/"
 cp "$board" "$rootfs/mrd/board.toml"
 cat >"$rootfs/mrd/scenario.sh" <<'SCENARIO'
 ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
-mount -t ext4 /dev/vda /var/lib/mrd || echo "EMU: mount /dev/vda failed"
+echo "EMU: vcan0 up, mounting the state disk"
+mount -t ext4 /dev/vda /var/lib/mrd && echo "EMU: state disk mounted" || echo "EMU: mount /dev/vda failed"
 echo "EMU: read-back: $(./mrd-firmware --board board.toml --print-state 2>&1 | tail -n1)"
 grep -q mrd_read_only /proc/cmdline || ./mrd-firmware --board board.toml --can vcan0 --save-every-s 0.01 --log-saves 2>&1
 umount /var/lib/mrd
