@@ -59,4 +59,26 @@ BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> m
   return c;
 }
 
+std::vector<std::string> coverage_notes(const ValidityRange& range, double amplitude_m, double frequency_hz,
+                                        double expected_gap) {
+  std::vector<std::string> notes;
+  const std::string tail = expected_gap > 0.0
+                               ? "; its expected gap (" + format_number("%.3g", expected_gap) + ") was measured there only"
+                               : "";
+  const auto check = [&](const char* what, double value, double lo, double hi, double scale, const char* unit,
+                         const char* fmt) {
+    if (!(hi > 0.0) || !(value > 0.0)) return;
+    const char* side = value > kCoverageFactor * hi ? "above" : (value < lo / kCoverageFactor ? "below" : nullptr);
+    if (side == nullptr) return;
+    const std::string from = format_number(fmt, lo * scale);
+    const std::string to = format_number(fmt, hi * scale);
+    notes.push_back(std::string("outside the calibrated coverage: the record's ") + what + " is " +
+                    format_number(fmt, value * scale) + " " + unit + ", " + side + " the " +
+                    (from == to ? to : from + "–" + to) + " " + unit + " the baseline was calibrated on" + tail);
+  };
+  check("displacement half range", amplitude_m, range.amplitude_min_m, range.amplitude_max_m, 1e3, "mm", "%.3g");
+  check("dominant frequency", frequency_hz, range.frequency_min_hz, range.frequency_max_hz, 1.0, "Hz", "%.3g");
+  return notes;
+}
+
 }  // namespace mrd::discrepancy

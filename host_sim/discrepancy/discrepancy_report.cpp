@@ -293,7 +293,10 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
                        {"max_force_ratio", kMaxForceRatio},
                        {"record_velocity_max_m_s", r.baseline_check.velocity_max_m_s},
                        {"record_current_min_a", r.baseline_check.current_min_a},
-                       {"record_current_max_a", r.baseline_check.current_max_a}};
+                       {"record_current_max_a", r.baseline_check.current_max_a},
+                       {"record_amplitude_m", r.baseline_check.amplitude_m},
+                       {"record_frequency_hz", r.baseline_check.frequency_hz},
+                       {"outside_coverage", r.baseline_check.outside_coverage}};
   j["effects"] = effects_json(r.effects);
   j["gap_before"] = r.gap_before;
   j["gap_after"] = r.gap_after;

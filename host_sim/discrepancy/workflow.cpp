@@ -636,6 +636,14 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   model.simulate(EffectSet{{Effect::idle_settling}}, fully_settled, ws, settled_force);
   res.baseline_check = check_baseline(opt.baseline, data.force_n, base_force, settled_force, model.input().vel_m_s,
                                       data.current_cmd_a);
+  {
+    BaselineCheck& c = res.baseline_check;
+    const std::vector<double>& x = model.input().disp_m;
+    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+    c.amplitude_m = lo == x.end() ? 0.0 : 0.5 * (*hi - *lo);
+    c.frequency_hz = dominant_frequency_hz(data.time_s, x);
+    c.outside_coverage = coverage_notes(opt.baseline.range, c.amplitude_m, c.frequency_hz, opt.baseline.expected_gap);
+  }
   if (!res.baseline_check.mismatch) {
     const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
     const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, peak_to_peak(model.input().disp_m),
@@ -664,9 +672,11 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
                            ") does not describe this damper; no effect was fitted. Calibrate a baseline to it "
                            "(mrd calibrate) and pass it with --baseline.");
     for (const auto& r : res.baseline_check.reasons) res.findings.push_back(r);
+    for (const auto& r : res.baseline_check.outside_coverage) res.findings.push_back(r);
     return res;
   }
   decide_verdict(res, current, baseline, fd.index.size(), held.index.size());
+  for (const auto& r : res.baseline_check.outside_coverage) res.findings.push_back(r);
   return res;
 }
 

@@ -21,16 +21,18 @@ class CalibrateCli : public ::testing::Test {
   TempDir scratch_;
   TempDir out_;
 
-  /// A 4 s sine record at 500 Hz, 5 mm at 1 Hz, of a damper with
+  /// A sine record at 500 Hz (by default 4 s, 5 mm at 1 Hz) of a damper with
   /// F = (200 + 800 I) tanh(v / 5 mm/s) + (1000 + 3000 I) v (N, I in A).
-  fs::path record(const std::string& name, double current_a) {
+  fs::path record(const std::string& name, double current_a, double amplitude_m = 0.005, double freq_hz = 1.0,
+                  double duration_s = 4.0) {
     const auto p = scratch_.path() / name;
     std::ofstream f(p);
     f << "time_s,displacement_m,current_cmd_A,force_N\n";
-    for (int k = 0; k <= 2000; ++k) {
+    const double w = 2.0 * kPi * freq_hz;
+    for (int k = 0; k <= static_cast<int>(std::lround(duration_s / 0.002)); ++k) {
       const double t = k * 0.002;
-      const double x = 0.005 * std::sin(2.0 * kPi * t);
-      const double v = 0.005 * 2.0 * kPi * std::cos(2.0 * kPi * t);
+      const double x = amplitude_m * std::sin(w * t);
+      const double v = amplitude_m * w * std::cos(w * t);
       const double force = (200.0 + 800.0 * current_a) * std::tanh(v / 0.005) + (1000.0 + 3000.0 * current_a) * v;
       f << t << ',' << x << ',' << current_a << ',' << force << '\n';
     }
@@ -79,6 +81,25 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   const double gap_without = nlohmann::json::parse(slurp(d2.path() / "summary.json"))["gap_before"].get<double>();
   EXPECT_LT(gap_with, 0.15);
   EXPECT_GT(gap_without, 10.0);
+  const auto inside = nlohmann::json::parse(slurp(d1.path() / "summary.json"))["baseline"];
+  EXPECT_TRUE(inside["outside_coverage"].empty()) << inside.dump();
+  EXPECT_NEAR(inside["record_frequency_hz"].get<double>(), 1.0, 0.05);
+
+  // The same damper at 25 mm and 0.2 Hz (the same peak velocity, 31 mm/s): 5 times the calibrated half range
+  // and a fifth of its frequency, both beyond the margin of 1.25. Judged, and named outside the coverage.
+  const auto slow = record("slow.csv", 1.0, 0.025, 0.2, 20.0);
+  TempDir d3;
+  const auto far = run_mrd("discrepancy --measured " + slow.string() + " --effects force_offset --baseline " +
+                               toml.string() + " --no-plots --out " + d3.path().string(),
+                           scratch_.path());
+  ASSERT_EQ(far.exit_code, 0) << far.err;
+  const auto js = nlohmann::json::parse(slurp(d3.path() / "summary.json"));
+  EXPECT_NE(js["verdict"], "baseline_mismatch") << js["findings"].dump();
+  const auto notes = js["baseline"]["outside_coverage"];
+  ASSERT_EQ(notes.size(), 2u) << notes.dump();
+  EXPECT_NE(notes[0].get<std::string>().find("half range is 25 mm, above the 5 mm the baseline"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].get<std::string>().find("frequency is 0.2 Hz, below the 1 Hz the baseline"), std::string::npos) << notes[1];
+  EXPECT_NE(far.out.find("outside the calibrated coverage"), std::string::npos) << far.out;
 }
 
 TEST_F(CalibrateCli, MissingMeasuredIsAUsageError) {

@@ -148,6 +148,35 @@ TEST(DiscrepancyBaseline, CheckFlagsAHundredfoldForceAndAFastRecord) {
   EXPECT_TRUE(check_baseline(b, same, base, settled, v, high).mismatch);
 }
 
+TEST(DiscrepancyBaseline, CoverageNamesARecordBeyondTheCalibratedAmplitudesAndFrequencies) {
+  // Calibrated on the laboratory's three families: ±1.645 to ±24.84 mm, 0.25 to 5 Hz.
+  ValidityRange r;
+  r.amplitude_min_m = 1.645e-3;
+  r.amplitude_max_m = 24.84e-3;
+  r.frequency_min_hz = 0.25;
+  r.frequency_max_hz = 5.0;
+  // Inside, and inside the margin: 5 mm at 3 Hz; 30 mm (< 1.25 × 24.84 = 31.05 mm) at 6 Hz (< 6.25 Hz).
+  EXPECT_TRUE(coverage_notes(r, 5e-3, 3.0, 0.24).empty());
+  EXPECT_TRUE(coverage_notes(r, 30e-3, 6.0, 0.24).empty());
+  // 1.4 mm is above 1.645 / 1.25 = 1.316 mm, 0.21 Hz above 0.25 / 1.25 = 0.2 Hz.
+  EXPECT_TRUE(coverage_notes(r, 1.4e-3, 0.21, 0.24).empty());
+  // ±50 mm at 0.1 Hz: both, with the numbers.
+  const std::vector<std::string> slow = coverage_notes(r, 50e-3, 0.1, 0.24);
+  ASSERT_EQ(slow.size(), 2u);
+  EXPECT_NE(slow[0].find("displacement half range is 50 mm, above the 1.65–24.8 mm"), std::string::npos) << slow[0];
+  EXPECT_NE(slow[0].find("expected gap (0.24)"), std::string::npos) << slow[0];
+  EXPECT_NE(slow[1].find("dominant frequency is 0.1 Hz, below the 0.25–5 Hz"), std::string::npos) << slow[1];
+  // A 20 Hz chirp of ±1 mm: below in amplitude (1 < 1.316 mm), above in frequency (20 > 6.25 Hz).
+  const std::vector<std::string> chirp = coverage_notes(r, 1e-3, 20.0, 0.0);
+  ASSERT_EQ(chirp.size(), 2u);
+  EXPECT_NE(chirp[0].find("below"), std::string::npos);
+  EXPECT_NE(chirp[1].find("20 Hz, above"), std::string::npos);
+  EXPECT_EQ(chirp[1].find("expected gap"), std::string::npos) << "no expected gap stated, none quoted";
+  // The thesis baseline states no amplitudes or frequencies; an unknown frequency (0) is not judged.
+  EXPECT_TRUE(coverage_notes(thesis_baseline().range, 50e-3, 0.1, 0.0).empty());
+  EXPECT_EQ(coverage_notes(r, 5e-3, 0.0, 0.24).size(), 0u);
+}
+
 /// A sine record's inputs and a model force for the signature tests.
 struct SigRecord {
   std::vector<double> t, x, v, i, f;
