@@ -62,9 +62,9 @@ BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> m
 std::vector<std::string> coverage_notes(const ValidityRange& range, double amplitude_m, double frequency_hz,
                                         double expected_gap) {
   std::vector<std::string> notes;
-  const std::string tail = expected_gap > 0.0
-                               ? "; its expected gap (" + format_number("%.3g", expected_gap) + ") was measured there only"
-                               : "";
+  std::string tail;
+  if (expected_gap > 0.0)
+    tail = "; its expected gap (" + format_number("%.3g", expected_gap) + ") was measured there only";
   const auto check = [&](const char* what, double value, double lo, double hi, double scale, const char* unit,
                          const char* fmt) {
     if (!(hi > 0.0) || !(value > 0.0)) return;

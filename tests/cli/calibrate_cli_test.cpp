@@ -97,8 +97,10 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   EXPECT_NE(js["verdict"], "baseline_mismatch") << js["findings"].dump();
   const auto notes = js["baseline"]["outside_coverage"];
   ASSERT_EQ(notes.size(), 2u) << notes.dump();
-  EXPECT_NE(notes[0].get<std::string>().find("half range is 25 mm, above the 5 mm the baseline"), std::string::npos) << notes[0];
-  EXPECT_NE(notes[1].get<std::string>().find("frequency is 0.2 Hz, below the 1 Hz the baseline"), std::string::npos) << notes[1];
+  const std::string amplitude = notes[0].get<std::string>();
+  const std::string frequency = notes[1].get<std::string>();
+  EXPECT_NE(amplitude.find("half range is 25 mm, above the 5 mm the baseline"), std::string::npos) << amplitude;
+  EXPECT_NE(frequency.find("frequency is 0.2 Hz, below the 1 Hz the baseline"), std::string::npos) << frequency;
   EXPECT_NE(far.out.find("outside the calibrated coverage"), std::string::npos) << far.out;
 }
 
