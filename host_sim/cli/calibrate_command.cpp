@@ -10,6 +10,7 @@
 #include "host_sim/io/usage_error.hpp"
 
 namespace mrd::cli {
+namespace calibrate_command {
 namespace {
 
 constexpr CommandHelp kCalibrateHelp{
@@ -113,7 +114,11 @@ void execute(const CalibrateCliOptions& o) {
 }
 
 }  // namespace
+}  // namespace calibrate_command
 
-Command add_calibrate_command(CLI::App& parent) { return make_command(parent, kCalibrateHelp, add_options, execute); }
+Command add_calibrate_command(CLI::App& parent) {
+  using namespace calibrate_command;
+  return make_command(parent, kCalibrateHelp, add_options, execute);
+}
 
 }  // namespace mrd::cli

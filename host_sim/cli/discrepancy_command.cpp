@@ -10,6 +10,7 @@
 #include "host_sim/io/usage_error.hpp"
 
 namespace mrd::cli {
+namespace discrepancy_command {
 namespace {
 
 constexpr CommandHelp kDiscrepancyHelp{
@@ -156,8 +157,10 @@ void execute(const DiscrepancyCliOptions& o) {
 }
 
 }  // namespace
+}  // namespace discrepancy_command
 
 Command add_discrepancy_command(CLI::App& parent) {
+  using namespace discrepancy_command;
   return make_command(parent, kDiscrepancyHelp, add_options, execute);
 }
 

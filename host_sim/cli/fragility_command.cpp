@@ -22,6 +22,7 @@
 #include "host_sim/run/controller.hpp"
 
 namespace mrd::cli {
+namespace fragility_command {
 namespace {
 
 constexpr CommandHelp kFragilityHelp{
@@ -287,7 +288,11 @@ void execute(const FragilityOptions& o) {
 }
 
 }  // namespace
+}  // namespace fragility_command
 
-Command add_fragility_command(CLI::App& parent) { return make_command(parent, kFragilityHelp, add_options, execute); }
+Command add_fragility_command(CLI::App& parent) {
+  using namespace fragility_command;
+  return make_command(parent, kFragilityHelp, add_options, execute);
+}
 
 }  // namespace mrd::cli

@@ -8,6 +8,7 @@
 #include "host_sim/structure/modal.hpp"
 
 namespace mrd::cli {
+namespace modal_command {
 namespace {
 
 constexpr CommandHelp kModalHelp{
@@ -50,8 +51,10 @@ void execute(const ModalOptions& o) {
 }
 
 }  // namespace
+}  // namespace modal_command
 
 Command add_modal_command(CLI::App& parent) {
+  using namespace modal_command;
   return make_command(parent, kModalHelp, add_options, execute);
 }
 

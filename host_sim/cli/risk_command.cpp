@@ -11,6 +11,7 @@
 #include "host_sim/risk/lifetime_risk.hpp"
 
 namespace mrd::cli {
+namespace risk_command {
 namespace {
 
 constexpr CommandHelp kRiskHelp{
@@ -94,7 +95,11 @@ void execute(const RiskOptions& o) {
 }
 
 }  // namespace
+}  // namespace risk_command
 
-Command add_risk_command(CLI::App& parent) { return make_command(parent, kRiskHelp, add_options, execute); }
+Command add_risk_command(CLI::App& parent) {
+  using namespace risk_command;
+  return make_command(parent, kRiskHelp, add_options, execute);
+}
 
 }  // namespace mrd::cli

@@ -9,6 +9,7 @@
 #include "host_sim/schedule/schedule_report.hpp"
 
 namespace mrd::cli {
+namespace schedule_command {
 namespace {
 
 constexpr CommandHelp kScheduleHelp{
@@ -150,8 +151,10 @@ void execute(const ScheduleCliOptions& o) {
 }
 
 }  // namespace
+}  // namespace schedule_command
 
 Command add_schedule_command(CLI::App& parent) {
+  using namespace schedule_command;
   return make_command(parent, kScheduleHelp, add_options, execute);
 }
 

@@ -8,6 +8,7 @@
 #include "mrd/units.hpp"
 
 namespace mrd::cli {
+namespace settle_command {
 namespace {
 
 constexpr CommandHelp kSettleHelp{
@@ -63,8 +64,10 @@ void execute(const SettleOptions& o) {
 }
 
 }  // namespace
+}  // namespace settle_command
 
 Command add_settle_command(CLI::App& parent) {
+  using namespace settle_command;
   return make_command(parent, kSettleHelp, add_options, execute);
 }
 

@@ -10,6 +10,7 @@
 #include "host_sim/run/sim_run.hpp"
 
 namespace mrd::cli {
+namespace sim_command {
 namespace {
 
 constexpr CommandHelp kSimHelp{
@@ -149,8 +150,10 @@ void execute(const SimOptions& o) {
 }
 
 }  // namespace
+}  // namespace sim_command
 
 Command add_sim_command(CLI::App& parent) {
+  using namespace sim_command;
   return make_command(parent, kSimHelp, add_options, execute);
 }
 

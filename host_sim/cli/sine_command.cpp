@@ -13,6 +13,7 @@
 #include "host_sim/run/sine_rig.hpp"
 
 namespace mrd::cli {
+namespace sine_command {
 namespace {
 
 constexpr CommandHelp kSineHelp{
@@ -129,8 +130,10 @@ void execute(const SineOptions& o) {
 }
 
 }  // namespace
+}  // namespace sine_command
 
 Command add_sine_command(CLI::App& parent) {
+  using namespace sine_command;
   return make_command(parent, kSineHelp, add_options, execute);
 }
 

@@ -7,6 +7,7 @@
 #include "host_sim/run/study.hpp"
 
 namespace mrd::cli {
+namespace study_command {
 namespace {
 
 constexpr CommandHelp kStudyHelp{
@@ -63,8 +64,10 @@ void execute(const StudyCliOptions& o) {
 }
 
 }  // namespace
+}  // namespace study_command
 
 Command add_study_command(CLI::App& parent) {
+  using namespace study_command;
   return make_command(parent, kStudyHelp, add_options, execute);
 }
 

@@ -15,6 +15,7 @@
 #include "host_sim/run/sweep_report.hpp"
 
 namespace mrd::cli {
+namespace sweep_command {
 namespace {
 
 constexpr CommandHelp kSweepHelp{
@@ -141,8 +142,10 @@ void execute(const SweepOptions& o) {
 }
 
 }  // namespace
+}  // namespace sweep_command
 
 Command add_sweep_command(CLI::App& parent) {
+  using namespace sweep_command;
   return make_command(parent, kSweepHelp, add_options, execute);
 }
 

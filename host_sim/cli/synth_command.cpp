@@ -11,6 +11,7 @@
 #include "host_sim/io/usage_error.hpp"
 
 namespace mrd::cli {
+namespace synth_command {
 namespace {
 
 constexpr CommandHelp kSynthHelp{
@@ -144,8 +145,10 @@ void execute(const SynthCliOptions& o) {
 }
 
 }  // namespace
+}  // namespace synth_command
 
 Command add_synth_command(CLI::App& parent) {
+  using namespace synth_command;
   return make_command(parent, kSynthHelp, add_options, execute);
 }
 
