@@ -278,7 +278,6 @@ Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& 
     double ss = 0.0, vmax = 0.0;
     for (std::size_t k = moving.begin; k < moving.end; ++k) ss += rec.force_n[k] * rec.force_n[k];
     for (const double v : in.vel_m_s) vmax = std::max(vmax, std::fabs(v));
-    const auto [lo, hi] = std::minmax_element(in.disp_m.begin(), in.disp_m.end());
     for (const double c : rec.current_cmd_a) ++count[current_key(c)];
     all += n;
     p.data.rms_force_n.push_back(ss > 0.0 ? std::sqrt(ss / static_cast<double>(moving.size())) : 1.0);
@@ -286,7 +285,7 @@ Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& 
     p.data.index.push_back(std::move(idx));
     p.data.force_n.push_back(rec.force_n);
     p.vmax_m_s.push_back(vmax);
-    p.half_range_m.push_back(n > 0 ? 0.5 * (*hi - *lo) : 0.0);
+    p.half_range_m.push_back(half_range_m(in.disp_m));
     p.data.inputs.push_back(std::move(in));
   }
   for (const auto& [key, c] : count)
@@ -504,11 +503,10 @@ ValidityRange validity_range(std::span<const MeasuredData> records, double smoot
     if (rec.size() == 0) continue;
     const ModelInput in = model_input(rec, smoothing_half_window_s);
     const auto [ilo, ihi] = std::minmax_element(rec.current_cmd_a.begin(), rec.current_cmd_a.end());
-    const auto [xlo, xhi] = std::minmax_element(in.disp_m.begin(), in.disp_m.end());
     double vmax = 0.0, fmax = 0.0;
     for (const double x : in.vel_m_s) vmax = std::max(vmax, std::fabs(x));
     for (const double f : rec.force_n) fmax = std::max(fmax, std::fabs(f));
-    const double amp = 0.5 * (*xhi - *xlo);
+    const double amp = half_range_m(in.disp_m);
     const double freq = dominant_frequency_hz(rec.time_s, in.disp_m);
     if (first) {
       v.current_min_a = *ilo;

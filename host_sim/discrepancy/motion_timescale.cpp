@@ -26,6 +26,12 @@ std::vector<double> mean_crossings_s(std::span<const double> time_s, std::span<c
   return out;
 }
 
+double half_range_m(std::span<const double> displacement_m) {
+  if (displacement_m.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(displacement_m.begin(), displacement_m.end());
+  return 0.5 * (*hi - *lo);
+}
+
 double dominant_frequency_hz(std::span<const double> time_s, std::span<const double> displacement_m) {
   const std::vector<double> c = mean_crossings_s(time_s, displacement_m);
   // Crossings are half a period apart: (crossings − 1) half periods between the first and the last.

@@ -15,6 +15,9 @@ namespace mrd::discrepancy {
 [[nodiscard]] std::vector<double> mean_crossings_s(std::span<const double> time_s,
                                                    std::span<const double> displacement_m);
 
+/// Half the range of a displacement record (max − min)/2, m; 0 when empty.
+[[nodiscard]] double half_range_m(std::span<const double> displacement_m);
+
 /// Dominant frequency of a displacement record, Hz: crossings of its mean
 /// are half a period apart; the half periods between the first and the last
 /// crossing over their time. 0 with fewer than two crossings.

@@ -594,12 +594,6 @@ void decide_verdict(DiscrepancyResult& res, const Selection& current, const Sele
   describe_rejections(res);
 }
 
-double peak_to_peak(const std::vector<double>& x) {
-  if (x.empty()) return 0.0;
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  return *hi - *lo;
-}
-
 }  // namespace
 
 DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOptions& opt) {
@@ -636,17 +630,14 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   model.simulate(EffectSet{{Effect::idle_settling}}, fully_settled, ws, settled_force);
   res.baseline_check = check_baseline(opt.baseline, data.force_n, base_force, settled_force, model.input().vel_m_s,
                                       data.current_cmd_a);
-  {
-    BaselineCheck& c = res.baseline_check;
-    const std::vector<double>& x = model.input().disp_m;
-    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-    c.amplitude_m = lo == x.end() ? 0.0 : 0.5 * (*hi - *lo);
-    c.frequency_hz = dominant_frequency_hz(data.time_s, x);
-    c.outside_coverage = coverage_notes(opt.baseline.range, c.amplitude_m, c.frequency_hz, opt.baseline.expected_gap);
-  }
+  BaselineCheck& check = res.baseline_check;
+  check.amplitude_m = half_range_m(model.input().disp_m);
+  check.frequency_hz = dominant_frequency_hz(data.time_s, model.input().disp_m);
+  check.outside_coverage =
+      coverage_notes(opt.baseline.range, check.amplitude_m, check.frequency_hz, opt.baseline.expected_gap);
   if (!res.baseline_check.mismatch) {
     const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
-    const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, peak_to_peak(model.input().disp_m),
+    const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * half_range_m(model.input().disp_m),
                                base_rms};
     forward_selection(ctx, current, ws, res.rounds);
     backward_check(ctx, current, ws, res.dropped);
@@ -672,10 +663,9 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
                            ") does not describe this damper; no effect was fitted. Calibrate a baseline to it "
                            "(mrd calibrate) and pass it with --baseline.");
     for (const auto& r : res.baseline_check.reasons) res.findings.push_back(r);
-    for (const auto& r : res.baseline_check.outside_coverage) res.findings.push_back(r);
-    return res;
+  } else {
+    decide_verdict(res, current, baseline, fd.index.size(), held.index.size());
   }
-  decide_verdict(res, current, baseline, fd.index.size(), held.index.size());
   for (const auto& r : res.baseline_check.outside_coverage) res.findings.push_back(r);
   return res;
 }
