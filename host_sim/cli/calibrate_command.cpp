@@ -21,12 +21,15 @@ records (each record's residual divided by its RMS force), and writes DIR/damper
 value(I) = limit + (at_zero - limit) exp(-rate_per_a |I|)):
   bingham   F = TF(v) (Y sgn v + C v), Eq. 4.1-4.4                 v_tf_m_s
   bouc_wen  F = Y z + C v + k0 x, normalized Spencer et al. (1997)  yield_disp_m, stiffness_n_m
---law auto fits both and keeps the lower BIC. The better law is then fitted again with a lost
-motion at reversals (a share of the force that builds only after the piston has moved
-m_per_n * Y(I) past a reversal: a force plateau after each reversal, longer at higher current);
-it is kept when it lowers the BIC by 10 or more, its parameters are off their bounds and it
-also lowers the RMS gap of the --check records (without --check it is reported, never kept;
---no-lost-motion: not fitted). With three or more currents the current laws are
+--law auto fits both and keeps the lower BIC. The better law is then fitted again with each
+extra in turn, on top of those kept before:
+  transition time (bingham only): TF's band widens to v_tf_m_s + transition_time_s |a|, so the
+    force builds over a time after a reversal, not over a velocity      transition_time_s
+  lost motion: a share of the force builds only after the piston has moved m_per_n * Y(I)
+    past a reversal (a plateau after each reversal, longer at higher current)   m_per_n, share
+An extra is kept when it lowers the BIC by 10 or more, its parameters are off their bounds and
+it also lowers the RMS gap of the --check records (without --check it is reported, never
+kept; --no-transition-time, --no-lost-motion: not fitted). With three or more currents the current laws are
 fitted whole; with two, rate_per_a is held at the thesis value; with one, the laws are constants.
 The coil time constants (Eq. 4.5) and the participant ratio are not identifiable from
 constant-current records: thesis values, marked identified = false.
@@ -47,6 +50,7 @@ struct CalibrateCliOptions {
   std::string law = "auto";
   bool no_plots = false;
   bool no_lost_motion = false;
+  bool no_transition_time = false;
 };
 
 void add_options(CLI::App& app, CalibrateCliOptions& o) {
@@ -56,11 +60,13 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_option("--check", o.check, "Records not fitted: the calibrated models' gap on each is reported");
   app.add_flag("--no-plots", o.no_plots, "Skip the PNG plots");
   app.add_flag("--no-lost-motion", o.no_lost_motion, "Do not try the lost motion at reversals");
+  app.add_flag("--no-transition-time", o.no_transition_time, "Do not try the transition time (bingham)");
 }
 
 discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   discrepancy::CalibrateOptions opt;
   opt.lost_motion = !o.no_lost_motion;
+  opt.transition_time = !o.no_transition_time;
   if (o.law == "bingham") {
     opt.law = discrepancy::BaseLaw::bingham;
   } else if (o.law == "bouc_wen") {

@@ -36,6 +36,19 @@
 /// accumulator's give), larger the higher that pressure, while the rest of
 /// the force (seal friction, the share of the flow not held up) follows at
 /// once. λ = 0 or r = 0 is the plain form.
+///
+/// The Bingham form may carry a transition time τ: the band of Eq. 4.4
+/// widens with the damper's acceleration,
+/// <pre>
+///   v_TF,eff = v_TF + τ |a|,   a averaged over ±kTransitionAccelHalfWindow_s
+/// </pre>
+/// Through a reversal v ≈ a t, so with τ|a| ≫ v_TF the force builds over
+/// the time τ after the reversal whatever the stroke and frequency, where
+/// Eq. 4.4 alone builds it over a velocity, that is over a time v_TF/|a|
+/// that is 30× longer at 25 mm / 0.25 Hz than at 2 mm / 5 Hz. Physically:
+/// the fluid's chains and the valve's pressure take a time to form again
+/// (the response time of MR fluid and of the compressed volume, a few
+/// milliseconds), not a velocity. τ = 0 is Eq. 4.4 as the thesis has it.
 
 #include <string>
 
@@ -49,7 +62,8 @@ enum class BaseLaw { bingham, bouc_wen };
 [[nodiscard]] const char* base_law_name(BaseLaw law) noexcept;
 
 struct Baseline;
-/// The law's name, with "+lost_motion" when the baseline has one.
+/// The law's name, with "+transition_time" and "+lost_motion" when the
+/// baseline has them.
 [[nodiscard]] std::string baseline_form_name(const Baseline& b);
 
 /// value(I, PR) = PR·limit + (at_zero − PR·limit) exp(−rate |I|), Eq. 4.2–4.3, 5.10–5.11.
@@ -85,6 +99,7 @@ struct Baseline {
   double stiffness_n_m = 0.0;        ///< k_0 (bouc_wen)
   double lost_motion_m_per_n = 0.0;  ///< λ: width of the lost motion at reversals per newton of Y(i), m/N (0 = none)
   double lost_motion_share = 0.0;    ///< r: share of the force held up by it, [0, 1]
+  double transition_time_s = 0.0;    ///< τ: widening of v_TF by τ|a| (bingham), s (0 = Eq. 4.4 alone)
   /// Lag of the force channel behind the motion channels (anti-alias
   /// filters, conditioning, logger), s: the model force is compared at
   /// t − force_delay_s. 0 for the thesis model.
@@ -100,6 +115,9 @@ struct Baseline {
   /// the effects' force-valued bounds are measured against, N.
   [[nodiscard]] double force_scale_n() const noexcept;
   [[nodiscard]] bool has_lost_motion() const noexcept { return lost_motion_m_per_n > 0.0 && lost_motion_share > 0.0; }
+  [[nodiscard]] bool has_transition_time() const noexcept {
+    return law == BaseLaw::bingham && transition_time_s > 0.0;
+  }
 };
 
 /// Bingham force at velocity v for a yield force and viscous coefficient
@@ -112,6 +130,12 @@ struct Baseline {
   const double tf = av < v_tf_m_s ? av / v_tf_m_s : 1.0;
   return tf * (yield_n * sgn + viscous_ns_m * v_m_s);
 }
+
+/// Half width of the average of the acceleration that widens the
+/// transition band (Baseline::transition_time_s): 5 ms, a 10 ms window,
+/// shorter than a tenth of the period of the fastest sine of a
+/// characterization (5 Hz) and longer than the derivative's noise.
+inline constexpr double kTransitionAccelHalfWindow_s = 0.005;
 
 /// The thesis's damper: Table 4.1, Eq. 4.5, Table 5.6; range 0–2.5 A (the
 /// drive's rating, §3.1), |v| ≤ 0.2491 m/s (Table 3.1), 200 kN.

@@ -197,7 +197,7 @@ BaselineFile baseline_file_of(const CalibrationResult& r) {
   for (const LawFit& fit : r.fits) {
     for (std::size_t i = 0; i < r.sources.size(); ++i)
       f.fits.push_back({r.sources[i], fit.baseline.law, fit.record_gaps.at(i), r.record_samples.at(i),
-                        fit.baseline.has_lost_motion()});
+                        fit.baseline.has_lost_motion(), fit.baseline.has_transition_time()});
   }
   return f;
 }
@@ -221,6 +221,10 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "\n[bingham]  # transition function, Eq. 4.4\n";
     t += "v_tf_m_s = " + num(b.v_tf_m_s) + "\n";
     t += "v_tf_m_s_sigma = " + num(f.sigma.v_tf_m_s) + "\n";
+    if (b.has_transition_time()) {
+      t += "transition_time_s = " + num(b.transition_time_s) + "  # the band is v_tf_m_s + transition_time_s |a|\n";
+      t += "transition_time_s_sigma = " + num(f.sigma.transition_time_s) + "\n";
+    }
   } else {
     t += "\n[bouc_wen]  # F = Y z + C v + k0 x, z' = (v/x_y)(1 - |z|^2 (1/2 + 1/2 sgn(v z)))\n";
     t += "yield_disp_m = " + num(b.yield_disp_m) + "\n";
@@ -274,6 +278,7 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "\n[[fit]]\n";
     t += "file = " + quoted(r.file) + "\n";
     t += "law = " + quoted(base_law_name(r.law)) + "\n";
+    if (r.transition_time) t += "transition_time = true\n";
     if (r.lost_motion) t += "lost_motion = true\n";
     t += "gap = " + num(r.gap) + "\n";
     t += "samples = " + std::to_string(r.samples) + "\n";
@@ -317,6 +322,12 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     if (b.law == BaseLaw::bingham) {
       b.v_tf_m_s = t.positive("v_tf_m_s");
       f.sigma.v_tf_m_s = t.number("v_tf_m_s_sigma");
+      if (t.has("transition_time_s")) {
+        b.transition_time_s = t.positive("transition_time_s");
+        f.sigma.transition_time_s = t.number("transition_time_s_sigma");
+        if (b.transition_time_s > 0.1)
+          fail(origin, t.where("transition_time_s"), "bingham.transition_time_s", "expected a time in (0, 0.1] s");
+      }
     } else {
       b.yield_disp_m = t.positive("yield_disp_m");
       f.sigma.yield_disp_m = t.number("yield_disp_m_sigma");
@@ -399,6 +410,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       RecordFit r;
       r.file = t.string("file");
       r.law = law_named(t.string("law"), origin, t.where("law"), t.field("law"));
+      if (t.has("transition_time")) r.transition_time = t.boolean("transition_time");
       if (t.has("lost_motion")) r.lost_motion = t.boolean("lost_motion");
       r.gap = t.number("gap");
       r.samples = t.count("samples");

@@ -19,18 +19,20 @@ namespace mrd::discrepancy {
 namespace {
 
 /// The parameters a calibration can fit.
-enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kSlots };
+enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kSlots };
 
 constexpr std::array<const char*, kSlots> kSlotName{
     "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
     "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m",
-    "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share"};
+    "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share",  "transition_time_s"};
 
 /// Search bounds, SI (the fit works on their logarithms).
 /// The force-channel lag between 10 µs (none, in effect) and 100 ms; the
-/// lost motion between 1 nm and 10 mm per kN, its share between 0.1 % and all.
-constexpr std::array<double, kSlots> kLower{1e-3, 1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7, 1e-2, 1e-5, 1e-12, 1e-3};
-constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1, 1e-5, 1.0};
+/// lost motion between 1 nm and 10 mm per kN, its share between 0.1 % and all;
+/// the transition time between 1 µs (none: 10 µm/s at 10 m/s²) and 100 ms.
+constexpr std::array<double, kSlots> kLower{1e-3,  1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5,
+                                            1e-7,  1e-2, 1e-5, 1e-12, 1e-3, 1e-6};
+constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1, 1e-5, 1.0, 0.1};
 
 double& slot_ref(Baseline& b, Slot s) {
   switch (s) {
@@ -46,6 +48,7 @@ double& slot_ref(Baseline& b, Slot s) {
     case kDelay: return b.force_delay_s;
     case kPlay: return b.lost_motion_m_per_n;
     case kShare: return b.lost_motion_share;
+    case kTau: return b.transition_time_s;
     default: break;
   }
   return b.v_tf_m_s;
@@ -327,9 +330,19 @@ std::vector<double> log_sigmas(const JointData& d, const Layout& layout, const B
   return sig;
 }
 
-/// Fits `law` to the records; with `plain` given, the same law with a lost
-/// motion at reversals, started from that plain fit.
-LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt, const LawFit* plain = nullptr) {
+/// The parts a baseline may carry beyond its law (baseline.hpp).
+struct Extras {
+  bool transition_time = false;
+  bool lost_motion = false;
+};
+
+Extras extras_of(const Baseline& b) { return {b.has_transition_time(), b.has_lost_motion()}; }
+
+/// Fits `law` with `extras` to the records. With `from` given (a fit of the
+/// same law with one extra fewer), starts from it with the new extra's
+/// parameters on a grid.
+LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt, const LawFit* from = nullptr,
+               Extras extras = {}) {
   const JointData& d = p.data;
   const std::size_t n_currents = p.currents_a.size();
   const Baseline thesis = thesis_baseline();
@@ -347,13 +360,14 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt, cons
   if (fit.viscous_fitted.rate_per_a) layout.free.push_back(kCc);
   if (law == BaseLaw::bingham) {
     layout.free.push_back(kVtf);
+    if (extras.transition_time) layout.free.push_back(kTau);
   } else {
     layout.free.push_back(kXy);
     layout.free.push_back(kK0);
   }
   // The force channel's lag: records of one rig share it (filters, logger).
   layout.free.push_back(kDelay);
-  if (plain != nullptr) {
+  if (extras.lost_motion) {
     layout.free.push_back(kPlay);
     layout.free.push_back(kShare);
   }
@@ -385,16 +399,28 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt, cons
   // the force lag at 1 ms and 10 ms (a lag near a period's fraction has
   // neighbouring minima on a sine).
   std::vector<Baseline> starts;
-  if (plain != nullptr) {
-    // From the plain fit: a play at the largest current of 5 % or 20 % of
-    // the smallest half range (a plateau short against the stroke), holding
-    // up a third or two thirds of the force.
-    const double y_top = std::max(std::fabs(plain->baseline.yield_n.at(top_current_a(p))), 1e-3);
+  if (from != nullptr && extras.lost_motion && !from->baseline.has_lost_motion()) {
+    // From the fit without it: a play at the largest current of 5 % or 20 %
+    // of the smallest half range (a plateau short against the stroke),
+    // holding up a third or two thirds of the force.
+    const double y_top = std::max(std::fabs(from->baseline.yield_n.at(top_current_a(p))), 1e-3);
     for (const double f : {0.05, 0.2})
       for (const double share : {0.33, 0.67}) {
-        Baseline s = plain->baseline;
+        Baseline s = from->baseline;
         s.lost_motion_m_per_n = f * amp_min / y_top;
         s.lost_motion_share = share;
+        starts.push_back(s);
+      }
+  } else if (from != nullptr) {
+    // From the fit without it: a transition time of 2 ms or 8 ms (the
+    // response time of MR fluid and valve, a few milliseconds), with the
+    // band v_TF as fitted or a third of it (the time then takes over part
+    // of the transition the band had to carry alone).
+    for (const double tau_s : {2e-3, 8e-3})
+      for (const double band_share : {1.0, 1.0 / 3.0}) {
+        Baseline s = from->baseline;
+        s.transition_time_s = tau_s;
+        s.v_tf_m_s = band_share * from->baseline.v_tf_m_s;
         starts.push_back(s);
       }
   } else {
@@ -461,16 +487,18 @@ LawFit fit_law(const Prepared& p, BaseLaw law, const CalibrateOptions& opt, cons
   fit.sigma.force_delay_s = sigma[kDelay];
   fit.sigma.lost_motion_m_per_n = sigma[kPlay];
   fit.sigma.lost_motion_share = sigma[kShare];
+  fit.sigma.transition_time_s = sigma[kTau];
 
   std::vector<Slot> shown{kYa, kYb, kYc, kCa, kCb, kCc};
   if (law == BaseLaw::bingham) {
     shown.push_back(kVtf);
+    if (extras.transition_time) shown.push_back(kTau);
   } else {
     shown.push_back(kXy);
     shown.push_back(kK0);
   }
   shown.push_back(kDelay);
-  if (plain != nullptr) {
+  if (extras.lost_motion) {
     shown.push_back(kPlay);
     shown.push_back(kShare);
   }
@@ -568,72 +596,87 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
       for (const auto& q : f.params) k += q.fitted ? 1 : 0;
       f.bic = bic(f.rss, f.samples, n_eff, k);
     }
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < res.fits.size(); ++i)
-      if (res.fits[i].bic < res.fits[best].bic) best = i;
-    return best;
   };
-  res.chosen = score();
-  // The better law again with a lost motion at reversals (baseline.hpp). It
-  // is kept only when it earns its two parameters: the same BIC rule, a play
-  // shorter than the smallest stroke with a share a fit can tell from none
-  // or all (neither on a search bound), and a lower gap on check records it
-  // was not fitted to. Without check records it is reported, not kept: on
-  // the fitted records alone any extra freedom wins against a model-form
-  // error (a smooth tanh transition took it at ΔBIC 10^4).
-  if (options.lost_motion) {
-    const BaseLaw plain_law = res.fits[res.chosen].baseline.law;
-    const LawFit plain = res.fits[res.chosen];
-    LawFit f = fit_law(p, plain_law, options, &plain);
+  score();
+  res.chosen = 0;
+  for (std::size_t i = 1; i < res.fits.size(); ++i)
+    if (res.fits[i].bic < res.fits[res.chosen].bic) res.chosen = i;
+
+  // The chosen law again with each extra in turn (baseline.hpp): first the
+  // transition time (Bingham only), then the lost motion at reversals, each
+  // on top of what was kept before. An extra is kept only when it earns its
+  // parameters: a BIC lower by kBicMargin, parameters a fit can tell from
+  // none (off their search bounds), a plausible size, and a lower RMS gap on
+  // check records it was not fitted to. Without check records it is
+  // reported, not kept: on the fitted records alone any extra freedom wins
+  // against a model-form error (a smooth tanh transition took the lost
+  // motion at ΔBIC 10^4).
+  const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
+  const auto rms_gap = [&](const Baseline& b) {
+    double s = 0.0;
+    const std::vector<double> g = baseline_gaps(b, check, options.smoothing_half_window_s);
+    for (const double x : g) s += x * x;
+    return std::sqrt(s / static_cast<double>(g.size()));
+  };
+  const auto try_extra = [&](Extras add, std::initializer_list<Slot> slots, const std::string& implausible) {
+    const LawFit from = res.fits[res.chosen];
+    Extras extras = extras_of(from.baseline);
+    extras.transition_time = extras.transition_time || add.transition_time;
+    extras.lost_motion = extras.lost_motion || add.lost_motion;
+    LawFit f = fit_law(p, from.baseline.law, options, &from, extras);
     f.record_gaps = baseline_gaps(f.baseline, records, options.smoothing_half_window_s);
     res.fits.push_back(std::move(f));
-    const std::size_t best = score();
-    res.chosen = 0;
-    for (std::size_t i = 1; i + 1 < res.fits.size(); ++i)
-      if (res.fits[i].bic < res.fits[res.chosen].bic) res.chosen = i;
-    const LawFit& lm = res.fits.back();
+    score();
+    const LawFit& x = res.fits.back();
+    const LawFit& c = res.fits[res.chosen];
+    const std::string name = baseline_form_name(x.baseline);
     bool plausible = true;
-    for (const ParamEstimate& q : lm.params)
-      if ((q.name == kSlotName[kPlay] || q.name == kSlotName[kShare]) && q.at_bound) plausible = false;
-    const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
-    if (!(lm.baseline.lost_motion_m_per_n * std::fabs(lm.baseline.yield_n.at(top_current_a(p))) < 2.0 * amp_min))
+    for (const ParamEstimate& q : x.params)
+      for (const Slot slot : slots)
+        if (q.name == kSlotName[slot] && q.at_bound) plausible = false;
+    if (add.lost_motion &&
+        !(x.baseline.lost_motion_m_per_n * std::fabs(x.baseline.yield_n.at(top_current_a(p))) < 2.0 * amp_min))
       plausible = false;
-    const auto rms_gap = [&](const Baseline& b) {
-      double s = 0.0;
-      const std::vector<double> g = baseline_gaps(b, check, options.smoothing_half_window_s);
-      for (const double x : g) s += x * x;
-      return std::sqrt(s / static_cast<double>(g.size()));
-    };
     if (!plausible) {
-      res.notes.push_back(baseline_form_name(lm.baseline) + ": not kept (a lost-motion parameter on its bound, or a "
-                          "play as wide as the stroke)");
-    } else if (best == res.fits.size() - 1 && res.fits[res.chosen].bic - lm.bic >= kBicMargin) {
-      if (check.empty()) {
-        res.notes.push_back(baseline_form_name(lm.baseline) + ": not kept, lower BIC on the fitted records (delta " +
-                            io::format_number("%.1f", res.fits[res.chosen].bic - lm.bic) +
-                            ") but no --check records to show that it generalizes");
-      } else {
-        const double with = rms_gap(lm.baseline);
-        const double without = rms_gap(res.fits[res.chosen].baseline);
-        const std::string numbers = "RMS gap on the check records " + io::format_number("%.4f", with) + " against " +
-                                    io::format_number("%.4f", without) + " without";
-        if (with < without) {
-          res.chosen = best;
-          res.notes.push_back(baseline_form_name(lm.baseline) + ": kept, it generalizes (" + numbers + ")");
-        } else {
-          res.notes.push_back(baseline_form_name(lm.baseline) + ": not kept, lower BIC on the fitted records but " +
-                              "it does not generalize (" + numbers + ")");
-        }
-      }
+      res.notes.push_back(name + ": not kept (" + implausible + ")");
+      return;
     }
-  }
+    const std::string delta = io::format_number("%.1f", c.bic - x.bic);
+    if (c.bic - x.bic < kBicMargin) {
+      res.notes.push_back(name + ": not kept, BIC lower by " + delta + " only (needs " +
+                          io::format_number("%.0f", kBicMargin) + ")");
+      return;
+    }
+    if (check.empty()) {
+      res.notes.push_back(name + ": not kept, lower BIC on the fitted records (delta " + delta +
+                          ") but no --check records to show that it generalizes");
+      return;
+    }
+    const double with = rms_gap(x.baseline);
+    const double without = rms_gap(c.baseline);
+    const std::string numbers = "RMS gap on the check records " + io::format_number("%.4f", with) + " against " +
+                                io::format_number("%.4f", without) + " without";
+    if (with < without) {
+      res.notes.push_back(name + ": kept, it generalizes (BIC delta " + delta + "; " + numbers + ")");
+      res.chosen = res.fits.size() - 1;
+    } else {
+      res.notes.push_back(name + ": not kept, lower BIC on the fitted records but it does not generalize (" +
+                          numbers + ")");
+    }
+  };
+  if (options.transition_time && res.fits[res.chosen].baseline.law == BaseLaw::bingham)
+    try_extra({.transition_time = true}, {kTau}, "the transition time on its search bound");
+  if (options.lost_motion)
+    try_extra({.lost_motion = true}, {kPlay, kShare},
+              "a lost-motion parameter on its bound, or a play as wide as the stroke");
   {
     const LawFit& c = res.fits[res.chosen];
     const std::string given = options.law ? std::string("law given: ") + base_law_name(*options.law) : "";
     if (res.fits.size() == 1) {
       res.choice_reason = given;
     } else {
-      res.choice_reason = (given.empty() ? "" : given + "; ") + baseline_form_name(c.baseline) + ": lowest BIC (" +
+      res.choice_reason = (given.empty() ? "" : given + "; ") + baseline_form_name(c.baseline) +
+                          ": the law of lowest BIC with the extras that generalized (BIC " +
                           io::format_number("%.1f", c.bic);
       for (std::size_t i = 0; i < res.fits.size(); ++i) {
         if (i == res.chosen) continue;

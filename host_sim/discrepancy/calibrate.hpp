@@ -50,6 +50,7 @@ struct BaselineSigmas {
   double force_delay_s = 0.0;
   double lost_motion_m_per_n = 0.0;
   double lost_motion_share = 0.0;
+  double transition_time_s = 0.0;
 };
 
 /// Which parameters of the current laws were fitted.
@@ -76,6 +77,9 @@ struct LawFit {
 
 struct CalibrateOptions {
   std::optional<BaseLaw> law;  ///< nullopt: fit both, choose the lower BIC
+  /// Also fit the chosen law with a transition time (Bingham only,
+  /// baseline.hpp), kept as the lost motion below.
+  bool transition_time = true;
   /// Also fit the chosen law with a lost motion at reversals (baseline.hpp),
   /// kept when it lowers the BIC by at least kBicMargin and the gap on the
   /// check records (calibrate()).
@@ -85,12 +89,15 @@ struct CalibrateOptions {
   std::string name = "calibrated";  ///< Baseline::name of the result
 };
 
-/// BIC improvement a lost motion needs to join the calibrated baseline (the
+/// BIC improvement an extra (transition time, lost motion) needs to join the calibrated baseline (the
 /// ΔBIC ≥ 10 "very strong" evidence of Kass & Raftery 1995, as for effects).
 inline constexpr double kBicMargin = 10.0;
 
 struct CalibrationResult {
-  std::vector<LawFit> fits;  ///< one per law fitted (bingham first), then the lost-motion form
+  /// One per law fitted (bingham first), then the chosen law with each
+  /// extra tried in turn: + transition time (Bingham), + lost motion, each on
+  /// top of the extras kept before it.
+  std::vector<LawFit> fits;
   std::size_t chosen = 0;    ///< index into fits
   std::string choice_reason;
   std::vector<std::string> sources;            ///< record names
@@ -104,10 +111,10 @@ struct CalibrationResult {
 /// the validity range of the records and expected_gap = its largest
 /// per-record gap. Throws io::UsageError when there is no record.
 ///
-/// `check` records (the same damper, not fitted) judge whether the lost
-/// motion generalizes: it is kept only if it also lowers the RMS over them of
-/// the per-record gaps; without check records it is fitted and reported but
-/// never kept.
+/// `check` records (the same damper, not fitted) judge whether an extra
+/// (transition time, lost motion) generalizes: it is kept only if it also
+/// lowers the RMS over them of the per-record gaps; without check records it
+/// is fitted and reported but never kept.
 [[nodiscard]] CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options = {},
                                           std::span<const MeasuredData> check = {});
 

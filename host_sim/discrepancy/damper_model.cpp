@@ -5,6 +5,25 @@
 
 namespace mrd::discrepancy {
 
+void windowed_mean(std::span<const double> time_s, std::span<const double> x, double half_window_s,
+                   std::vector<double>& out) {
+  const std::size_t n = std::min(time_s.size(), x.size());
+  out.assign(n, 0.0);
+  std::size_t lo = 0;
+  std::size_t hi = 0;
+  double sum = 0.0;
+  // The window's edge with a nanosecond's slack, so that a sample exactly
+  // half_window_s away counts on both sides whatever the rounding of the
+  // time stamps.
+  const double half = half_window_s + 1e-9;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = time_s[k];
+    while (hi < n && (time_s[hi] - t <= half || hi <= k + 1)) sum += x[hi++];
+    while (lo < k && (t - time_s[lo] > half && lo + 1 < k)) sum -= x[lo++];
+    out[k] = sum / static_cast<double>(hi - lo);
+  }
+}
+
 ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s) {
   ModelInput in;
   in.time_s = data.time_s;
@@ -37,6 +56,25 @@ DamperModel::DamperModel(ModelInput input, Baseline baseline) : in_(std::move(in
   }
   coil_current(1.0, base_current_a_);
   coefficients(base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_);
+  if (p_.has_transition_time())
+    accel_abs_m_s2_ = averaged_abs_acceleration(in_.time_s, in_.vel_m_s, kTransitionAccelHalfWindow_s);
+}
+
+std::vector<double> averaged_abs_acceleration(std::span<const double> time_s, std::span<const double> vel_m_s,
+                                              double half_window_s) {
+  const std::size_t n = std::min(time_s.size(), vel_m_s.size());
+  std::vector<double> a(n, 0.0);
+  if (n < 2) return a;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t lo = k > 0 ? k - 1 : 0;
+    const std::size_t hi = k + 1 < n ? k + 1 : n - 1;
+    const double dt = time_s[hi] - time_s[lo];
+    a[k] = dt > 0.0 ? (vel_m_s[hi] - vel_m_s[lo]) / dt : 0.0;
+  }
+  std::vector<double> out;
+  windowed_mean(time_s, a, half_window_s, out);
+  for (double& x : out) x = std::fabs(x);
+  return out;
 }
 
 void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a) const {
@@ -155,19 +193,7 @@ void play_operator(std::span<const double> time_s, std::span<const double> x, st
     else if (dr == 0.0 && h > 0.0) e = 0.0;
     engaged[k] = e;
   }
-  engaged_avg.assign(n, 0.0);
-  std::size_t lo = 0;
-  std::size_t hi = 0;
-  double sum = 0.0;
-  // The window's edge with a nanosecond's slack, so that a sample exactly
-  // 3 ms away counts on both sides whatever the rounding of the time stamps.
-  const double half = kContactHalfWindow_s + 1e-9;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double t = time_s[k];
-    while (hi < n && (time_s[hi] - t <= half || hi <= k + 1)) sum += engaged[hi++];
-    while (lo < k && (t - time_s[lo] > half && lo + 1 < k)) sum -= engaged[lo++];
-    engaged_avg[k] = sum / static_cast<double>(hi - lo);
-  }
+  windowed_mean(time_s, engaged, kContactHalfWindow_s, engaged_avg);
 }
 
 }  // namespace
@@ -220,6 +246,8 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double k_gas = param(Effect::gas_spring, 0, 0.0);
   const double offset = param(Effect::force_offset, 0, 0.0);
   const double v_tf = p_.v_tf_m_s;
+  const bool timed = !accel_abs_m_s2_.empty();  // the baseline's transition time
+  const double tau_s = p_.transition_time_s;
   const bool preyield = set.contains(Effect::preyield_hysteresis) && param(Effect::preyield_hysteresis, 0, 0.0) > 0.0;
   const bool bouc_wen = p_.law == BaseLaw::bouc_wen || preyield;
   const double x_y = preyield ? param(Effect::preyield_hysteresis, 0, 0.0) : p_.yield_disp_m;
@@ -259,7 +287,8 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       elastic = k_0 * xd[k];
       z = bouc_wen_step(z, v, dt, x_y);
     } else {
-      fb = bingham_force_n(v, fy, cv, v_tf);  // Eq. 4.1, 4.4, 5.12
+      const double band = timed ? v_tf + tau_s * accel_abs_m_s2_[k] : v_tf;
+      fb = bingham_force_n(v, fy, cv, band);  // Eq. 4.1, 4.4, 5.12
     }
     if (lost_motion) fb *= (1.0 - share) + share * ws.lm_factor[k];
     if (asym != 0.0) fb *= v > 0.0 ? 1.0 + asym : (v < 0.0 ? 1.0 - asym : 1.0);

@@ -15,6 +15,8 @@
 ///   PR[k]    = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q dt),  Eq. 5.6–5.9           (idle_settling)
 ///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
 ///   F_b[k]   = TF(v_d) (φ_y Y(i, PR) sgn v_d + φ_v C(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12   (bingham)
+///              with v_TF + τ|ā[k]| for TF's band, ā the actuator's acceleration
+///              averaged over ±5 ms (the baseline's transition time τ, baseline.hpp)
 ///            = φ_y Y(i, PR) z[k] + φ_v C(i, PR) v_d + k_0 x_d,  z[k+1] = bouc_wen_step   (bouc_wen)
 ///   F_b[k]  ×= (1 − r) + r e_lm[k]   (the baseline's lost motion, width λ Y(i) on x_d, baseline.hpp)
 ///   F_b[k]  ×= 1 + a sgn v_d                                                   (direction_asymmetry)
@@ -105,9 +107,22 @@ class DamperModel {
   Baseline p_;
   double force_ratio_ = 1.0;
   std::vector<double> step_s_;  ///< dt_k; the last entry repeats the one before
+  /// |ā|, the actuator's acceleration averaged over ±kTransitionAccelHalfWindow_s, m/s²
+  /// (filled only when the baseline has a transition time).
+  std::vector<double> accel_abs_m_s2_;
   bool uniform_ = false;
   std::vector<double> base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_;
 };
+
+/// Mean of `x` over ±half_window_s around every sample (at least one sample
+/// each side; a sample exactly half_window_s away counts).
+void windowed_mean(std::span<const double> time_s, std::span<const double> x, double half_window_s,
+                   std::vector<double>& out);
+
+/// |a| at every sample, a the central difference of `vel_m_s` averaged
+/// over ±half_window_s (at least one sample each side), m/s².
+[[nodiscard]] std::vector<double> averaged_abs_acceleration(std::span<const double> time_s,
+                                                            std::span<const double> vel_m_s, double half_window_s);
 
 /// `force_n` (sampled at `time_s`) delayed by `delay_s` at the samples
 /// `index` (ascending): linear interpolation, the first value before the

@@ -59,11 +59,12 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   EXPECT_NEAR(f.baseline.yield_n.at(1.0), 1000.0, 150.0);
   EXPECT_DOUBLE_EQ(f.baseline.range.current_max_a, 1.0);
   const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
-  // The law given, then the same law with a lost motion at reversals, which
-  // the generating law (tanh, no play) does not have: not kept.
+  // The law given, then the same law with a transition time and with a
+  // lost motion at reversals: no --check records, so neither is kept.
   EXPECT_EQ(j["chosen_law"], "bingham");
-  ASSERT_EQ(j["fits"].size(), 2u);
-  EXPECT_EQ(j["fits"][1]["law"], "bingham+lost_motion");
+  ASSERT_EQ(j["fits"].size(), 3u);
+  EXPECT_EQ(j["fits"][1]["law"], "bingham+transition_time");
+  EXPECT_EQ(j["fits"][2]["law"], "bingham+lost_motion");  // on the law kept, not on the time refused
   EXPECT_TRUE(fs::exists(out_.path() / "report.md"));
   EXPECT_FALSE(fs::exists(out_.path() / "loops_1.png"));
 

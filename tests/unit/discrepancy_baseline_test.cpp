@@ -114,6 +114,62 @@ TEST(DiscrepancyBaseline, LostMotionHoldsUpItsShareForItsPlay) {
   EXPECT_NEAR(f[205], -y, 0.5);
 }
 
+// The transition time (baseline.hpp): the band of Eq. 4.4 is v_TF + τ|ā|.
+// On x = A sin ωt with v = Aω cos ωt given (1 kHz), Y = 1 kN, C = 0,
+// v_TF = 1 µm/s and τ = 5 ms, the force δ = 3 ms after a reversal is
+// −Y |v| / (v_TF + τ|ā|), with |v| = Aω sin ωδ and |ā| the mean of the 11
+// central differences within ±5 ms: Aω² cos ωδ · sin(11ω dt/2)/(11 sin(ω dt/2))
+// · sin(ω dt)/(ω dt). By hand:
+//   2 mm / 5 Hz:     |v| = 62.832 mm/s · sin 0.094248 = 5.91300 mm/s;
+//                    |ā| = 1.973921 · 0.995562 · 0.995072 · 0.999836 = 1.955155 m/s²;
+//                    TF = 5.91300 / (0.001 + 9.775777) = 0.60480
+//   25 mm / 0.25 Hz: |v| = 39.270 mm/s · sin 0.0047124 = 0.185054 mm/s;
+//                    |ā| = 0.0616850 · 0.999989 · 0.999988 · 1.000000 = 0.0616836 m/s²;
+//                    TF = 0.185054 / (0.001 + 0.308418) = 0.59807
+// Both ≈ δ/τ = 0.6: the force builds over the same time at either stroke,
+// where Eq. 4.4 alone with v_TF = 5 mm/s gives 1 and 0.0370 (a 27× slower build).
+TEST(DiscrepancyBaseline, TransitionTimeBuildsTheForceOverATimeAfterAReversal) {
+  Baseline b;
+  b.yield_n = {1000.0, 1000.0, 1.0};
+  b.viscous_ns_m = {0.0, 0.0, 1.0};
+  b.v_tf_m_s = 1e-6;
+  b.transition_time_s = 0.005;
+  ASSERT_TRUE(b.has_transition_time());
+  EXPECT_EQ(baseline_form_name(b), "bingham+transition_time");
+  struct Case {
+    double amplitude_m, freq_hz, duration_s, tf, eq44_tf;
+  };
+  for (const Case& c : {Case{0.002, 5.0, 0.4, 0.60480, 1.0}, Case{0.025, 0.25, 3.5, 0.59807, 0.0370109}}) {
+    ModelInput in;
+    const double w = 2.0 * 3.14159265358979323846 * c.freq_hz;
+    const int n = static_cast<int>(c.duration_s * 1000.0);
+    for (int k = 0; k <= n; ++k) {
+      const double t = k * 1e-3;
+      in.time_s.push_back(t);
+      in.disp_m.push_back(c.amplitude_m * std::sin(w * t));
+      in.vel_m_s.push_back(c.amplitude_m * w * std::cos(w * t));
+      in.current_cmd_a.push_back(0.5);
+    }
+    ModelWorkspace ws;
+    std::vector<double> f;
+    DamperModel(in, b).simulate(EffectSet{}, {}, ws, f);
+    // Reversals at a quarter and three quarters of the period.
+    const int quarter = static_cast<int>(std::lround(250.0 / c.freq_hz));
+    EXPECT_NEAR(f[quarter + 3], -1000.0 * c.tf, 1.0) << c.amplitude_m;
+    EXPECT_NEAR(f[3 * quarter + 3], 1000.0 * c.tf, 1.0) << c.amplitude_m;
+    // Eq. 4.4 alone (τ = 0) with a band of 5 mm/s.
+    Baseline plain = b;
+    plain.transition_time_s = 0.0;
+    plain.v_tf_m_s = 0.005;
+    EXPECT_FALSE(plain.has_transition_time());
+    DamperModel(in, plain).simulate(EffectSet{}, {}, ws, f);
+    EXPECT_NEAR(f[quarter + 3], -1000.0 * c.eq44_tf, 1.0) << c.amplitude_m;
+  }
+  // The Bouc–Wen law has no band to widen: the time is not part of it.
+  b.law = BaseLaw::bouc_wen;
+  EXPECT_FALSE(b.has_transition_time());
+}
+
 TEST(DiscrepancyBaseline, SplitHoldsOutThreeBlocksInTen) {
   std::vector<double> t;
   for (int k = 0; k < 4000; ++k) t.push_back(k * 0.01);  // 40 s: blocks of ~1 s
