@@ -57,6 +57,9 @@ void plot_record(const std::filesystem::path& png, const MeasuredData& data, con
     fv.series.push_back({label, v_mm_s, thin(force, ls, 1e-3)});
     fx.series.push_back({label, x_mm, thin(force, ls, 1e-3)});
   }
+  // Up to five series: one key, above the force–velocity loop.
+  fv.key_headroom = 0.5;
+  fx.key = false;
   mp.panels = {fv, fx};
   const report::PlotResult res = report::plot_png(mp, png);
   if (!res.ok) problems.push_back(png.filename().string() + ": " + res.reason);

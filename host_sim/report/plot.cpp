@@ -217,6 +217,8 @@ void append_panel(std::string& out, const PlotSpec& spec, std::size_t panel, con
   out += "set xlabel " + gnuplot_quote(spec.x_label) + "\n";
   out += "set ylabel " + gnuplot_quote(spec.y_label) + "\n";
   out += spec.key ? "set key\n" : "unset key\n";
+  out += spec.key_headroom > 0.0 ? "set offsets 0, 0, graph " + std::to_string(spec.key_headroom) + ", 0\n"
+                                 : std::string("set offsets 0, 0, 0, 0\n");
 
   std::string plot;
   for (std::size_t k = 0; k < spec.series.size(); ++k) {

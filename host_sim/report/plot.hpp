@@ -48,6 +48,9 @@ struct PlotSpec {
   int width_px = 1000;
   int height_px = 600;
   bool key = true;
+  /// Room added above the data for the key, as a share of the y range
+  /// (0: none; the key then sits over the data's top right corner).
+  double key_headroom = 0.0;
 };
 
 /// Panels laid out in a grid, filled row by row; with columns == 1 they are
