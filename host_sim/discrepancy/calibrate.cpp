@@ -618,7 +618,10 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     for (const double x : g) s += x * x;
     return std::sqrt(s / static_cast<double>(g.size()));
   };
-  const auto try_extra = [&](Extras add, std::initializer_list<Slot> slots, const std::string& implausible) {
+  const auto try_extra = [&](Extras add, const std::string& implausible) {
+    std::vector<Slot> slots;  // the new extra's parameters
+    if (add.transition_time) slots.push_back(kTau);
+    if (add.lost_motion) slots.insert(slots.end(), {kPlay, kShare});
     const LawFit from = res.fits[res.chosen];
     Extras extras = extras_of(from.baseline);
     extras.transition_time = extras.transition_time || add.transition_time;
@@ -665,10 +668,9 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     }
   };
   if (options.transition_time && res.fits[res.chosen].baseline.law == BaseLaw::bingham)
-    try_extra({.transition_time = true}, {kTau}, "the transition time on its search bound");
+    try_extra({.transition_time = true}, "the transition time on its search bound");
   if (options.lost_motion)
-    try_extra({.lost_motion = true}, {kPlay, kShare},
-              "a lost-motion parameter on its bound, or a play as wide as the stroke");
+    try_extra({.lost_motion = true}, "a lost-motion parameter on its bound, or a play as wide as the stroke");
   {
     const LawFit& c = res.fits[res.chosen];
     const std::string given = options.law ? std::string("law given: ") + base_law_name(*options.law) : "";

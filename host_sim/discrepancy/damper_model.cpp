@@ -4,7 +4,10 @@
 #include <cmath>
 
 namespace mrd::discrepancy {
+namespace {
 
+/// Mean of `x` over ±half_window_s around every sample (at least one sample
+/// each side; a sample exactly half_window_s away counts).
 void windowed_mean(std::span<const double> time_s, std::span<const double> x, double half_window_s,
                    std::vector<double>& out) {
   const std::size_t n = std::min(time_s.size(), x.size());
@@ -24,6 +27,17 @@ void windowed_mean(std::span<const double> time_s, std::span<const double> x, do
   }
 }
 
+/// |ā| at every sample: the central difference of `vel_m_s` averaged over
+/// ±kTransitionAccelHalfWindow_s, m/s².
+std::vector<double> averaged_abs_acceleration(std::span<const double> time_s, std::span<const double> vel_m_s) {
+  std::vector<double> out;
+  windowed_mean(time_s, central_difference(time_s, vel_m_s), kTransitionAccelHalfWindow_s, out);
+  for (double& x : out) x = std::fabs(x);
+  return out;
+}
+
+}  // namespace
+
 ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s) {
   ModelInput in;
   in.time_s = data.time_s;
@@ -37,6 +51,7 @@ ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s)
   } else {
     in.vel_m_s = data.velocity_m_s;
   }
+  in.accel_abs_m_s2 = averaged_abs_acceleration(in.time_s, in.vel_m_s);
   return in;
 }
 
@@ -56,25 +71,8 @@ DamperModel::DamperModel(ModelInput input, Baseline baseline) : in_(std::move(in
   }
   coil_current(1.0, base_current_a_);
   coefficients(base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_);
-  if (p_.has_transition_time())
-    accel_abs_m_s2_ = averaged_abs_acceleration(in_.time_s, in_.vel_m_s, kTransitionAccelHalfWindow_s);
-}
-
-std::vector<double> averaged_abs_acceleration(std::span<const double> time_s, std::span<const double> vel_m_s,
-                                              double half_window_s) {
-  const std::size_t n = std::min(time_s.size(), vel_m_s.size());
-  std::vector<double> a(n, 0.0);
-  if (n < 2) return a;
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t lo = k > 0 ? k - 1 : 0;
-    const std::size_t hi = k + 1 < n ? k + 1 : n - 1;
-    const double dt = time_s[hi] - time_s[lo];
-    a[k] = dt > 0.0 ? (vel_m_s[hi] - vel_m_s[lo]) / dt : 0.0;
-  }
-  std::vector<double> out;
-  windowed_mean(time_s, a, half_window_s, out);
-  for (double& x : out) x = std::fabs(x);
-  return out;
+  if (p_.has_transition_time() && in_.accel_abs_m_s2.size() != n)
+    in_.accel_abs_m_s2 = averaged_abs_acceleration(in_.time_s, in_.vel_m_s);
 }
 
 void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a) const {
@@ -246,7 +244,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double k_gas = param(Effect::gas_spring, 0, 0.0);
   const double offset = param(Effect::force_offset, 0, 0.0);
   const double v_tf = p_.v_tf_m_s;
-  const bool timed = !accel_abs_m_s2_.empty();  // the baseline's transition time
+  const bool timed = p_.has_transition_time();
   const double tau_s = p_.transition_time_s;
   const bool preyield = set.contains(Effect::preyield_hysteresis) && param(Effect::preyield_hysteresis, 0, 0.0) > 0.0;
   const bool bouc_wen = p_.law == BaseLaw::bouc_wen || preyield;
@@ -287,7 +285,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       elastic = k_0 * xd[k];
       z = bouc_wen_step(z, v, dt, x_y);
     } else {
-      const double band = timed ? v_tf + tau_s * accel_abs_m_s2_[k] : v_tf;
+      const double band = timed ? v_tf + tau_s * in_.accel_abs_m_s2[k] : v_tf;
       fb = bingham_force_n(v, fy, cv, band);  // Eq. 4.1, 4.4, 5.12
     }
     if (lost_motion) fb *= (1.0 - share) + share * ws.lm_factor[k];

@@ -47,6 +47,11 @@ struct ModelInput {
   std::vector<double> vel_m_s;  ///< actuator velocity (derived when not measured)
   std::vector<double> current_cmd_a;
   bool velocity_derived = false;
+  /// |ā|: the actuator's acceleration (central difference of vel_m_s)
+  /// averaged over ±kTransitionAccelHalfWindow_s, m/s², for the baseline's
+  /// transition time. Filled once per record by model_input(); a
+  /// DamperModel fills it when it is empty and its baseline needs it.
+  std::vector<double> accel_abs_m_s2;
 };
 
 /// Half width of the averaging of the backlash engagement (contact
@@ -107,22 +112,9 @@ class DamperModel {
   Baseline p_;
   double force_ratio_ = 1.0;
   std::vector<double> step_s_;  ///< dt_k; the last entry repeats the one before
-  /// |ā|, the actuator's acceleration averaged over ±kTransitionAccelHalfWindow_s, m/s²
-  /// (filled only when the baseline has a transition time).
-  std::vector<double> accel_abs_m_s2_;
   bool uniform_ = false;
   std::vector<double> base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_;
 };
-
-/// Mean of `x` over ±half_window_s around every sample (at least one sample
-/// each side; a sample exactly half_window_s away counts).
-void windowed_mean(std::span<const double> time_s, std::span<const double> x, double half_window_s,
-                   std::vector<double>& out);
-
-/// |a| at every sample, a the central difference of `vel_m_s` averaged
-/// over ±half_window_s (at least one sample each side), m/s².
-[[nodiscard]] std::vector<double> averaged_abs_acceleration(std::span<const double> time_s,
-                                                            std::span<const double> vel_m_s, double half_window_s);
 
 /// `force_n` (sampled at `time_s`) delayed by `delay_s` at the samples
 /// `index` (ascending): linear interpolation, the first value before the

@@ -26,6 +26,17 @@ std::vector<double> mean_crossings_s(std::span<const double> time_s, std::span<c
   return out;
 }
 
+std::vector<double> central_difference(std::span<const double> time_s, std::span<const double> y) {
+  const std::size_t n = std::min(time_s.size(), y.size());
+  std::vector<double> d(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t a = k > 0 ? k - 1 : 0;
+    const std::size_t b = k + 1 < n ? k + 1 : n - 1;
+    if (b > a && time_s[b] > time_s[a]) d[k] = (y[b] - y[a]) / (time_s[b] - time_s[a]);
+  }
+  return d;
+}
+
 double half_range_m(std::span<const double> displacement_m) {
   if (displacement_m.empty()) return 0.0;
   const auto [lo, hi] = std::minmax_element(displacement_m.begin(), displacement_m.end());

@@ -15,6 +15,10 @@ namespace mrd::discrepancy {
 [[nodiscard]] std::vector<double> mean_crossings_s(std::span<const double> time_s,
                                                    std::span<const double> displacement_m);
 
+/// Central difference of `y` over `time_s` at every sample (one-sided at the
+/// ends; 0 where the time does not advance), in y's unit per second.
+[[nodiscard]] std::vector<double> central_difference(std::span<const double> time_s, std::span<const double> y);
+
 /// Half the range of a displacement record (max − min)/2, m; 0 when empty.
 [[nodiscard]] double half_range_m(std::span<const double> displacement_m);
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host_sim/discrepancy/motion_timescale.hpp"
+
 namespace mrd::discrepancy {
 namespace {
 
@@ -27,18 +29,6 @@ constexpr Signature kSignatures[] = {
     {"filter_shape", "a filter rather than a delay: the error follows the model force's curvature"},
 };
 constexpr std::size_t kCount = std::size(kSignatures);
-
-/// Central difference of `y` over `t`.
-std::vector<double> derivative(std::span<const double> t, std::span<const double> y) {
-  const std::size_t n = y.size();
-  std::vector<double> d(n, 0.0);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t a = k > 0 ? k - 1 : 0;
-    const std::size_t b = k + 1 < n ? k + 1 : n - 1;
-    if (b > a && t[b] > t[a]) d[k] = (y[b] - y[a]) / (t[b] - t[a]);
-  }
-  return d;
-}
 
 /// Signal `j` at sample k.
 Eigen::MatrixXd signals(const SignatureInput& in, std::span<const std::size_t> index, std::span<const double> dfdt,
@@ -166,9 +156,9 @@ SignatureAnalysis analyse_residual(const SignatureInput& in, std::span<const std
                                    std::span<const std::size_t> held_out) {
   SignatureAnalysis out;
   if (in.time_s.size() < 3 || train.empty() || held_out.empty()) return out;
-  const std::vector<double> dfdt = derivative(in.time_s, in.model_force_n);
-  const std::vector<double> d2fdt2 = derivative(in.time_s, dfdt);
-  const std::vector<double> acc = derivative(in.time_s, in.vel_m_s);
+  const std::vector<double> dfdt = central_difference(in.time_s, in.model_force_n);
+  const std::vector<double> d2fdt2 = central_difference(in.time_s, dfdt);
+  const std::vector<double> acc = central_difference(in.time_s, in.vel_m_s);
   const Eigen::MatrixXd a_train = signals(in, train, dfdt, d2fdt2, acc);
   const Eigen::MatrixXd a_test = signals(in, held_out, dfdt, d2fdt2, acc);
   const Eigen::VectorXd r_train = residual_at(in, train);

@@ -637,8 +637,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
       coverage_notes(opt.baseline.range, check.amplitude_m, check.frequency_hz, opt.baseline.expected_gap);
   if (!res.baseline_check.mismatch) {
     const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
-    const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * half_range_m(model.input().disp_m),
-                               base_rms};
+    const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * check.amplitude_m, base_rms};
     forward_selection(ctx, current, ws, res.rounds);
     backward_check(ctx, current, ws, res.dropped);
     if (current.set.contains(Effect::time_delay) || current.set.contains(Effect::preyield_hysteresis)) {
