@@ -17,20 +17,23 @@ constexpr CommandHelp kCalibrateHelp{
     "calibrate", "Fit a baseline damper model to characterization records",
     R"(Fits the chapter-4 damper model to measured records of the user's damper, jointly over all
 records (each record's residual divided by its RMS force), and writes DIR/damper.toml for
-`mrd discrepancy --baseline`. Laws (both with the current laws of Eq. 4.2-4.3,
+`mrd discrepancy --baseline`. Laws (all with the current laws of Eq. 4.2-4.3,
 value(I) = limit + (at_zero - limit) exp(-rate_per_a |I|)):
-  bingham   F = TF(v) (Y sgn v + C v), Eq. 4.1-4.4                 v_tf_m_s
-  bouc_wen  F = Y z + C v + k0 x, normalized Spencer et al. (1997)  yield_disp_m, stiffness_n_m
---law auto fits both and keeps the lower BIC. The better law is then fitted again with each
-extra in turn, on top of those kept before:
+  bingham       F = TF(v) (Y sgn v + C v), Eq. 4.1-4.4             v_tf_m_s
+  bingham_tanh  F = Y tanh(v / v_tf) + C v (a smoother transition)  v_tf_m_s
+  bouc_wen      F = Y z + C v + k0 x, normalized Spencer et al. (1997)  yield_disp_m, stiffness_n_m
+--law auto fits all three (--law bingham both Bingham transitions; --transition linear or
+tanh only one). Each is then fitted again with each extra in turn, on top of those kept before:
   transition time (bingham only): TF's band widens to v_tf_m_s + transition_time_s |a|, so the
     force builds over a time after a reversal, not over a velocity      transition_time_s
   lost motion: a share of the force builds only after the piston has moved m_per_n * Y(I)
     past a reversal (a plateau after each reversal, longer at higher current)   m_per_n, share
 An extra is kept when it lowers the BIC by 10 or more, its parameters are off their bounds and
 it also lowers the RMS gap of the --check records (without --check it is reported, never
-kept; --no-transition-time, --no-lost-motion: not fitted). With three or more currents the current laws are
-fitted whole; with two, rate_per_a is held at the thesis value; with one, the laws are constants.
+kept; --no-transition-time, --no-lost-motion: not fitted). The form chosen: of the laws each
+with the extras it kept, the lowest RMS gap on the --check records; without --check, the
+lowest BIC. With three or more currents the current laws are fitted whole; with two,
+rate_per_a is held at the thesis value; with one, the laws are constants.
 The coil time constants (Eq. 4.5) and the participant ratio are not identifiable from
 constant-current records: thesis values, marked identified = false.
 Standard errors: sigma^2 (J^T J)^-1 at the optimum, inflated by n/n_eff (effective sample count
@@ -51,12 +54,15 @@ struct CalibrateCliOptions {
   bool no_plots = false;
   bool no_lost_motion = false;
   bool no_transition_time = false;
+  std::string transition = "auto";
 };
 
 void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_option("--measured", o.measured, "Characterization records (CSV or .mat)")->required();
   add_out_option(app, o.out_dir, "Folder for damper.toml, summary.json, report.md and plots");
-  app.add_option("--law", o.law, "bingham, bouc_wen or auto (both, lower BIC)")->capture_default_str();
+  app.add_option("--law", o.law, "bingham, bouc_wen or auto (all, chosen as above)")->capture_default_str();
+  app.add_option("--transition", o.transition, "Bingham transition: linear (Eq. 4.4), tanh or auto (both)")
+      ->capture_default_str();
   app.add_option("--check", o.check, "Records not fitted: the calibrated models' gap on each is reported");
   app.add_flag("--no-plots", o.no_plots, "Skip the PNG plots");
   app.add_flag("--no-lost-motion", o.no_lost_motion, "Do not try the lost motion at reversals");
@@ -67,6 +73,13 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   discrepancy::CalibrateOptions opt;
   opt.lost_motion = !o.no_lost_motion;
   opt.transition_time = !o.no_transition_time;
+  if (o.transition == "linear") {
+    opt.transition = discrepancy::TransitionShape::linear;
+  } else if (o.transition == "tanh") {
+    opt.transition = discrepancy::TransitionShape::tanh;
+  } else if (o.transition != "auto") {
+    throw io::UsageError("--transition: expected linear, tanh or auto, got '" + o.transition + "'");
+  }
   if (o.law == "bingham") {
     opt.law = discrepancy::BaseLaw::bingham;
   } else if (o.law == "bouc_wen") {

@@ -8,7 +8,8 @@ namespace mrd::discrepancy {
 const char* base_law_name(BaseLaw law) noexcept { return law == BaseLaw::bouc_wen ? "bouc_wen" : "bingham"; }
 
 std::string baseline_form_name(const Baseline& b) {
-  return std::string(base_law_name(b.law)) + (b.has_transition_time() ? "+transition_time" : "") +
+  return std::string(base_law_name(b.law)) + (b.has_tanh_transition() ? "_tanh" : "") +
+         (b.has_transition_time() ? "+transition_time" : "") +
          (b.has_lost_motion() ? "+lost_motion" : "");
 }
 

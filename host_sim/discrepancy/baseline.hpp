@@ -37,7 +37,14 @@
 /// the force (seal friction, the share of the flow not held up) follows at
 /// once. λ = 0 or r = 0 is the plain form.
 ///
-/// The Bingham form may carry a transition time τ: the band of Eq. 4.4
+/// The Bingham form's transition may be Eq. 4.4's (linear in v up to v_TF,
+/// multiplying the whole force) or a tanh of the yield force alone,
+/// <pre>
+///   F = Y tanh(v / v_TF) + C v
+/// </pre>
+/// which a calibration chooses by BIC, like the laws: the laboratory
+/// damper's force turns over through a reversal more smoothly than Eq. 4.4
+/// (README, discrepancy section). The Bingham form may carry a transition time τ: the band of Eq. 4.4
 /// widens with the damper's acceleration,
 /// <pre>
 ///   v_TF,eff = v_TF + τ |a|,   a averaged over ±kTransitionAccelHalfWindow_s
@@ -50,6 +57,7 @@
 /// (the response time of MR fluid and of the compressed volume, a few
 /// milliseconds), not a velocity. τ = 0 is Eq. 4.4 as the thesis has it.
 
+#include <cmath>
 #include <string>
 
 #include "mrd/physics/current_dynamics.hpp"
@@ -62,8 +70,8 @@ enum class BaseLaw { bingham, bouc_wen };
 [[nodiscard]] const char* base_law_name(BaseLaw law) noexcept;
 
 struct Baseline;
-/// The law's name, with "+transition_time" and "+lost_motion" when the
-/// baseline has them.
+/// The law's name ("bingham_tanh" for the tanh transition), with
+/// "+transition_time" and "+lost_motion" when the baseline has them.
 [[nodiscard]] std::string baseline_form_name(const Baseline& b);
 
 /// value(I, PR) = PR·limit + (at_zero − PR·limit) exp(−rate |I|), Eq. 4.2–4.3, 5.10–5.11.
@@ -100,6 +108,7 @@ struct Baseline {
   double lost_motion_m_per_n = 0.0;  ///< λ: width of the lost motion at reversals per newton of Y(i), m/N (0 = none)
   double lost_motion_share = 0.0;    ///< r: share of the force held up by it, [0, 1]
   double transition_time_s = 0.0;    ///< τ: widening of v_TF by τ|a| (bingham), s (0 = Eq. 4.4 alone)
+  bool tanh_transition = false;      ///< bingham: Y tanh(v/v_TF) + C v instead of Eq. 4.4
   /// Lag of the force channel behind the motion channels (anti-alias
   /// filters, conditioning, logger), s: the model force is compared at
   /// t − force_delay_s. 0 for the thesis model.
@@ -118,6 +127,7 @@ struct Baseline {
   [[nodiscard]] bool has_transition_time() const noexcept {
     return law == BaseLaw::bingham && transition_time_s > 0.0;
   }
+  [[nodiscard]] bool has_tanh_transition() const noexcept { return law == BaseLaw::bingham && tanh_transition; }
 };
 
 /// Bingham force at velocity v for a yield force and viscous coefficient
@@ -136,6 +146,12 @@ struct Baseline {
 /// shorter than a tenth of the period of the fastest sine of a
 /// characterization (5 Hz) and longer than the derivative's noise.
 inline constexpr double kTransitionAccelHalfWindow_s = 0.005;
+
+/// Bingham force with a tanh transition of the yield force: Y tanh(v/v_TF) + C v.
+[[nodiscard]] inline double bingham_tanh_force_n(double v_m_s, double yield_n, double viscous_ns_m,
+                                                 double v_tf_m_s) noexcept {
+  return yield_n * std::tanh(v_m_s / v_tf_m_s) + viscous_ns_m * v_m_s;
+}
 
 /// The thesis's damper: Table 4.1, Eq. 4.5, Table 5.6; range 0–2.5 A (the
 /// drive's rating, §3.1), |v| ≤ 0.2491 m/s (Table 3.1), 200 kN.

@@ -160,6 +160,14 @@ BaseLaw law_named(const std::string& s, const std::string& origin, const toml::s
   fail(origin, where, field, "expected \"bingham\" or \"bouc_wen\", got \"" + s + "\"");
 }
 
+/// The `transition` key of table `t`: true for "tanh", false for "linear".
+bool transition_named(Table& t, const std::string& origin, const std::string& field) {
+  const std::string s = t.string("transition");
+  if (s == "tanh") return true;
+  if (s == "linear") return false;
+  fail(origin, t.where("transition"), field, "expected \"linear\" or \"tanh\", got \"" + s + "\"");
+}
+
 void read_law(const toml::table& root, const char* name, const std::string& origin, CurrentLaw& v, CurrentLaw& s,
               CurrentLawFitted& f) {
   Table t(table_of(root, name, origin), name, origin);
@@ -197,7 +205,8 @@ BaselineFile baseline_file_of(const CalibrationResult& r) {
   for (const LawFit& fit : r.fits) {
     for (std::size_t i = 0; i < r.sources.size(); ++i)
       f.fits.push_back({r.sources[i], fit.baseline.law, fit.record_gaps.at(i), r.record_samples.at(i),
-                        fit.baseline.has_lost_motion(), fit.baseline.has_transition_time()});
+                        fit.baseline.has_lost_motion(), fit.baseline.has_transition_time(),
+                        fit.baseline.has_tanh_transition()});
   }
   return f;
 }
@@ -221,6 +230,7 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "\n[bingham]  # transition function, Eq. 4.4\n";
     t += "v_tf_m_s = " + num(b.v_tf_m_s) + "\n";
     t += "v_tf_m_s_sigma = " + num(f.sigma.v_tf_m_s) + "\n";
+    if (b.has_tanh_transition()) t += "transition = \"tanh\"  # F = Y tanh(v / v_tf_m_s) + C v\n";
     if (b.has_transition_time()) {
       t += "transition_time_s = " + num(b.transition_time_s) + "  # the band is v_tf_m_s + transition_time_s |a|\n";
       t += "transition_time_s_sigma = " + num(f.sigma.transition_time_s) + "\n";
@@ -278,6 +288,7 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "\n[[fit]]\n";
     t += "file = " + quoted(r.file) + "\n";
     t += "law = " + quoted(base_law_name(r.law)) + "\n";
+    if (r.tanh_transition) t += "transition = \"tanh\"\n";
     if (r.transition_time) t += "transition_time = true\n";
     if (r.lost_motion) t += "lost_motion = true\n";
     t += "gap = " + num(r.gap) + "\n";
@@ -322,6 +333,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     if (b.law == BaseLaw::bingham) {
       b.v_tf_m_s = t.positive("v_tf_m_s");
       f.sigma.v_tf_m_s = t.number("v_tf_m_s_sigma");
+      if (t.has("transition")) b.tanh_transition = transition_named(t, origin, "bingham.transition");
       if (t.has("transition_time_s")) {
         b.transition_time_s = t.positive("transition_time_s");
         f.sigma.transition_time_s = t.number("transition_time_s_sigma");
@@ -410,6 +422,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       RecordFit r;
       r.file = t.string("file");
       r.law = law_named(t.string("law"), origin, t.where("law"), t.field("law"));
+      if (t.has("transition")) r.tanh_transition = transition_named(t, origin, t.field("transition"));
       if (t.has("transition_time")) r.transition_time = t.boolean("transition_time");
       if (t.has("lost_motion")) r.lost_motion = t.boolean("lost_motion");
       r.gap = t.number("gap");

@@ -8,6 +8,7 @@
 ///   [yield_n]        at_zero, limit, rate_per_a (1/A), each with _sigma; fitted = [...]   Eq. 4.2
 ///   [viscous_ns_m]   the same for the viscous coefficient, N·s/m                           Eq. 4.3
 ///   [bingham]        v_tf_m_s, v_tf_m_s_sigma                                              Eq. 4.4
+///                    transition ("linear", Eq. 4.4, when absent | "tanh")
 ///                    transition_time_s, transition_time_s_sigma (only when the baseline has one)
 ///   [bouc_wen]       yield_disp_m, stiffness_n_m, each with _sigma
 ///   [lost_motion]    m_per_n (m/N), share, each with _sigma (only when the baseline has one)
@@ -15,7 +16,8 @@
 ///   [coil]           tau_slow_s, tau_fast_s, weight_slow, weight_fast, identified        Eq. 4.5
 ///   [participant_ratio]  Table 5.6 coefficients, flow_area_m2, volume_unit_m3, identified
 ///   [validity]       current_min_a … frequency_max_hz, expected_gap
-///   [[fit]]          file, law, transition_time and lost_motion (when true), gap, samples
+///   [[fit]]          file, law, transition ("tanh", when so), transition_time and lost_motion
+///                    (when true), gap, samples
 ///                    (one per record and form fitted)
 /// </pre>
 /// Only the table of the model's law ([bingham] or [bouc_wen]) may be present.
@@ -38,6 +40,7 @@ struct RecordFit {
   std::size_t samples = 0;
   bool lost_motion = false;      ///< the law with a lost motion at reversals
   bool transition_time = false;  ///< the law with a transition time
+  bool tanh_transition = false;  ///< the Bingham law with the tanh transition
 };
 
 /// Everything damper.toml holds.

@@ -75,8 +75,14 @@ struct LawFit {
   bool converged = false;
 };
 
+/// Which transitions of the Bingham law to fit (baseline.hpp).
+enum class TransitionShape { both, linear, tanh };
+
 struct CalibrateOptions {
   std::optional<BaseLaw> law;  ///< nullopt: fit both, choose the lower BIC
+  /// The Bingham law with Eq. 4.4's transition, with a tanh one, or both
+  /// (each a law of its own in the BIC choice).
+  TransitionShape transition = TransitionShape::both;
   /// Also fit the chosen law with a transition time (Bingham only,
   /// baseline.hpp), kept as the lost motion below.
   bool transition_time = true;
@@ -94,9 +100,12 @@ struct CalibrateOptions {
 inline constexpr double kBicMargin = 10.0;
 
 struct CalibrationResult {
-  /// One per law fitted (bingham first), then the chosen law with each
-  /// extra tried in turn: + transition time (Bingham), + lost motion, each on
-  /// top of the extras kept before it.
+  /// One per plain form fitted (bingham, bingham_tanh, bouc_wen), then,
+  /// form by form, the form with each extra tried in turn: + transition time
+  /// (Bingham), + lost motion, each on top of the extras kept before it. The
+  /// chosen one: of the forms each with its kept extras, the lowest RMS gap
+  /// on the check records; without check records (no extra kept), the plain
+  /// form of lowest BIC.
   std::vector<LawFit> fits;
   std::size_t chosen = 0;    ///< index into fits
   std::string choice_reason;

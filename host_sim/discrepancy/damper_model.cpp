@@ -245,6 +245,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double offset = param(Effect::force_offset, 0, 0.0);
   const double v_tf = p_.v_tf_m_s;
   const bool timed = p_.has_transition_time();
+  const bool tanh_shape = p_.has_tanh_transition();
   const double tau_s = p_.transition_time_s;
   const bool preyield = set.contains(Effect::preyield_hysteresis) && param(Effect::preyield_hysteresis, 0, 0.0) > 0.0;
   const bool bouc_wen = p_.law == BaseLaw::bouc_wen || preyield;
@@ -286,7 +287,8 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       z = bouc_wen_step(z, v, dt, x_y);
     } else {
       const double band = timed ? v_tf + tau_s * in_.accel_abs_m_s2[k] : v_tf;
-      fb = bingham_force_n(v, fy, cv, band);  // Eq. 4.1, 4.4, 5.12
+      // Eq. 4.1, 4.4, 5.12, or the tanh transition (baseline.hpp).
+      fb = tanh_shape ? bingham_tanh_force_n(v, fy, cv, band) : bingham_force_n(v, fy, cv, band);
     }
     if (lost_motion) fb *= (1.0 - share) + share * ws.lm_factor[k];
     if (asym != 0.0) fb *= v > 0.0 ? 1.0 + asym : (v < 0.0 ? 1.0 - asym : 1.0);

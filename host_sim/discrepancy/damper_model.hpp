@@ -15,6 +15,7 @@
 ///   PR[k]    = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q dt),  Eq. 5.6–5.9           (idle_settling)
 ///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
 ///   F_b[k]   = TF(v_d) (φ_y Y(i, PR) sgn v_d + φ_v C(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12   (bingham)
+///            = φ_y Y(i, PR) tanh(v_d / v_TF) + φ_v C(i, PR) v_d     (bingham, tanh transition)
 ///              with v_TF + τ|ā[k]| for TF's band, ā the actuator's acceleration
 ///              averaged over ±5 ms (the baseline's transition time τ, baseline.hpp)
 ///            = φ_y Y(i, PR) z[k] + φ_v C(i, PR) v_d + k_0 x_d,  z[k+1] = bouc_wen_step   (bouc_wen)

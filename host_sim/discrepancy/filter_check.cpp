@@ -178,6 +178,7 @@ void compare_with_compliance(const DamperModel& model, const EffectSet& set, std
   const Baseline& base = model.baseline();
   if (!(set.contains(Effect::time_delay) || set.contains(Effect::preyield_hysteresis))) return;
   if (base.law != BaseLaw::bingham || base.has_lost_motion() || base.has_transition_time()) return;
+  if (base.has_tanh_transition()) return;
   if (!(base.force_scale_n() > 0.0)) return;
   if (const auto off = set.offset(Effect::time_delay)) out.delay_s = params[*off];
   ModelWorkspace ws;

@@ -62,7 +62,7 @@ struct FilterCheck {
 
 /// Baseline force (no effects) through a series compliance of
 /// `compliance_m_per_n`, N, at every sample, the baseline's force lag
-/// applied. Requires the Bingham law without lost motion or transition time.
+/// applied. Requires the Bingham law of Eq. 4.4 without lost motion or transition time.
 void series_compliance_force(const DamperModel& model, double compliance_m_per_n, std::vector<double>& force_n);
 
 /// First-order low-pass y' = (u − y)/τ of `u` sampled at `time_s`, exact

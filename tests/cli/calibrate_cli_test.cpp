@@ -58,13 +58,21 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   // The yield force at 1 A of the generating law is 1000 N (tanh close to 1 at speed).
   EXPECT_NEAR(f.baseline.yield_n.at(1.0), 1000.0, 150.0);
   EXPECT_DOUBLE_EQ(f.baseline.range.current_max_a, 1.0);
+  // The generating transition is a tanh of v / 5 mm/s: the BIC must prefer
+  // it to Eq. 4.4's and find its velocity.
+  EXPECT_TRUE(f.baseline.has_tanh_transition());
+  EXPECT_NEAR(f.baseline.v_tf_m_s, 0.005, 0.0005);
   const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
-  // The law given, then the same law with a transition time and with a
-  // lost motion at reversals: no --check records, so neither is kept.
-  EXPECT_EQ(j["chosen_law"], "bingham");
-  ASSERT_EQ(j["fits"].size(), 3u);
-  EXPECT_EQ(j["fits"][1]["law"], "bingham+transition_time");
-  EXPECT_EQ(j["fits"][2]["law"], "bingham+lost_motion");  // on the law kept, not on the time refused
+  // The law given with either transition, then each with a transition time
+  // and with a lost motion at reversals: no --check records, so none is kept.
+  EXPECT_EQ(j["chosen_law"], "bingham_tanh");
+  ASSERT_EQ(j["fits"].size(), 6u);
+  EXPECT_EQ(j["fits"][0]["law"], "bingham");
+  EXPECT_EQ(j["fits"][1]["law"], "bingham_tanh");
+  EXPECT_EQ(j["fits"][2]["law"], "bingham+transition_time");
+  EXPECT_EQ(j["fits"][3]["law"], "bingham+lost_motion");  // on the law kept, not on the time refused
+  EXPECT_EQ(j["fits"][4]["law"], "bingham_tanh+transition_time");
+  EXPECT_EQ(j["fits"][5]["law"], "bingham_tanh+lost_motion");
   EXPECT_TRUE(fs::exists(out_.path() / "report.md"));
   EXPECT_FALSE(fs::exists(out_.path() / "loops_1.png"));
 
@@ -116,6 +124,10 @@ TEST_F(CalibrateCli, BadLawAndBadBaselineFileAreOneLineErrors) {
   const auto law = run_mrd("calibrate --measured " + a.string() + " --law spring", scratch_.path());
   EXPECT_EQ(law.exit_code, 2);
   EXPECT_NE(law.err.find("--law"), std::string::npos) << law.err;
+  const auto shape = run_mrd("calibrate --measured " + a.string() + " --transition cubic", scratch_.path());
+  EXPECT_EQ(shape.exit_code, 2);
+  EXPECT_NE(shape.err.find("--transition: expected linear, tanh or auto, got 'cubic'"), std::string::npos)
+      << shape.err;
 
   const auto bad = scratch_.path() / "damper.toml";
   std::ofstream(bad) << "[model]\nlaw = \"spring\"\n";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "host_sim/discrepancy/baseline.hpp"
@@ -112,6 +113,40 @@ TEST(DiscrepancyBaseline, LostMotionHoldsUpItsShareForItsPlay) {
   b.lost_motion_share = 0.0;
   DamperModel(in, b).simulate(EffectSet{}, {}, ws, f);
   EXPECT_NEAR(f[205], -y, 0.5);
+}
+
+// The tanh transition (baseline.hpp): F = Y tanh(v / v_TF) + C v. At a
+// constant 2.5 mm/s with Y = 1 kN, C = 2 kN·s/m and v_TF = 5 mm/s:
+// 1000 tanh(0.5) + 2000 · 0.0025 = 462.117 + 5 = 467.117 N, where Eq. 4.4
+// gives 0.5 (1000 + 5) = 502.5 N; at 25 mm/s, 1000 tanh(5) + 50 = 1049.909 N
+// against 1050 N.
+TEST(DiscrepancyBaseline, TanhTransitionIsTheYieldForceThroughATanh) {
+  Baseline b;
+  b.yield_n = {1000.0, 1000.0, 1.0};
+  b.viscous_ns_m = {2000.0, 2000.0, 1.0};
+  b.v_tf_m_s = 0.005;
+  b.tanh_transition = true;
+  ASSERT_TRUE(b.has_tanh_transition());
+  EXPECT_EQ(baseline_form_name(b), "bingham_tanh");
+  for (const auto& [v, tanh_n, eq44_n] : {std::tuple{0.0025, 467.117, 502.5}, std::tuple{0.025, 1049.909, 1050.0}}) {
+    ModelInput in;
+    for (int k = 0; k <= 300; ++k) {
+      in.time_s.push_back(k * 1e-3);
+      in.disp_m.push_back(v * k * 1e-3);
+      in.vel_m_s.push_back(v);
+      in.current_cmd_a.push_back(0.5);
+    }
+    ModelWorkspace ws;
+    std::vector<double> f;
+    DamperModel(in, b).simulate(EffectSet{}, {}, ws, f);
+    EXPECT_NEAR(f[150], tanh_n, 1e-3) << v;
+    Baseline linear = b;
+    linear.tanh_transition = false;
+    DamperModel(in, linear).simulate(EffectSet{}, {}, ws, f);
+    EXPECT_NEAR(f[150], eq44_n, 1e-9) << v;
+  }
+  b.law = BaseLaw::bouc_wen;  // the Bouc–Wen law has no transition to shape
+  EXPECT_FALSE(b.has_tanh_transition());
 }
 
 // The transition time (baseline.hpp): the band of Eq. 4.4 is v_TF + τ|ā|.
