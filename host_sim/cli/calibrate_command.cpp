@@ -43,7 +43,8 @@ Input (--measured, --check): CSV or .mat records as for `mrd discrepancy`.
 Files: damper.toml; summary.json (chosen_law, choice_reason, records, currents_a, notes, fits:
 law, parameters {value, sigma, fitted, at_bound}, record_gaps, expected_gap, samples,
 rss_normalized, n_eff, bic; held_out: gap per law of the --check records; validity);
-report.md; loops_<n>.png per --measured record (force-velocity and force-displacement).
+report.md; loops_<n>.png per --measured record (force-velocity and force-displacement; the
+plain laws and the chosen form).
 Gap: sqrt(sum (F_model - F_meas)^2 / sum F_meas^2), a fraction.)"};
 
 struct CalibrateCliOptions {

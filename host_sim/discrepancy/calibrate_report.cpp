@@ -34,7 +34,8 @@ json fit_json(const LawFit& f, const CalibrationResult& r) {
           {"converged", f.converged}};
 }
 
-/// loops_<n>.png: measured and calibrated force against velocity, per law.
+/// loops_<n>.png: measured and calibrated force against velocity and
+/// displacement, for each plain law and the chosen form.
 void plot_record(const std::filesystem::path& png, const MeasuredData& data, const CalibrationResult& r,
                  const CalibrateOptions& options, std::vector<std::string>& problems) {
   const ModelInput in = model_input(data, options.smoothing_half_window_s);
@@ -50,10 +51,14 @@ void plot_record(const std::filesystem::path& png, const MeasuredData& data, con
   report::PlotSpec fx{"force - displacement", "displacement [mm]", "force [kN]", {{"measured", x_mm, thin(data.force_n, ls, 1e-3)}}};
   ModelWorkspace ws;
   std::vector<double> force;
-  for (const LawFit& f : r.fits) {
-    const DamperModel m(in, f.baseline);
+  // The plain laws and the chosen form (the report's table has every form's gap).
+  for (std::size_t i = 0; i < r.fits.size(); ++i) {
+    const Baseline& b = r.fits[i].baseline;
+    const bool plain = !b.has_transition_time() && !b.has_lost_motion();
+    if (!plain && i != r.chosen) continue;
+    const DamperModel m(in, b);
     m.simulate(EffectSet{}, {}, ws, force);
-    const std::string label = baseline_form_name(f.baseline);
+    const std::string label = baseline_form_name(b) + (i == r.chosen ? " (chosen)" : "");
     fv.series.push_back({label, v_mm_s, thin(force, ls, 1e-3)});
     fx.series.push_back({label, x_mm, thin(force, ls, 1e-3)});
   }

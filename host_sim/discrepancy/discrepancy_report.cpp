@@ -188,6 +188,9 @@ void plot_loops(const std::filesystem::path& dir, const MeasuredData& data, cons
                        "velocity [mm/s]",
                        "force [kN]",
                        {{"measured", v_mm_s, fm}, {"baseline", v_mm_s, fb}, {label, v_mm_s, fu}}});
+  // One key, above the force–displacement loop, clear of the loops' tops.
+  mp.panels[0].key_headroom = 0.3;
+  mp.panels[1].key = false;
   note(problems, report::plot_png(mp, dir / "loops.png"), dir / "loops.png");
 }
 
