@@ -1,0 +1,154 @@
+// Calibration on the real laboratory records of ../shared/lab_data (a small
+// commercial damper nobody on this project made): calibrated on two
+// families, judged on the third, against facts read off the records
+// themselves (peaks, the plateau after a reversal).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "host_sim/discrepancy/baseline.hpp"
+#include "host_sim/discrepancy/calibrate.hpp"
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/measured_data.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path lab_dir() { return fs::path(MRD_SHARED_DIR) / "lab_data" / "quiroz_utfsm"; }
+
+std::vector<MeasuredData> lab_family(const std::string& family) {
+  std::vector<MeasuredData> out;
+  for (const char* c : {"0p00A", "0p25A", "0p50A", "0p75A", "1p00A"})
+    out.push_back(read_measured(lab_dir() / (family + "_" + c + ".csv")));
+  return out;
+}
+
+TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
+  ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
+  std::vector<MeasuredData> fit = lab_family("2mm_5Hz");
+  for (auto& d : lab_family("25mm_0p25Hz")) fit.push_back(std::move(d));
+  const std::vector<MeasuredData> held = lab_family("5mm_3Hz");
+  const CalibrationResult r = calibrate(fit, CalibrateOptions{}, held);
+  // Bingham with Eq. 4.4's transition and with the tanh one, Bouc–Wen; each
+  // Bingham with a transition time and that with a lost motion, Bouc–Wen
+  // with a lost motion.
+  ASSERT_EQ(r.fits.size(), 8u);
+  EXPECT_EQ(r.currents_a.size(), 5u);
+  // The transition time generalizes: at 5 mm / 3 Hz the reversals come at
+  // |a| = Aω² = 1.8 m/s² (nominal stroke), near the 2 mm / 5 Hz ones
+  // (2.0 m/s²) and far from the 25 mm / 0.25 Hz ones (0.06 m/s²), and the
+  // force builds after them over the same time (measured: RMS gap on the
+  // 5 mm records 0.153 with it, 0.180 without, tanh transition). The time
+  // itself must be a few milliseconds: the response time of MR fluid is of
+  // that order, and the least-squares fit outside the code (README) gave
+  // 4.1–7.5 ms from the three pairs of families.
+  ASSERT_TRUE(r.best().baseline.has_transition_time()) << r.choice_reason;
+  EXPECT_GT(r.best().baseline.transition_time_s, 0.002);
+  EXPECT_LT(r.best().baseline.transition_time_s, 0.015);
+  const auto rms = [](const std::vector<double>& g) {
+    double s = 0.0;
+    for (const double x : g) s += x * x;
+    return std::sqrt(s / static_cast<double>(g.size()));
+  };
+  EXPECT_LT(rms(baseline_gaps(r.best().baseline, held)), rms(baseline_gaps(r.fits[0].baseline, held)));
+  // The smooth transition carries to the held-out family better than Eq.
+  // 4.4's, each with its transition time (measured: 0.153 against 0.172),
+  // and the choice among the forms each with its kept extras is made on
+  // the check records: Bouc–Wen with a lost motion has the lower BIC on the
+  // fitted records (by about 200) but holds out 0.204.
+  EXPECT_TRUE(r.best().baseline.has_tanh_transition()) << r.choice_reason;
+  for (const LawFit& f : r.fits) {
+    if (!f.baseline.has_transition_time() || f.baseline.has_tanh_transition() || f.baseline.has_lost_motion())
+      continue;
+    EXPECT_LT(rms(baseline_gaps(r.best().baseline, held)), rms(baseline_gaps(f.baseline, held)));
+  }
+  // The lost motion, on top, lowers the BIC on the 2 mm and 25 mm records
+  // but not the gap on the 5 mm ones (measured: RMS 0.207 with it, 0.171
+  // without): it does not generalize from these two families, not kept.
+  EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
+  bool said = false;
+  for (const std::string& n : r.notes) said = said || n.find("does not generalize") != std::string::npos;
+  EXPECT_TRUE(said);
+
+  // The thesis's 200 kN damper is about 100× too strong for these records
+  // (README): its gap is far above 1.
+  for (const double g : baseline_gaps(thesis_baseline(), held)) EXPECT_GT(g, 10.0);
+
+  // Held-out 5 mm / 3 Hz records. Neither law has the force plateau the
+  // records show just after each reversal, nor one pre-yield length for
+  // 2 mm and 25 mm strokes, so the gap stays far from the noise level.
+  // Measured, with the force lag fitted (about 7 ms): Bingham 0.11–0.26,
+  // with the transition time 0.11–0.25, with it and the lost motion
+  // 0.17–0.26 (either transition), Bouc–Wen 0.21–0.36 (of the five).
+  // Bounds: 0.35 and 0.50, to allow for the start values.
+  for (const LawFit& f : r.fits) {
+    const double bound = f.baseline.law == BaseLaw::bingham ? 0.35 : 0.50;
+    for (const double g : baseline_gaps(f.baseline, held)) EXPECT_LT(g, bound) << baseline_form_name(f.baseline);
+  }
+
+  // Independent facts: the records' own peaks at 1 A (1.40 kN at 2 mm / 5 Hz,
+  // 1.70 kN at 25 mm / 0.25 Hz; the lab README's "about 1.5–1.9 kN"). The
+  // calibrated model's peak on each must be within 30 % of it: the model
+  // form misses the force held just after each reversal and the start of
+  // the 25 mm records, which is where the peaks are (measured: −3 % and
+  // −24 %). The held-out 5 mm / 3 Hz records reach 88 mm/s, beyond the
+  // 50 mm/s of the fit; their peak is an extrapolation and is not checked.
+  ModelWorkspace ws;
+  std::vector<double> force;
+  for (const std::size_t i : {std::size_t{4}, std::size_t{9}}) {
+    const DamperModel m(model_input(fit[i]), r.best().baseline);
+    m.simulate(EffectSet{}, {}, ws, force);
+    double peak = 0.0;
+    double measured = 0.0;
+    for (const double f : force) peak = std::max(peak, std::fabs(f));
+    for (const double f : fit[i].force_n) measured = std::max(measured, std::fabs(f));
+    EXPECT_GT(measured, 1300.0) << fit[i].source;
+    EXPECT_LT(measured, 2000.0) << fit[i].source;
+    EXPECT_NEAR(peak, measured, 0.3 * measured) << fit[i].source;
+  }
+  EXPECT_LT(r.best().baseline.range.velocity_max_m_s, 0.07);
+}
+
+TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
+  ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
+  // Calibrated on the 2 mm / 5 Hz and 5 mm / 3 Hz records, whose loops show
+  // the plateau after each reversal; judged on the 25 mm / 0.25 Hz records.
+  std::vector<MeasuredData> fit = lab_family("2mm_5Hz");
+  for (auto& d : lab_family("5mm_3Hz")) fit.push_back(std::move(d));
+  const std::vector<MeasuredData> held = lab_family("25mm_0p25Hz");
+  // The lost motion alone on the plain law: with the transition time kept
+  // first (RMS 0.188 against 0.224 on the 25 mm records), the lost motion on
+  // top no longer carries to them (0.191 against 0.188).
+  CalibrateOptions opt;
+  opt.law = BaseLaw::bingham;
+  opt.transition = TransitionShape::linear;
+  opt.transition_time = false;
+  const CalibrationResult r = calibrate(fit, opt, held);
+  ASSERT_EQ(r.fits.size(), 2u);
+  ASSERT_TRUE(r.best().baseline.has_lost_motion()) << r.choice_reason;
+  // The plateau read off the 2 mm / 1 A loop (force–displacement, docs/
+  // discrepancy/lab_calibration_2mm_5Hz_1A_loops.png): about 0.5 of 1.3 kN,
+  // so a held-up share near 0.6, for about 0.3 mm, at Y(1 A) ≈ 0.84 kN of the
+  // plain fit, λ ≈ 3.6e-7 m/N. The fit must land in the same range: share
+  // 0.3–0.8, play at 1 A 0.1–0.6 mm.
+  const Baseline& b = r.best().baseline;
+  EXPECT_GT(b.lost_motion_share, 0.3);
+  EXPECT_LT(b.lost_motion_share, 0.8);
+  const double play_m = b.lost_motion_m_per_n * b.yield_n.at(1.0);
+  EXPECT_GT(play_m, 0.1e-3);
+  EXPECT_LT(play_m, 0.6e-3);
+  // On every held-out record with current (the 0 A one is friction-like, no
+  // plateau) the gap is lower with the lost motion than without (measured:
+  // 18.7 → 14.8, 16.4 → 12.8, 18.1 → 14.7, 19.9 → 16.6 %).
+  const std::vector<double> with = baseline_gaps(r.fits[1].baseline, held);
+  const std::vector<double> without = baseline_gaps(r.fits[0].baseline, held);
+  for (std::size_t i = 1; i < held.size(); ++i) EXPECT_LT(with[i], without[i]) << held[i].source;
+}
+
+}  // namespace
+}  // namespace mrd::discrepancy
