@@ -227,7 +227,7 @@ std::string baseline_toml(const BaselineFile& f) {
   law_table(t, "viscous_ns_m", "C(I), the same law, N s/m (Eq. 4.3)", b.viscous_ns_m, f.sigma.viscous_ns_m,
             f.viscous_fitted);
   if (b.law == BaseLaw::bingham) {
-    t += "\n[bingham]  # transition function, Eq. 4.4\n";
+    t += std::string("\n[bingham]  # transition function, ") + (b.has_tanh_transition() ? "tanh" : "Eq. 4.4") + "\n";
     t += "v_tf_m_s = " + num(b.v_tf_m_s) + "\n";
     t += "v_tf_m_s_sigma = " + num(f.sigma.v_tf_m_s) + "\n";
     if (b.has_tanh_transition()) t += "transition = \"tanh\"  # F = Y tanh(v / v_tf_m_s) + C v\n";
