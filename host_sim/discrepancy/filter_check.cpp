@@ -177,8 +177,10 @@ void compare_with_compliance(const DamperModel& model, const EffectSet& set, std
                              FilterCheck& out) {
   const Baseline& base = model.baseline();
   if (!(set.contains(Effect::time_delay) || set.contains(Effect::preyield_hysteresis))) return;
-  if (base.law != BaseLaw::bingham || base.has_lost_motion() || base.has_transition_time()) return;
-  if (base.has_tanh_transition()) return;
+  // Only the plain Eq. 4.4 form (series_compliance_force solves no other).
+  if (base.law != BaseLaw::bingham || base.has_lost_motion() || base.has_transition_time() ||
+      base.has_tanh_transition())
+    return;
   if (!(base.force_scale_n() > 0.0)) return;
   if (const auto off = set.offset(Effect::time_delay)) out.delay_s = params[*off];
   ModelWorkspace ws;

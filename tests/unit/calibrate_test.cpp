@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
@@ -18,7 +17,6 @@
 
 namespace mrd::discrepancy {
 namespace {
-namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
