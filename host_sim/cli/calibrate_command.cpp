@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "host_sim/cli/command.hpp"
@@ -32,17 +33,19 @@ An extra is kept when it lowers the BIC by 10 or more, its parameters are off th
 it also lowers the RMS gap of the --check records (without --check it is reported, never
 kept; --no-transition-time, --no-lost-motion: not fitted). The form chosen: of the laws each
 with the extras it kept, the lowest RMS gap on the --check records; without --check, the
-lowest BIC. With three or more currents the current laws are fitted whole; with two,
+lowest BIC. So the check records' gaps are those of a validation set; --test records are
+judged only after everything is chosen (an untouched test set). With three or more currents the current laws are fitted whole; with two,
 rate_per_a is held at the thesis value; with one, the laws are constants.
 The coil time constants (Eq. 4.5) and the participant ratio are not identifiable from
 constant-current records: thesis values, marked identified = false.
 Standard errors: sigma^2 (J^T J)^-1 at the optimum, inflated by n/n_eff (effective sample count
 of the residual).
 
-Input (--measured, --check): CSV or .mat records as for `mrd discrepancy`.
+Input (--measured, --check, --test): CSV or .mat records as for `mrd discrepancy`.
 Files: damper.toml; summary.json (chosen_law, choice_reason, records, currents_a, notes, fits:
 law, parameters {value, sigma, fitted, at_bound}, record_gaps, expected_gap, samples,
-rss_normalized, n_eff, bic; held_out: gap per law of the --check records; validity);
+rss_normalized, n_eff, bic; held_out: gap per law of the --check records; test: the same for
+the --test records, and test_gap_rms: the chosen form's RMS gap over them; validity);
 report.md; loops_<n>.png per --measured record (force-velocity and force-displacement; the
 plain laws and the chosen form).
 Gap: sqrt(sum (F_model - F_meas)^2 / sum F_meas^2), a fraction.)"};
@@ -50,6 +53,7 @@ Gap: sqrt(sum (F_model - F_meas)^2 / sum F_meas^2), a fraction.)"};
 struct CalibrateCliOptions {
   std::vector<std::string> measured;
   std::vector<std::string> check;
+  std::vector<std::string> test;
   std::string out_dir;
   std::string law = "auto";
   bool no_plots = false;
@@ -65,6 +69,8 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_option("--transition", o.transition, "Bingham transition: linear (Eq. 4.4), tanh or auto (both)")
       ->capture_default_str();
   app.add_option("--check", o.check, "Records not fitted: the calibrated models' gap on each is reported");
+  app.add_option("--test", o.test,
+                 "Records judged after the calibration only (no extra and no form is chosen on them)");
   app.add_flag("--no-plots", o.no_plots, "Skip the PNG plots");
   app.add_flag("--no-lost-motion", o.no_lost_motion, "Do not try the lost motion at reversals");
   app.add_flag("--no-transition-time", o.no_transition_time, "Do not try the transition time (bingham)");
@@ -94,6 +100,7 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
 struct Outcome {
   discrepancy::CalibrationResult result;
   discrepancy::HeldOut held_out;
+  discrepancy::HeldOut test;
 };
 
 void print_summary(const Outcome& out) {
@@ -106,30 +113,38 @@ void print_summary(const Outcome& out) {
     for (const auto& f : r.fits) std::printf("  %8.2f %%", 100.0 * f.record_gaps[i]);
     std::printf("\n");
   }
-  for (std::size_t i = 0; i < out.held_out.sources.size(); ++i) {
-    std::printf("%-32s", (out.held_out.sources[i] + " (check)").c_str());
-    for (std::size_t l = 0; l < r.fits.size(); ++l) std::printf("  %8.2f %%", 100.0 * out.held_out.gaps[l][i]);
-    std::printf("\n");
+  for (const auto& [set, tag] : {std::pair{&out.held_out, " (check)"}, std::pair{&out.test, " (test)"}}) {
+    for (std::size_t i = 0; i < set->sources.size(); ++i) {
+      std::printf("%-32s", (set->sources[i] + tag).c_str());
+      for (std::size_t l = 0; l < r.fits.size(); ++l) std::printf("  %8.2f %%", 100.0 * set->gaps[l][i]);
+      std::printf("\n");
+    }
   }
   for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());
   std::printf("chosen: %s\n", r.choice_reason.c_str());
+  if (!out.test.sources.empty())
+    std::printf("test records (seen by no choice): RMS gap of the chosen form %.2f %%\n",
+                100.0 * discrepancy::rms_gap(out.test, r.chosen));
 }
 
 void execute(const CalibrateCliOptions& o) {
   const discrepancy::CalibrateOptions opt = calibrate_options(o);
-  std::vector<discrepancy::MeasuredData> records, checks;
+  std::vector<discrepancy::MeasuredData> records, checks, tests;
   for (const auto& p : o.measured) records.push_back(discrepancy::read_measured(p));
   for (const auto& p : o.check) checks.push_back(discrepancy::read_measured(p));
+  for (const auto& p : o.test) tests.push_back(discrepancy::read_measured(p));
   compute_print_write(
       "calibrate", o.out_dir,
       [&] {
-        Outcome out{discrepancy::calibrate(records, opt, checks), {}};
+        Outcome out{discrepancy::calibrate(records, opt, checks), {}, {}};
         out.held_out = discrepancy::held_out_gaps(out.result, checks, opt);
+        out.test = discrepancy::held_out_gaps(out.result, tests, opt);
         return out;
       },
       print_summary,
       [&](const std::filesystem::path& dir, const Outcome& out) {
-        return discrepancy::write_calibration_outputs(dir, records, out.result, out.held_out, opt, !o.no_plots);
+        return discrepancy::write_calibration_outputs(dir, records, out.result, out.held_out, opt, !o.no_plots,
+                                                        out.test);
       });
 }
 

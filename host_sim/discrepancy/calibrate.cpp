@@ -7,7 +7,9 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <utility>
 
+#include "host_sim/discrepancy/baseline_check.hpp"
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/fit.hpp"
@@ -572,6 +574,35 @@ ValidityRange validity_range(std::span<const MeasuredData> records, double smoot
   return v;
 }
 
+namespace {
+
+/// A record's displacement half range and dominant frequency.
+std::pair<double, double> motion_of(const MeasuredData& rec, double smoothing_half_window_s) {
+  const ValidityRange v = validity_range(std::span<const MeasuredData>(&rec, 1), smoothing_half_window_s);
+  return {v.amplitude_max_m, v.frequency_max_hz};
+}
+
+/// Whether every check record repeats the motion of a fitted record: its
+/// half range and dominant frequency both within kCoverageFactor of that
+/// record's (the margin of the coverage notes, baseline_check.hpp).
+bool check_repeats_fitted_motions(std::span<const MeasuredData> records, std::span<const MeasuredData> check,
+                                  double smoothing_half_window_s) {
+  std::vector<std::pair<double, double>> fitted;
+  for (const MeasuredData& r : records) fitted.push_back(motion_of(r, smoothing_half_window_s));
+  const auto near = [](double a, double b) {
+    return a > 0.0 && b > 0.0 && a <= kCoverageFactor * b && b <= kCoverageFactor * a;
+  };
+  for (const MeasuredData& c : check) {
+    const auto [amp, freq] = motion_of(c, smoothing_half_window_s);
+    if (std::none_of(fitted.begin(), fitted.end(),
+                     [&](const auto& f) { return near(amp, f.first) && near(freq, f.second); }))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options,
                             std::span<const MeasuredData> check) {
   if (records.empty()) throw io::UsageError("calibrate: expected at least one measured record");
@@ -756,8 +787,14 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
                             "meaningful)");
     }
   }
+  const ValidityRange fitted_range = validity_range(records, options.smoothing_half_window_s);
+  if (!check.empty() && check_repeats_fitted_motions(records, check, options.smoothing_half_window_s))
+    res.notes.push_back(
+        "every check record repeats the amplitude and frequency of a fitted record: the extras and the form were "
+        "chosen on motions like the fitted ones, which says little about other amplitudes or frequencies (check "
+        "records of another amplitude and frequency test that; README, discrepancy section)");
   for (auto& f : res.fits) {
-    f.baseline.range = validity_range(records, options.smoothing_half_window_s);
+    f.baseline.range = fitted_range;
     f.baseline.expected_gap = *std::max_element(f.record_gaps.begin(), f.record_gaps.end());
   }
   return res;

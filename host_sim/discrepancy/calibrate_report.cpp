@@ -1,6 +1,8 @@
 #include "host_sim/discrepancy/calibrate_report.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "host_sim/discrepancy/baseline_file.hpp"
 #include "host_sim/discrepancy/damper_model.hpp"
@@ -77,7 +79,7 @@ void cell(std::string& md, std::string_view text) {
   md += " |";
 }
 
-std::string markdown(const CalibrationResult& r, const HeldOut& h, bool plots) {
+std::string markdown(const CalibrationResult& r, const HeldOut& h, const HeldOut& test, bool plots) {
   std::string md = "# Damper calibration\n\n";
   md += "Chosen law: **" + std::string(baseline_form_name(r.best().baseline)) + "** (" + r.choice_reason + ").\n\n";
   for (const std::string& n : r.notes) md += "- " + n + "\n";
@@ -100,11 +102,17 @@ std::string markdown(const CalibrationResult& r, const HeldOut& h, bool plots) {
     for (const LawFit& f : r.fits) cell(md, pct(f.record_gaps[i]));
     md += "\n";
   }
-  for (std::size_t i = 0; i < h.sources.size(); ++i) {
-    md += "| " + h.sources[i] + " (held out) |";
-    for (std::size_t l = 0; l < r.fits.size(); ++l) cell(md, pct(h.gaps[l][i]));
-    md += "\n";
+  for (const auto& [set, tag] : {std::pair{&h, " (check)"}, std::pair{&test, " (test)"}}) {
+    for (std::size_t i = 0; i < set->sources.size(); ++i) {
+      md += "| " + set->sources[i] + tag + " |";
+      for (std::size_t l = 0; l < r.fits.size(); ++l) cell(md, pct(set->gaps[l][i]));
+      md += "\n";
+    }
   }
+  md += "\n(check) records are not fitted but choose the extras and the form; (test) records are seen by nothing "
+        "in the calibration.\n";
+  if (!test.sources.empty())
+    md += "\nRMS gap of the chosen form on the test records: **" + pct(rms_gap(test, r.chosen)) + "**.\n";
   const ValidityRange& v = r.best().baseline.range;
   md += "\n## Validity range\n\ncurrent " + g4(v.current_min_a) + "-" + g4(v.current_max_a) + " A, |v| up to " +
         g4(v.velocity_max_m_s) + " m/s, |F| up to " + g4(v.force_peak_n) + " N, half range " + g4(v.amplitude_min_m) +
@@ -128,15 +136,27 @@ HeldOut held_out_gaps(const CalibrationResult& r, std::span<const MeasuredData> 
   return h;
 }
 
-json calibration_json(const CalibrationResult& r, const HeldOut& h) {
+double rms_gap(const HeldOut& h, std::size_t l) {
+  if (l >= h.gaps.size() || h.gaps[l].empty()) return 0.0;
+  double s = 0.0;
+  for (const double g : h.gaps[l]) s += g * g;
+  return std::sqrt(s / static_cast<double>(h.gaps[l].size()));
+}
+
+json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOut& test) {
   json fits = json::array();
   for (const LawFit& f : r.fits) fits.push_back(fit_json(f, r));
-  json held = json::array();
-  for (std::size_t i = 0; i < h.sources.size(); ++i) {
-    json g = json::object();
-    for (std::size_t l = 0; l < r.fits.size(); ++l) g[baseline_form_name(r.fits[l].baseline)] = h.gaps[l][i];
-    held.push_back({{"file", h.sources[i]}, {"gap", g}});
-  }
+  const auto per_record = [&](const HeldOut& set) {
+    json out = json::array();
+    for (std::size_t i = 0; i < set.sources.size(); ++i) {
+      json g = json::object();
+      for (std::size_t l = 0; l < r.fits.size(); ++l) g[baseline_form_name(r.fits[l].baseline)] = set.gaps[l][i];
+      out.push_back({{"file", set.sources[i]}, {"gap", g}});
+    }
+    return out;
+  };
+  const json held = per_record(h);
+  json test_json = per_record(test);
   const ValidityRange& v = r.best().baseline.range;
   return {{"chosen_law", baseline_form_name(r.best().baseline)},
           {"choice_reason", r.choice_reason},
@@ -145,6 +165,8 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h) {
           {"notes", r.notes},
           {"fits", fits},
           {"held_out", held},
+          {"test", test_json},
+          {"test_gap_rms", test.sources.empty() ? json(nullptr) : json(rms_gap(test, r.chosen))},
           {"validity",
            {{"current_min_a", v.current_min_a},
             {"current_max_a", v.current_max_a},
@@ -160,15 +182,15 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h) {
 std::vector<std::string> write_calibration_outputs(const std::filesystem::path& dir,
                                                    std::span<const MeasuredData> records, const CalibrationResult& r,
                                                    const HeldOut& held_out, const CalibrateOptions& options,
-                                                   bool plots) {
+                                                   bool plots, const HeldOut& test) {
   std::vector<std::string> problems;
   write_baseline_file(baseline_file_of(r), dir / "damper.toml");
   if (plots) {
     for (std::size_t i = 0; i < records.size(); ++i)
       plot_record(dir / ("loops_" + std::to_string(i + 1) + ".png"), records[i], r, options, problems);
   }
-  report::write_file_atomically(dir / "report.md", markdown(r, held_out, plots));
-  report::write_summary_json(dir, calibration_json(r, held_out));
+  report::write_file_atomically(dir / "report.md", markdown(r, held_out, test, plots));
+  report::write_summary_json(dir, calibration_json(r, held_out, test));
   return problems;
 }
 

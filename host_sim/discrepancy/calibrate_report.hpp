@@ -13,7 +13,9 @@
 
 namespace mrd::discrepancy {
 
-/// Records not used in the fit, judged with each law's calibrated baseline.
+/// Records not used in the fit, judged with each law's calibrated baseline:
+/// the check records (which choose the extras and the form) or the test
+/// records (which nothing in the calibration sees).
 struct HeldOut {
   std::vector<std::string> sources;
   std::vector<std::vector<double>> gaps;  ///< [law index of CalibrationResult::fits][record]
@@ -23,9 +25,15 @@ struct HeldOut {
 [[nodiscard]] HeldOut held_out_gaps(const CalibrationResult& r, std::span<const MeasuredData> records,
                                     const CalibrateOptions& options);
 
-/// Both laws' parameters (value, sigma, fitted, at_bound), rss, n_eff, BIC,
-/// per-record gaps, the held-out gaps, the choice and why, the notes.
-[[nodiscard]] nlohmann::json calibration_json(const CalibrationResult& r, const HeldOut& held_out);
+/// RMS over the records of the gaps of law `l`.
+[[nodiscard]] double rms_gap(const HeldOut& h, std::size_t l);
+
+/// Every form's parameters (value, sigma, fitted, at_bound), rss, n_eff,
+/// BIC, per-record gaps, the gaps on the check records (`held_out`) and on
+/// the test records (`test`: records no choice saw, with the chosen form's
+/// RMS gap over them), the choice and why, the notes.
+[[nodiscard]] nlohmann::json calibration_json(const CalibrationResult& r, const HeldOut& held_out,
+                                              const HeldOut& test = {});
 
 /// Writes damper.toml, summary.json, report.md and (with `plots`) one
 /// loops_<n>.png per record into `dir` (which must exist). Returns the
@@ -33,6 +41,6 @@ struct HeldOut {
 std::vector<std::string> write_calibration_outputs(const std::filesystem::path& dir,
                                                    std::span<const MeasuredData> records, const CalibrationResult& r,
                                                    const HeldOut& held_out, const CalibrateOptions& options,
-                                                   bool plots = true);
+                                                   bool plots = true, const HeldOut& test = {});
 
 }  // namespace mrd::discrepancy

@@ -22,9 +22,10 @@ class CalibrateCli : public ::testing::Test {
   TempDir out_;
 
   /// A sine record at 500 Hz (by default 4 s, 5 mm at 1 Hz) of a damper with
-  /// F = (200 + 800 I) tanh(v / 5 mm/s) + (1000 + 3000 I) v (N, I in A).
+  /// F = (200 + 800 I) tanh(v / 5 mm/s) + (1000 + 3000 I) v (N, I in A),
+  /// times `force_scale` (another damper when not 1).
   fs::path record(const std::string& name, double current_a, double amplitude_m = 0.005, double freq_hz = 1.0,
-                  double duration_s = 4.0) {
+                  double duration_s = 4.0, double force_scale = 1.0) {
     const auto p = scratch_.path() / name;
     std::ofstream f(p);
     f << "time_s,displacement_m,current_cmd_A,force_N\n";
@@ -34,7 +35,7 @@ class CalibrateCli : public ::testing::Test {
       const double x = amplitude_m * std::sin(w * t);
       const double v = amplitude_m * w * std::cos(w * t);
       const double force = (200.0 + 800.0 * current_a) * std::tanh(v / 0.005) + (1000.0 + 3000.0 * current_a) * v;
-      f << t << ',' << x << ',' << current_a << ',' << force << '\n';
+      f << t << ',' << x << ',' << current_a << ',' << force_scale * force << '\n';
     }
     return p;
   }
@@ -111,6 +112,47 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   EXPECT_NE(amplitude.find("half range is 25 mm, above the 5 mm the baseline"), std::string::npos) << amplitude;
   EXPECT_NE(frequency.find("frequency is 0.2 Hz, below the 1 Hz the baseline"), std::string::npos) << frequency;
   EXPECT_NE(far.out.find("outside the calibrated coverage"), std::string::npos) << far.out;
+}
+
+// --test records are judged after the calibration and choose nothing: the
+// same fits and the same choice with or without them. The gaps expected:
+// a record of the same damper is described as well as the fitted ones; a
+// record of a damper twice as strong has gap |F - 2F| / |2F| = 0.5 against
+// a baseline that describes the first damper exactly.
+TEST_F(CalibrateCli, TestRecordsAreJudgedButChooseNothing) {
+  const auto a = record("a.csv", 0.0);
+  const auto b = record("b.csv", 0.5);
+  const auto c = record("c.csv", 1.0);
+  const auto check = record("check.csv", 0.25, 0.003, 2.0);
+  const auto same = record("same.csv", 0.75, 0.008, 0.5, 8.0);
+  const auto twice = record("twice.csv", 1.0, 0.005, 1.0, 4.0, 2.0);
+  const std::string common = "calibrate --measured " + a.string() + " " + b.string() + " " + c.string() +
+                             " --check " + check.string() + " --law bingham --no-lost-motion --no-plots --out ";
+  TempDir plain;
+  const auto r0 = run_mrd(common + plain.path().string(), scratch_.path());
+  ASSERT_EQ(r0.exit_code, 0) << r0.err;
+  const auto r1 = run_mrd(common + out_.path().string() + " --test " + same.string() + " " + twice.string(),
+                          scratch_.path());
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  EXPECT_EQ(slurp(plain.path() / "damper.toml"), slurp(out_.path() / "damper.toml"));
+  const auto j0 = nlohmann::json::parse(slurp(plain.path() / "summary.json"));
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  EXPECT_EQ(j0["fits"], j["fits"]);
+  EXPECT_EQ(j0["choice_reason"], j["choice_reason"]);
+  EXPECT_TRUE(j0["test"].empty());
+  EXPECT_TRUE(j0["test_gap_rms"].is_null());
+
+  const std::string chosen = j["chosen_law"];
+  ASSERT_EQ(j["test"].size(), 2u);
+  EXPECT_NE(j["test"][0]["file"].get<std::string>().find("same.csv"), std::string::npos);
+  const double g_same = j["test"][0]["gap"][chosen].get<double>();
+  const double g_twice = j["test"][1]["gap"][chosen].get<double>();
+  EXPECT_LT(g_same, 0.02);
+  EXPECT_NEAR(g_twice, 0.5, 0.01);
+  EXPECT_NEAR(j["test_gap_rms"].get<double>(), std::sqrt(0.5 * (g_same * g_same + g_twice * g_twice)), 1e-12);
+  EXPECT_NE(r1.out.find("twice.csv (test)"), std::string::npos) << r1.out;
+  EXPECT_NE(r1.out.find("test records (seen by no choice): RMS gap of the chosen form"), std::string::npos) << r1.out;
+  EXPECT_NE(slurp(out_.path() / "report.md").find("twice.csv (test)"), std::string::npos);
 }
 
 TEST_F(CalibrateCli, MissingMeasuredIsAUsageError) {

@@ -112,6 +112,28 @@ TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
     EXPECT_NEAR(peak, measured, 0.3 * measured) << fit[i].source;
   }
   EXPECT_LT(r.best().baseline.range.velocity_max_m_s, 0.07);
+  // The 5 mm / 3 Hz check records (±4.6 mm) repeat neither the ±1.6 mm of
+  // the 2 mm records nor the ±25 mm of the 25 mm ones.
+  for (const std::string& n : r.notes) EXPECT_EQ(n.find("repeats the amplitude"), std::string::npos) << n;
+}
+
+TEST(CalibrateLab, CheckRecordsThatRepeatTheFittedMotionsAreNamed) {
+  ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
+  // Fitted at 0, 0.5 and 1 A, checked at 0.25 and 0.75 A of the same 2 mm /
+  // 5 Hz motion: such check records judge the current laws, not other
+  // motions, and the calibration says so.
+  const std::vector<MeasuredData> family = lab_family("2mm_5Hz");
+  const std::vector<MeasuredData> fit{family[0], family[2], family[4]};
+  const std::vector<MeasuredData> check{family[1], family[3]};
+  CalibrateOptions opt;
+  opt.law = BaseLaw::bingham;
+  opt.transition = TransitionShape::tanh;
+  opt.transition_time = false;
+  opt.lost_motion = false;
+  const CalibrationResult r = calibrate(fit, opt, check);
+  bool said = false;
+  for (const std::string& n : r.notes) said = said || n.find("repeats the amplitude and frequency") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {

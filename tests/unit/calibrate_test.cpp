@@ -266,6 +266,8 @@ TEST(Calibrate, RecoversATransitionTimeAndKeepsIt) {
   bool said = false;
   for (const std::string& n : r.notes) said = said || n.find("transition_time: kept") != std::string::npos;
   EXPECT_TRUE(said);
+  // 2 mm at 6 Hz repeats no fitted motion (2 mm at 3 Hz, 5 mm at 1 Hz).
+  for (const std::string& n : r.notes) EXPECT_EQ(n.find("repeats the amplitude"), std::string::npos) << n;
 }
 
 TEST(Calibrate, RecoversATanhTransitionAndPrefersIt) {
