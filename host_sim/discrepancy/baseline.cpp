@@ -44,8 +44,11 @@ double bouc_wen_step(double z, double v_m_s, double dt_s, double yield_disp_m) n
     travel += mag;
     mag = 0.0;
   }
+  // tanh(atanh m + u) = (m + tanh u) / (1 + m tanh u): one tanh a step, no atanh.
   constexpr double kEdge = 1.0 - 1e-15;
-  mag = std::tanh(std::atanh(std::min(mag, kEdge)) + travel);
+  const double t = std::tanh(travel);
+  mag = std::min(mag, kEdge);
+  mag = (mag + t) / (1.0 + mag * t);
   return d * std::min(mag, kEdge);
 }
 

@@ -164,7 +164,8 @@ inline constexpr double kTransitionAccelHalfWindow_s = 0.005;
 /// The Bouc–Wen variable after one step of length dt_s at velocity v_m_s
 /// (held), solved exactly: with β = γ = ½ and n = 2 it unloads linearly
 /// (ż = v/x_y while v z < 0) and loads as ż = (v/x_y)(1 − z²), so
-/// z = tanh(atanh z_0 + v dt/x_y). |z| < 1 throughout.
+/// z = tanh(atanh z_0 + v dt/x_y), evaluated by the addition theorem as
+/// (z_0 + t)/(1 + z_0 t), t = tanh(v dt/x_y). |z| < 1 throughout.
 [[nodiscard]] double bouc_wen_step(double z, double v_m_s, double dt_s, double yield_disp_m) noexcept;
 
 }  // namespace mrd::discrepancy

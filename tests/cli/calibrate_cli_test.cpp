@@ -127,7 +127,7 @@ TEST_F(CalibrateCli, TestRecordsAreJudgedButChooseNothing) {
   const auto same = record("same.csv", 0.75, 0.008, 0.5, 8.0);
   const auto twice = record("twice.csv", 1.0, 0.005, 1.0, 4.0, 2.0);
   const std::string common = "calibrate --measured " + a.string() + " " + b.string() + " " + c.string() +
-                             " --check " + check.string() + " --law bingham --no-lost-motion --no-plots --out ";
+                             " --check " + check.string() + " --law bingham --transition tanh --no-lost-motion --no-plots --out ";
   TempDir plain;
   const auto r0 = run_mrd(common + plain.path().string(), scratch_.path());
   ASSERT_EQ(r0.exit_code, 0) << r0.err;
