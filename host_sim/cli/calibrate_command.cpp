@@ -34,7 +34,10 @@ it also lowers the RMS gap of the --check records (without --check it is reporte
 kept; --no-transition-time, --no-lost-motion: not fitted). The form chosen: of the laws each
 with the extras it kept, the lowest RMS gap on the --check records; without --check, the
 lowest BIC. So the check records' gaps are those of a validation set; --test records are
-judged only after everything is chosen (an untouched test set). With three or more currents the current laws are fitted whole; with two,
+judged only after everything is chosen (an untouched test set). A note says when every
+check record repeats the amplitude and frequency of a fitted one (within 1.25x): such a
+check judges the current laws, not other motions.
+With three or more currents the current laws are fitted whole; with two,
 rate_per_a is held at the thesis value; with one, the laws are constants.
 The coil time constants (Eq. 4.5) and the participant ratio are not identifiable from
 constant-current records: thesis values, marked identified = false.

@@ -109,8 +109,9 @@ std::string markdown(const CalibrationResult& r, const HeldOut& h, const HeldOut
       md += "\n";
     }
   }
-  md += "\n(check) records are not fitted but choose the extras and the form; (test) records are seen by nothing "
-        "in the calibration.\n";
+  if (!h.sources.empty() || !test.sources.empty())
+    md += "\n(check) records are not fitted but choose the extras and the form; (test) records are seen by nothing "
+          "in the calibration.\n";
   if (!test.sources.empty())
     md += "\nRMS gap of the chosen form on the test records: **" + pct(rms_gap(test, r.chosen)) + "**.\n";
   const ValidityRange& v = r.best().baseline.range;
@@ -156,7 +157,7 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
     return out;
   };
   const json held = per_record(h);
-  json test_json = per_record(test);
+  const json test_json = per_record(test);
   const ValidityRange& v = r.best().baseline.range;
   return {{"chosen_law", baseline_form_name(r.best().baseline)},
           {"choice_reason", r.choice_reason},
