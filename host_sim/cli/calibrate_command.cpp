@@ -127,7 +127,7 @@ void print_summary(const Outcome& out) {
   std::printf("chosen: %s\n", r.choice_reason.c_str());
   if (!out.test.sources.empty())
     std::printf("test records (seen by no choice): RMS gap of the chosen form %.2f %%\n",
-                100.0 * discrepancy::rms_gap(out.test, r.chosen));
+                100.0 * discrepancy::rms_over_records(out.test.gaps[r.chosen]));
 }
 
 void execute(const CalibrateCliOptions& o) {

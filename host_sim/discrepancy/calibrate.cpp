@@ -7,7 +7,6 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <utility>
 
 #include "host_sim/discrepancy/baseline_check.hpp"
 #include "host_sim/discrepancy/damper_model.hpp"
@@ -543,6 +542,13 @@ std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const Meas
   return gaps;
 }
 
+double rms_over_records(std::span<const double> gaps) {
+  if (gaps.empty()) return 0.0;
+  double s = 0.0;
+  for (const double g : gaps) s += g * g;
+  return std::sqrt(s / static_cast<double>(gaps.size()));
+}
+
 ValidityRange validity_range(std::span<const MeasuredData> records, double smoothing_half_window_s) {
   ValidityRange v;
   bool first = true;
@@ -576,26 +582,19 @@ ValidityRange validity_range(std::span<const MeasuredData> records, double smoot
 
 namespace {
 
-/// A record's displacement half range and dominant frequency.
-std::pair<double, double> motion_of(const MeasuredData& rec, double smoothing_half_window_s) {
-  const ValidityRange v = validity_range(std::span<const MeasuredData>(&rec, 1), smoothing_half_window_s);
-  return {v.amplitude_max_m, v.frequency_max_hz};
-}
-
 /// Whether every check record repeats the motion of a fitted record: its
-/// half range and dominant frequency both within kCoverageFactor of that
-/// record's (the margin of the coverage notes, baseline_check.hpp).
+/// half range and dominant frequency inside that one record's coverage
+/// (coverage_notes, within kCoverageFactor).
 bool check_repeats_fitted_motions(std::span<const MeasuredData> records, std::span<const MeasuredData> check,
                                   double smoothing_half_window_s) {
-  std::vector<std::pair<double, double>> fitted;
-  for (const MeasuredData& r : records) fitted.push_back(motion_of(r, smoothing_half_window_s));
-  const auto near = [](double a, double b) {
-    return a > 0.0 && b > 0.0 && a <= kCoverageFactor * b && b <= kCoverageFactor * a;
-  };
-  for (const MeasuredData& c : check) {
-    const auto [amp, freq] = motion_of(c, smoothing_half_window_s);
-    if (std::none_of(fitted.begin(), fitted.end(),
-                     [&](const auto& f) { return near(amp, f.first) && near(freq, f.second); }))
+  std::vector<ValidityRange> fitted;
+  for (std::size_t i = 0; i < records.size(); ++i)
+    fitted.push_back(validity_range(records.subspan(i, 1), smoothing_half_window_s));
+  for (std::size_t i = 0; i < check.size(); ++i) {
+    const ValidityRange m = validity_range(check.subspan(i, 1), smoothing_half_window_s);
+    if (std::none_of(fitted.begin(), fitted.end(), [&](const ValidityRange& f) {
+          return coverage_notes(f, m.amplitude_max_m, m.frequency_max_hz, 0.0).empty();
+        }))
       return false;
   }
   return true;
@@ -667,11 +666,13 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   // with a lost motion wins against plain Eq. 4.4, ΔBIC 95), and the extras
   // fitted on that wrong shape would then be lost.
   const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
-  const auto rms_gap = [&](const Baseline& b) {
-    double s = 0.0;
-    const std::vector<double> g = baseline_gaps(b, check, options.smoothing_half_window_s);
-    for (const double x : g) s += x * x;
-    return std::sqrt(s / static_cast<double>(g.size()));
+  // RMS gap of fit i on the check records, computed once per fit.
+  std::map<std::size_t, double> check_gaps;
+  const auto check_gap = [&](std::size_t i) {
+    const auto [at, fresh] = check_gaps.try_emplace(i, 0.0);
+    if (fresh)
+      at->second = rms_over_records(baseline_gaps(res.fits[i].baseline, check, options.smoothing_half_window_s));
+    return at->second;
   };
   // Tries `add` on top of fit `cur`; returns the index of the fit kept.
   const auto try_extra = [&](std::size_t cur, Extras add, const std::string& implausible) -> std::size_t {
@@ -711,8 +712,8 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
                           ") but no --check records to show that it generalizes");
       return cur;
     }
-    const double with = rms_gap(x.baseline);
-    const double without = rms_gap(c.baseline);
+    const double with = check_gap(res.fits.size() - 1);
+    const double without = check_gap(cur);
     const std::string numbers = "RMS gap on the check records " + io::format_number("%.4f", with) + " against " +
                                 io::format_number("%.4f", without) + " without";
     if (with < without) {
@@ -741,11 +742,8 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   // Bouc–Wen with a lost motion by ΔBIC 197, at an RMS gap on held-out
   // records of 0.204 against 0.153).
   score();
-  std::vector<double> check_gap(res.fits.size(), 0.0);
-  if (!check.empty())
-    for (const std::size_t i : finals) check_gap[i] = rms_gap(res.fits[i].baseline);
   const auto better = [&](std::size_t a, std::size_t b) {
-    return check.empty() ? res.fits[a].bic < res.fits[b].bic : check_gap[a] < check_gap[b];
+    return check.empty() ? res.fits[a].bic < res.fits[b].bic : check_gap(a) < check_gap(b);
   };
   res.chosen = finals.front();
   for (const std::size_t i : finals)
@@ -762,10 +760,10 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
         why += ": the form of lowest BIC";
       } else {
         why += ": of the forms each with the extras that generalized, the lowest RMS gap on the check records (" +
-               io::format_number("%.4f", check_gap[res.chosen]);
+               io::format_number("%.4f", check_gap(res.chosen));
         for (const std::size_t i : finals)
           if (i != res.chosen)
-            why += "; " + io::format_number("%.4f", check_gap[i]) + " for " + baseline_form_name(res.fits[i].baseline);
+            why += "; " + io::format_number("%.4f", check_gap(i)) + " for " + baseline_form_name(res.fits[i].baseline);
         why += ")";
       }
       why += " (BIC " + io::format_number("%.1f", c.bic);

@@ -132,6 +132,9 @@ struct CalibrationResult {
 [[nodiscard]] std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const MeasuredData> records,
                                                 double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
 
+/// sqrt(mean of gaps²): the RMS over records of per-record gaps (0 for none).
+[[nodiscard]] double rms_over_records(std::span<const double> gaps);
+
 /// Currents (min/max of current_cmd), largest |v| (of model_input), largest
 /// |F|, displacement half ranges and dominant frequencies covered by `records`.
 [[nodiscard]] ValidityRange validity_range(std::span<const MeasuredData> records,

@@ -1,7 +1,6 @@
 #include "host_sim/discrepancy/calibrate_report.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <utility>
 
 #include "host_sim/discrepancy/baseline_file.hpp"
@@ -113,7 +112,7 @@ std::string markdown(const CalibrationResult& r, const HeldOut& h, const HeldOut
     md += "\n(check) records are not fitted but choose the extras and the form; (test) records are seen by nothing "
           "in the calibration.\n";
   if (!test.sources.empty())
-    md += "\nRMS gap of the chosen form on the test records: **" + pct(rms_gap(test, r.chosen)) + "**.\n";
+    md += "\nRMS gap of the chosen form on the test records: **" + pct(rms_over_records(test.gaps[r.chosen])) + "**.\n";
   const ValidityRange& v = r.best().baseline.range;
   md += "\n## Validity range\n\ncurrent " + g4(v.current_min_a) + "-" + g4(v.current_max_a) + " A, |v| up to " +
         g4(v.velocity_max_m_s) + " m/s, |F| up to " + g4(v.force_peak_n) + " N, half range " + g4(v.amplitude_min_m) +
@@ -135,13 +134,6 @@ HeldOut held_out_gaps(const CalibrationResult& r, std::span<const MeasuredData> 
   for (const MeasuredData& d : records) h.sources.push_back(d.source);
   for (const LawFit& f : r.fits) h.gaps.push_back(baseline_gaps(f.baseline, records, options.smoothing_half_window_s));
   return h;
-}
-
-double rms_gap(const HeldOut& h, std::size_t l) {
-  if (l >= h.gaps.size() || h.gaps[l].empty()) return 0.0;
-  double s = 0.0;
-  for (const double g : h.gaps[l]) s += g * g;
-  return std::sqrt(s / static_cast<double>(h.gaps[l].size()));
 }
 
 json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOut& test) {
@@ -167,7 +159,7 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
           {"fits", fits},
           {"held_out", held},
           {"test", test_json},
-          {"test_gap_rms", test.sources.empty() ? json(nullptr) : json(rms_gap(test, r.chosen))},
+          {"test_gap_rms", test.sources.empty() ? json(nullptr) : json(rms_over_records(test.gaps[r.chosen]))},
           {"validity",
            {{"current_min_a", v.current_min_a},
             {"current_max_a", v.current_max_a},

@@ -25,9 +25,6 @@ struct HeldOut {
 [[nodiscard]] HeldOut held_out_gaps(const CalibrationResult& r, std::span<const MeasuredData> records,
                                     const CalibrateOptions& options);
 
-/// RMS over the records of the gaps of law `l`.
-[[nodiscard]] double rms_gap(const HeldOut& h, std::size_t l);
-
 /// Every form's parameters (value, sigma, fitted, at_bound), rss, n_eff,
 /// BIC, per-record gaps, the gaps on the check records (`held_out`) and on
 /// the test records (`test`: records no choice saw, with the chosen form's
