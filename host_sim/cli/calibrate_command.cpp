@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,7 +64,13 @@ struct CalibrateCliOptions {
   bool no_lost_motion = false;
   bool no_transition_time = false;
   std::string transition = "auto";
+  std::string lost_motion_form = "both";
 };
+
+const std::map<std::string, discrepancy::LostMotionForm> kLostMotionForms{
+    {"both", discrepancy::LostMotionForm::both},
+    {"share", discrepancy::LostMotionForm::share},
+    {"viscous", discrepancy::LostMotionForm::viscous}};
 
 void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_option("--measured", o.measured, "Characterization records (CSV or .mat)")->required();
@@ -76,12 +83,18 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
                  "Records judged after the calibration only (no extra and no form is chosen on them)");
   app.add_flag("--no-plots", o.no_plots, "Skip the PNG plots");
   app.add_flag("--no-lost-motion", o.no_lost_motion, "Do not try the lost motion at reversals");
+  app.add_option("--lost-motion-form", o.lost_motion_form,
+                 "The force inside the lost motion's play: share (of the law's force), viscous (over a band of "
+                 "velocity) or both")
+      ->check(CLI::IsMember(kLostMotionForms))
+      ->capture_default_str();
   app.add_flag("--no-transition-time", o.no_transition_time, "Do not try the transition time (bingham)");
 }
 
 discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   discrepancy::CalibrateOptions opt;
   opt.lost_motion = !o.no_lost_motion;
+  opt.lost_motion_form = kLostMotionForms.at(o.lost_motion_form);
   opt.transition_time = !o.no_transition_time;
   if (o.transition == "linear") {
     opt.transition = discrepancy::TransitionShape::linear;

@@ -10,7 +10,7 @@ const char* base_law_name(BaseLaw law) noexcept { return law == BaseLaw::bouc_we
 std::string baseline_form_name(const Baseline& b) {
   return std::string(base_law_name(b.law)) + (b.has_tanh_transition() ? "_tanh" : "") +
          (b.has_transition_time() ? "+transition_time" : "") +
-         (b.has_lost_motion() ? "+lost_motion" : "");
+         (b.has_viscous_lost_motion() ? "+viscous_lost_motion" : (b.has_lost_motion() ? "+lost_motion" : ""));
 }
 
 double CurrentLaw::at(double current_a, double participant_ratio) const noexcept {

@@ -206,7 +206,7 @@ BaselineFile baseline_file_of(const CalibrationResult& r) {
     for (std::size_t i = 0; i < r.sources.size(); ++i)
       f.fits.push_back({r.sources[i], fit.baseline.law, fit.record_gaps.at(i), r.record_samples.at(i),
                         fit.baseline.has_lost_motion(), fit.baseline.has_transition_time(),
-                        fit.baseline.has_tanh_transition()});
+                        fit.baseline.has_tanh_transition(), fit.baseline.has_viscous_lost_motion()});
   }
   return f;
 }
@@ -243,11 +243,16 @@ std::string baseline_toml(const BaselineFile& f) {
     t += "stiffness_n_m_sigma = " + num(f.sigma.stiffness_n_m) + "\n";
   }
   if (b.has_lost_motion()) {
-    t += "\n[lost_motion]  # F = F_law ((1 - share) + share e), e: play of width m_per_n Y(I) at reversals\n";
+    t += "\n[lost_motion]  # F = F_law ((1 - share) + share e) + (1 - e) Y(I) tanh(v / band_m_s), e: play of width "
+         "m_per_n Y(I) at reversals\n";
     t += "m_per_n = " + num(b.lost_motion_m_per_n) + "\n";
     t += "m_per_n_sigma = " + num(f.sigma.lost_motion_m_per_n) + "\n";
     t += "share = " + num(b.lost_motion_share) + "\n";
     t += "share_sigma = " + num(f.sigma.lost_motion_share) + "\n";
+    if (b.has_viscous_lost_motion()) {
+      t += "band_m_s = " + num(b.lost_motion_band_m_s) + "  # the force inside the play\n";
+      t += "band_m_s_sigma = " + num(f.sigma.lost_motion_band_m_s) + "\n";
+    }
   }
   t += "\n[channels]  # the force channel's lag behind the motion channels\n";
   t += "force_delay_s = " + num(b.force_delay_s) + "\n";
@@ -291,6 +296,7 @@ std::string baseline_toml(const BaselineFile& f) {
     if (r.tanh_transition) t += "transition = \"tanh\"\n";
     if (r.transition_time) t += "transition_time = true\n";
     if (r.lost_motion) t += "lost_motion = true\n";
+    if (r.viscous_lost_motion) t += "viscous_lost_motion = true\n";
     t += "gap = " + num(r.gap) + "\n";
     t += "samples = " + std::to_string(r.samples) + "\n";
   }
@@ -355,6 +361,10 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     b.lost_motion_share = t.positive("share");
     f.sigma.lost_motion_share = t.number("share_sigma");
     if (b.lost_motion_share > 1.0) fail(origin, t.where("share"), "lost_motion.share", "expected a share in (0, 1]");
+    if (t.has("band_m_s")) {
+      b.lost_motion_band_m_s = t.positive("band_m_s");
+      f.sigma.lost_motion_band_m_s = t.number("band_m_s_sigma");
+    }
     t.no_unknown_keys();
   }
   {
@@ -425,6 +435,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       if (t.has("transition")) r.tanh_transition = transition_named(t, origin, t.field("transition"));
       if (t.has("transition_time")) r.transition_time = t.boolean("transition_time");
       if (t.has("lost_motion")) r.lost_motion = t.boolean("lost_motion");
+      if (t.has("viscous_lost_motion")) r.viscous_lost_motion = t.boolean("viscous_lost_motion");
       r.gap = t.number("gap");
       r.samples = t.count("samples");
       t.no_unknown_keys();

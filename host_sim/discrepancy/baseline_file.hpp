@@ -11,13 +11,14 @@
 ///                    transition ("linear", Eq. 4.4, when absent | "tanh")
 ///                    transition_time_s, transition_time_s_sigma (only when the baseline has one)
 ///   [bouc_wen]       yield_disp_m, stiffness_n_m, each with _sigma
-///   [lost_motion]    m_per_n (m/N), share, each with _sigma (only when the baseline has one)
+///   [lost_motion]    m_per_n (m/N), share, each with _sigma (only when the baseline has one);
+///                    band_m_s (m/s) with _sigma when the force inside the play grows over a band
 ///   [channels]       force_delay_s, force_delay_s_sigma
 ///   [coil]           tau_slow_s, tau_fast_s, weight_slow, weight_fast, identified        Eq. 4.5
 ///   [participant_ratio]  Table 5.6 coefficients, flow_area_m2, volume_unit_m3, identified
 ///   [validity]       current_min_a … frequency_max_hz, expected_gap
-///   [[fit]]          file, law, transition ("tanh", when so), transition_time and lost_motion
-///                    (when true), gap, samples
+///   [[fit]]          file, law, transition ("tanh", when so), transition_time, lost_motion and
+///                    viscous_lost_motion (when true), gap, samples
 ///                    (one per record and form fitted)
 /// </pre>
 /// Only the table of the model's law ([bingham] or [bouc_wen]) may be present.
@@ -41,6 +42,7 @@ struct RecordFit {
   bool lost_motion = false;      ///< the law with a lost motion at reversals
   bool transition_time = false;  ///< the law with a transition time
   bool tanh_transition = false;  ///< the Bingham law with the tanh transition
+  bool viscous_lost_motion = false;  ///< its lost motion with a viscous force inside the play
 };
 
 /// Everything damper.toml holds.

@@ -20,20 +20,22 @@ namespace mrd::discrepancy {
 namespace {
 
 /// The parameters a calibration can fit.
-enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kSlots };
+enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kPlayC, kSlots };
 
 constexpr std::array<const char*, kSlots> kSlotName{
     "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
     "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m",
-    "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share",  "transition_time_s"};
+    "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share",  "transition_time_s",
+    "lost_motion_band_m_s"};
 
 /// Search bounds, SI (the fit works on their logarithms).
 /// The force-channel lag between 10 µs (none, in effect) and 100 ms; the
 /// lost motion between 1 nm and 10 mm per kN, its share between 0.1 % and all;
-/// the transition time between 1 µs (none: 10 µm/s at 10 m/s²) and 100 ms.
+/// the transition time between 1 µs (none: 10 µm/s at 10 m/s²) and 100 ms;
+/// the band of the force inside the play between 10 µm/s and 10 m/s.
 constexpr std::array<double, kSlots> kLower{1e-3,  1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5,
-                                            1e-7,  1e-2, 1e-5, 1e-12, 1e-3, 1e-6};
-constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1, 1e-5, 1.0, 0.1};
+                                            1e-7,  1e-2, 1e-5, 1e-12, 1e-3, 1e-6, 1e-5};
+constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1, 1e-5, 1.0, 0.1, 10.0};
 
 double& slot_ref(Baseline& b, Slot s) {
   switch (s) {
@@ -50,6 +52,7 @@ double& slot_ref(Baseline& b, Slot s) {
     case kPlay: return b.lost_motion_m_per_n;
     case kShare: return b.lost_motion_share;
     case kTau: return b.transition_time_s;
+    case kPlayC: return b.lost_motion_band_m_s;
     default: break;
   }
   return b.v_tf_m_s;
@@ -340,9 +343,12 @@ std::vector<double> log_sigmas(const JointData& d, const Layout& layout, const B
 struct Extras {
   bool transition_time = false;
   bool lost_motion = false;
+  bool viscous_play = false;  ///< the lost motion's force inside the play viscous (share held at 1)
 };
 
-Extras extras_of(const Baseline& b) { return {b.has_transition_time(), b.has_lost_motion()}; }
+Extras extras_of(const Baseline& b) {
+  return {b.has_transition_time(), b.has_lost_motion(), b.has_viscous_lost_motion()};
+}
 
 /// Fits `law` (with the tanh transition when `tanh` and the law is Bingham)
 /// with `extras` to the records. With `from` given (a fit of the
@@ -376,7 +382,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   layout.free.push_back(kDelay);
   if (extras.lost_motion) {
     layout.free.push_back(kPlay);
-    layout.free.push_back(kShare);
+    layout.free.push_back(extras.viscous_play ? kPlayC : kShare);
   }
 
   // Base: the thesis's coil and participant ratio (not identifiable here),
@@ -385,6 +391,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   base.name = opt.name;
   base.law = law;
   base.tanh_transition = law == BaseLaw::bingham && tanh;
+  if (extras.viscous_play) base.lost_motion_share = 1.0;  // the whole law's force waits for the play
   base.range = {};
   const std::vector<CurrentPoint> pts = regress_per_current(d, law == BaseLaw::bouc_wen);
   double y_max = 1.0, c_max = 1.0;
@@ -411,12 +418,15 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     // From the fit without it: a play at the largest current of 5 % or 20 %
     // of the smallest half range (a plateau short against the stroke),
     // holding up a third or two thirds of the force.
+    // A force inside the play over a band of 3 or 12 times the transition's
+    // (a plateau at a fraction of the force at the velocities past it).
     const double y_top = std::max(std::fabs(from->baseline.yield_n.at(top_current_a(p))), 1e-3);
     for (const double f : {0.05, 0.2})
-      for (const double share : {0.33, 0.67}) {
+      for (const double level : {0.33, 0.67}) {
         Baseline s = from->baseline;
         s.lost_motion_m_per_n = f * amp_min / y_top;
-        s.lost_motion_share = share;
+        s.lost_motion_share = extras.viscous_play ? 1.0 : level;
+        if (extras.viscous_play) s.lost_motion_band_m_s = (level < 0.5 ? 3.0 : 12.0) * from->baseline.v_tf_m_s;
         starts.push_back(s);
       }
   } else if (from != nullptr) {
@@ -505,6 +515,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   fit.sigma.force_delay_s = sigma[kDelay];
   fit.sigma.lost_motion_m_per_n = sigma[kPlay];
   fit.sigma.lost_motion_share = sigma[kShare];
+  fit.sigma.lost_motion_band_m_s = sigma[kPlayC];
   fit.sigma.transition_time_s = sigma[kTau];
 
   std::vector<Slot> shown{kYa, kYb, kYc, kCa, kCb, kCc};
@@ -518,7 +529,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   shown.push_back(kDelay);
   if (extras.lost_motion) {
     shown.push_back(kPlay);
-    shown.push_back(kShare);
+    shown.push_back(extras.viscous_play ? kPlayC : kShare);
   }
   for (const Slot s : shown)
     fit.params.push_back({kSlotName[s], slot_ref(fit.baseline, s), sigma[s], fitted[s], at_bound[s]});
@@ -678,11 +689,12 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   const auto try_extra = [&](std::size_t cur, Extras add, const std::string& implausible) -> std::size_t {
     std::vector<Slot> slots;  // the new extra's parameters
     if (add.transition_time) slots.push_back(kTau);
-    if (add.lost_motion) slots.insert(slots.end(), {kPlay, kShare});
+    if (add.lost_motion) slots.insert(slots.end(), {kPlay, add.viscous_play ? kPlayC : kShare});
     const LawFit from = res.fits[cur];
     Extras extras = extras_of(from.baseline);
     extras.transition_time = extras.transition_time || add.transition_time;
     extras.lost_motion = extras.lost_motion || add.lost_motion;
+    extras.viscous_play = extras.viscous_play || add.viscous_play;
     LawFit f = fit_law(p, from.baseline.law, from.baseline.tanh_transition, options, &from, extras);
     f.record_gaps = baseline_gaps(f.baseline, records, options.smoothing_half_window_s);
     res.fits.push_back(std::move(f));
@@ -730,9 +742,21 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     std::size_t cur = i;
     if (options.transition_time && res.fits[cur].baseline.law == BaseLaw::bingham)
       cur = try_extra(cur, {.transition_time = true}, "the transition time on its search bound");
-    if (options.lost_motion)
-      cur = try_extra(cur, {.lost_motion = true},
-                      "a lost-motion parameter on its bound, or a play as wide as the stroke");
+    if (options.lost_motion) {
+      // Two forms of the force inside the play, each tried on the same fit;
+      // of those kept, the lower gap on the check records.
+      const char* why = "a lost-motion parameter on its bound, or a play as wide as the stroke";
+      const LostMotionForm form = options.lost_motion_form;
+      const std::size_t shared = form == LostMotionForm::viscous ? cur : try_extra(cur, {.lost_motion = true}, why);
+      const std::size_t viscous = form == LostMotionForm::share
+                                      ? cur
+                                      : try_extra(cur, {.lost_motion = true, .viscous_play = true}, why);
+      if (shared != cur && viscous != cur) {
+        cur = check_gap(viscous) < check_gap(shared) ? viscous : shared;
+      } else {
+        cur = shared != cur ? shared : viscous;
+      }
+    }
     finals.push_back(cur);
   }
   // Without check records no extra is kept and the plain forms are

@@ -50,6 +50,7 @@ struct BaselineSigmas {
   double force_delay_s = 0.0;
   double lost_motion_m_per_n = 0.0;
   double lost_motion_share = 0.0;
+  double lost_motion_band_m_s = 0.0;
   double transition_time_s = 0.0;
 };
 
@@ -78,6 +79,10 @@ struct LawFit {
 /// Which transitions of the Bingham law to fit (baseline.hpp).
 enum class TransitionShape { both, linear, tanh };
 
+/// Which forms of the force inside a lost motion's play to fit (baseline.hpp):
+/// a share of the law's force, a force over a band of velocity, or both.
+enum class LostMotionForm { both, share, viscous };
+
 struct CalibrateOptions {
   std::optional<BaseLaw> law;  ///< nullopt: fit both, choose the lower BIC
   /// The Bingham law with Eq. 4.4's transition, with a tanh one, or both
@@ -90,6 +95,7 @@ struct CalibrateOptions {
   /// kept when it lowers the BIC by at least kBicMargin and the gap on the
   /// check records (calibrate()).
   bool lost_motion = true;
+  LostMotionForm lost_motion_form = LostMotionForm::both;
   std::size_t samples_per_record = 4000;
   double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s;
   std::string name = "calibrated";  ///< Baseline::name of the result

@@ -256,6 +256,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   // on the damper's own motion (after any mounting play).
   const bool lost_motion = p_.has_lost_motion();
   const double share = std::clamp(p_.lost_motion_share, 0.0, 1.0);
+  const double play_band = lost_motion ? std::max(p_.lost_motion_band_m_s, 0.0) : 0.0;
   if (lost_motion) {
     ws.lm_half_gap.resize(n);
     for (std::size_t k = 0; k < n; ++k) ws.lm_half_gap[k] = 0.5 * p_.lost_motion_m_per_n * std::fabs(a_y[k] + b_y[k]);
@@ -290,7 +291,11 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       // Eq. 4.1, 4.4, 5.12, or the tanh transition (baseline.hpp).
       fb = tanh_shape ? bingham_tanh_force_n(v, fy, cv, band) : bingham_force_n(v, fy, cv, band);
     }
-    if (lost_motion) fb *= (1.0 - share) + share * ws.lm_factor[k];
+    if (lost_motion) {
+      const double e = ws.lm_factor[k];
+      fb *= (1.0 - share) + share * e;
+      if (play_band > 0.0) fb += (1.0 - e) * fy * std::tanh(v / play_band);
+    }
     if (asym != 0.0) fb *= v > 0.0 ? 1.0 + asym : (v < 0.0 ? 1.0 - asym : 1.0);
     ws.force_n[k] = fb + elastic + k_gas * xd[k] + offset;
     if (idle) {

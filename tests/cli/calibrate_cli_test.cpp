@@ -65,15 +65,18 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   EXPECT_NEAR(f.baseline.v_tf_m_s, 0.005, 0.0005);
   const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
   // The law given with either transition, then each with a transition time
-  // and with a lost motion at reversals: no --check records, so none is kept.
+  // and with either lost motion at reversals: no --check records, so none is
+  // kept.
   EXPECT_EQ(j["chosen_law"], "bingham_tanh");
-  ASSERT_EQ(j["fits"].size(), 6u);
+  ASSERT_EQ(j["fits"].size(), 8u);
   EXPECT_EQ(j["fits"][0]["law"], "bingham");
   EXPECT_EQ(j["fits"][1]["law"], "bingham_tanh");
   EXPECT_EQ(j["fits"][2]["law"], "bingham+transition_time");
   EXPECT_EQ(j["fits"][3]["law"], "bingham+lost_motion");  // on the law kept, not on the time refused
-  EXPECT_EQ(j["fits"][4]["law"], "bingham_tanh+transition_time");
-  EXPECT_EQ(j["fits"][5]["law"], "bingham_tanh+lost_motion");
+  EXPECT_EQ(j["fits"][4]["law"], "bingham+viscous_lost_motion");
+  EXPECT_EQ(j["fits"][5]["law"], "bingham_tanh+transition_time");
+  EXPECT_EQ(j["fits"][6]["law"], "bingham_tanh+lost_motion");
+  EXPECT_EQ(j["fits"][7]["law"], "bingham_tanh+viscous_lost_motion");
   EXPECT_TRUE(fs::exists(out_.path() / "report.md"));
   EXPECT_FALSE(fs::exists(out_.path() / "loops_1.png"));
 

@@ -28,12 +28,21 @@ std::vector<MeasuredData> lab_family(const std::string& family) {
   return out;
 }
 
+/// The records of two families, the first's then the second's.
+std::vector<MeasuredData> lab_families(const std::string& first, const std::string& second) {
+  std::vector<MeasuredData> out = lab_family(first);
+  for (auto& d : lab_family(second)) out.push_back(std::move(d));
+  return out;
+}
+
 TEST(CalibrateLab, TwoFamiliesPredictTheThird) {
   ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
-  std::vector<MeasuredData> fit = lab_family("2mm_5Hz");
-  for (auto& d : lab_family("25mm_0p25Hz")) fit.push_back(std::move(d));
+  const std::vector<MeasuredData> fit = lab_families("2mm_5Hz", "25mm_0p25Hz");
   const std::vector<MeasuredData> held = lab_family("5mm_3Hz");
-  const CalibrationResult r = calibrate(fit, CalibrateOptions{}, held);
+  // The lost motion as a share of the force (the viscous form: below).
+  CalibrateOptions opt;
+  opt.lost_motion_form = LostMotionForm::share;
+  const CalibrationResult r = calibrate(fit, opt, held);
   // Bingham with Eq. 4.4's transition and with the tanh one, Bouc–Wen; each
   // Bingham with a transition time and that with a lost motion, Bouc–Wen
   // with a lost motion.
@@ -136,12 +145,50 @@ TEST(CalibrateLab, CheckRecordsThatRepeatTheFittedMotionsAreNamed) {
   EXPECT_TRUE(said);
 }
 
+// The viscous lost motion (baseline.hpp) on the laboratory damper. After
+// each reversal the measured force–displacement loops at 1 A (F against x,
+// as in the plots of the README's discrepancy section) rise steeply, hold a
+// plateau and reach the full force some 0.3–0.5 mm past the reversal at all
+// three strokes; the plateau is about 500 N at 2 mm / 5 Hz, where the piston
+// crosses it at 25–35 mm/s, and 150–250 N at 25 mm / 0.25 Hz, at about
+// 5 mm/s, of a full force of 1.0–1.4 kN: a level that follows the velocity
+// (Y tanh(v / v_p) with v_p between about 20 and 70 mm/s), not one share of
+// the force. Fitted on the 2 mm and 5 mm families with the form the check
+// records choose there (the tanh transition with a transition time) and
+// judged on the 25 mm family, the viscous form must carry to the slow
+// strokes better than the share form and than none, with a play at 1 A in
+// the range read off the loops.
+TEST(CalibrateLab, ViscousLostMotionCarriesToTheSlowStrokes) {
+  ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
+  const std::vector<MeasuredData> fit = lab_families("2mm_5Hz", "5mm_3Hz");
+  const std::vector<MeasuredData> held = lab_family("25mm_0p25Hz");
+  CalibrateOptions opt;
+  opt.law = BaseLaw::bingham;
+  opt.transition = TransitionShape::tanh;
+  const CalibrationResult r = calibrate(fit, opt, held);
+  // tanh, with a transition time, with that and either lost motion.
+  ASSERT_EQ(r.fits.size(), 4u);
+  ASSERT_EQ(baseline_form_name(r.fits[3].baseline), "bingham_tanh+transition_time+viscous_lost_motion");
+  ASSERT_TRUE(r.best().baseline.has_viscous_lost_motion()) << r.choice_reason;
+  const auto rms_held = [&](const LawFit& f) { return rms_over_records(baseline_gaps(f.baseline, held)); };
+  EXPECT_LT(rms_held(r.fits[3]), rms_held(r.fits[2])) << "against the share form";
+  EXPECT_LT(rms_held(r.fits[3]), rms_held(r.fits[1])) << "against none";
+  const Baseline& b = r.best().baseline;
+  const double play_m = b.lost_motion_m_per_n * b.yield_n.at(1.0);
+  EXPECT_GT(play_m, 0.1e-3);
+  EXPECT_LT(play_m, 0.6e-3);
+  // The band: within the loops' 20–70 mm/s or below it (the transition time
+  // and the force lag take part of the build-up the plateau shows), not
+  // above it, and not a step (v_p → 0 is the share form at r = 1).
+  EXPECT_GT(b.lost_motion_band_m_s, 0.005);
+  EXPECT_LT(b.lost_motion_band_m_s, 0.07);
+}
+
 TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
   ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
   // Calibrated on the 2 mm / 5 Hz and 5 mm / 3 Hz records, whose loops show
   // the plateau after each reversal; judged on the 25 mm / 0.25 Hz records.
-  std::vector<MeasuredData> fit = lab_family("2mm_5Hz");
-  for (auto& d : lab_family("5mm_3Hz")) fit.push_back(std::move(d));
+  const std::vector<MeasuredData> fit = lab_families("2mm_5Hz", "5mm_3Hz");
   const std::vector<MeasuredData> held = lab_family("25mm_0p25Hz");
   // The lost motion alone on the plain law: with the transition time kept
   // first (RMS 0.188 against 0.224 on the 25 mm records), the lost motion on
@@ -150,6 +197,7 @@ TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
   opt.law = BaseLaw::bingham;
   opt.transition = TransitionShape::linear;
   opt.transition_time = false;
+  opt.lost_motion_form = LostMotionForm::share;
   const CalibrationResult r = calibrate(fit, opt, held);
   ASSERT_EQ(r.fits.size(), 2u);
   ASSERT_TRUE(r.best().baseline.has_lost_motion()) << r.choice_reason;

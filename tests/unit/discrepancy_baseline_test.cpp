@@ -73,6 +73,22 @@ TEST(DiscrepancyBaseline, BoucWenModelForceAtSteadyMotion) {
   EXPECT_NEAR(DamperModel(in, b).force_ratio(), 1364.665 / 141.171e3, 1e-5);
 }
 
+/// A triangle wave of ±2 mm at 20 mm/s (0.2 s per stroke, up from −2 mm
+/// first), 1 kHz for 0.8 s, at 1 A.
+ModelInput triangle_wave_at_one_ampere() {
+  ModelInput in;
+  const double v = 0.02;
+  for (int k = 0; k <= 800; ++k) {
+    const double t = k * 1e-3;
+    const double phase = std::fmod(t, 0.4);
+    in.time_s.push_back(t);
+    in.disp_m.push_back(phase < 0.2 ? -0.002 + v * phase : 0.002 - v * (phase - 0.2));
+    in.vel_m_s.push_back(phase < 0.2 ? v : -v);
+    in.current_cmd_a.push_back(1.0);
+  }
+  return in;
+}
+
 // Lost motion at reversals (baseline.hpp), by hand. A triangle wave of
 // ±2 mm at 20 mm/s (0.2 s per stroke), 1 kHz, at 1 A; Bingham with a
 // transition velocity far below 20 mm/s and no viscous term, so the plain
@@ -89,16 +105,7 @@ TEST(DiscrepancyBaseline, LostMotionHoldsUpItsShareForItsPlay) {
   b.v_tf_m_s = 1e-5;
   b.lost_motion_m_per_n = 2.2e-7;
   b.lost_motion_share = 0.6;
-  ModelInput in;
-  const double v = 0.02;
-  for (int k = 0; k <= 800; ++k) {
-    const double t = k * 1e-3;
-    const double phase = std::fmod(t, 0.4);  // up 0.2 s from −2 mm, down 0.2 s
-    in.time_s.push_back(t);
-    in.disp_m.push_back(phase < 0.2 ? -0.002 + v * phase : 0.002 - v * (phase - 0.2));
-    in.vel_m_s.push_back(phase < 0.2 ? v : -v);
-    in.current_cmd_a.push_back(1.0);
-  }
+  const ModelInput in = triangle_wave_at_one_ampere();
   const DamperModel model(in, b);
   ModelWorkspace ws;
   std::vector<double> f;
@@ -113,6 +120,36 @@ TEST(DiscrepancyBaseline, LostMotionHoldsUpItsShareForItsPlay) {
   b.lost_motion_share = 0.0;
   DamperModel(in, b).simulate(EffectSet{}, {}, ws, f);
   EXPECT_NEAR(f[205], -y, 0.5);
+}
+
+// The viscous lost motion (baseline.hpp), by hand, on the record above:
+// r = 1 and a band v_p = 40 mm/s, so 4–10 ms after a reversal (inside the
+// play of 0.3002 mm, clear of the contact window) the force is
+// Y tanh(v / v_p) = 1364.665 × tanh(0.5) = 1364.665 × 0.462117 = 630.64 N in
+// the new direction, and from 20 ms on it is Y. With the share r = 0.6 kept,
+// inside the play it is (1 − r) Y + Y tanh(0.5) = 545.87 + 630.64 = 1176.51 N.
+TEST(DiscrepancyBaseline, ViscousLostMotionGivesTheBandsForceInsideThePlay) {
+  Baseline b;
+  b.yield_n = {500.0, 1500.0, 2.0};
+  b.viscous_ns_m = {0.0, 0.0, 1.0};
+  b.v_tf_m_s = 1e-5;
+  b.lost_motion_m_per_n = 2.2e-7;
+  b.lost_motion_share = 1.0;
+  b.lost_motion_band_m_s = 0.04;
+  ASSERT_TRUE(b.has_viscous_lost_motion());
+  EXPECT_EQ(baseline_form_name(b), "bingham+viscous_lost_motion");
+  const ModelInput in = triangle_wave_at_one_ampere();
+  ModelWorkspace ws;
+  std::vector<double> f;
+  DamperModel(in, b).simulate(EffectSet{}, {}, ws, f);
+  const double y = 1364.665;
+  for (int ms = 204; ms <= 210; ++ms) EXPECT_NEAR(f[ms], -630.64, 0.5) << ms << " ms";
+  for (int ms = 220; ms <= 396; ms += 4) EXPECT_NEAR(f[ms], -y, 0.5) << ms << " ms";
+  for (int ms = 404; ms <= 410; ++ms) EXPECT_NEAR(f[ms], 630.64, 0.5) << ms << " ms";
+  b.lost_motion_share = 0.6;
+  DamperModel(in, b).simulate(EffectSet{}, {}, ws, f);
+  EXPECT_NEAR(f[206], -1176.51, 0.5);
+  EXPECT_NEAR(f[300], -y, 0.5);
 }
 
 // The tanh transition (baseline.hpp): F = Y tanh(v / v_TF) + C v. At a
