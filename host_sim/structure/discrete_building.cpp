@@ -12,12 +12,14 @@ DiscreteModel discretize_zoh(const ContinuousModel& model, double dt_s) {
   if (!std::isfinite(dt_s) || dt_s <= 0.0) {
     throw std::invalid_argument("discretization step must be finite and > 0 s, got " + std::to_string(dt_s));
   }
+  // Dynamic-size matrices for the one-time setup (the exponential and the
+  // eigen-decomposition below): the fixed 14×14 and 12×12 forms unroll into
+  // code that took most of this file's compile time, and run once.
   constexpr int kAug = kStates + kInputs;
-  using Augmented = Eigen::Matrix<double, kAug, kAug>;
-  Augmented aug = Augmented::Zero();
+  Eigen::MatrixXd aug = Eigen::MatrixXd::Zero(kAug, kAug);
   aug.topLeftCorner<kStates, kStates>() = model.a * dt_s;
   aug.topRightCorner<kStates, kInputs>() = model.b * dt_s;
-  const Augmented e = aug.exp();
+  const Eigen::MatrixXd e = aug.exp();
 
   DiscreteModel d;
   d.phi = e.topLeftCorner<kStates, kStates>();
@@ -40,7 +42,8 @@ namespace {
 /// Real modal basis of A: for each complex pair λ = σ ± iω with eigenvector
 /// a ± ib, the columns a, b. Returns false when A has a real eigenvalue.
 bool real_modal_basis(const StateMatrix& a, StateMatrix& t) {
-  Eigen::EigenSolver<StateMatrix> es(a);
+  const Eigen::MatrixXd a_dyn = a;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(a_dyn);
   if (es.info() != Eigen::Success) return false;
   const auto values = es.eigenvalues();
   const auto vectors = es.eigenvectors();

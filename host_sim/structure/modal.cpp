@@ -26,7 +26,9 @@ ModalResult modal_analysis(const BuildingParams& params) {
   ModalResult r;
 
   // Damped modes: one eigenvalue of each conjugate pair (Im λ > 0).
-  Eigen::EigenSolver<StateMatrix> es(cm.a, /*computeEigenvectors=*/false);
+  // Dynamic sizes (one-time analysis; the fixed 12×12 solver unrolls into
+  // code that dominated this file's compile time).
+  Eigen::EigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(cm.a), /*computeEigenvectors=*/false);
   if (es.info() != Eigen::Success) throw std::runtime_error("modal analysis: eigenvalues of A did not converge");
   std::array<DampedMode, kDofs> modes{};
   int n = 0;
@@ -49,7 +51,8 @@ ModalResult modal_analysis(const BuildingParams& params) {
   }
 
   // Undamped modes: K φ = ω² M φ; Eigen returns ω² ascending.
-  Eigen::GeneralizedSelfAdjointEigenSolver<Matrix6> gs(stiffness_matrix(params), mass_matrix(params));
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> gs(Eigen::MatrixXd(stiffness_matrix(params)),
+                                                              Eigen::MatrixXd(mass_matrix(params)));
   if (gs.info() != Eigen::Success) throw std::runtime_error("modal analysis: K φ = ω² M φ did not converge");
   for (int k = 0; k < kDofs; ++k) {
     r.undamped_frequencies_hz[k] = std::sqrt(gs.eigenvalues()(k)) / kTwoPi;

@@ -46,7 +46,7 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   const auto b = record("b.csv", 0.5);
   const auto c = record("c.csv", 1.0);
   const auto r = run_mrd("calibrate --measured " + a.string() + " " + b.string() + " " + c.string() +
-                             " --law bingham --no-plots --out " + out_.path().string(),
+                             " --law bingham --lost-motion-form viscous --no-plots --out " + out_.path().string(),
                          scratch_.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* name : {"a.csv", "b.csv", "c.csv", "chosen: law given: bingham"})
@@ -65,18 +65,16 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   EXPECT_NEAR(f.baseline.v_tf_m_s, 0.005, 0.0005);
   const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
   // The law given with either transition, then each with a transition time
-  // and with either lost motion at reversals: no --check records, so none is
-  // kept.
+  // and with the lost motion in the form asked for: no --check records, so
+  // none is kept.
   EXPECT_EQ(j["chosen_law"], "bingham_tanh");
-  ASSERT_EQ(j["fits"].size(), 8u);
+  ASSERT_EQ(j["fits"].size(), 6u);
   EXPECT_EQ(j["fits"][0]["law"], "bingham");
   EXPECT_EQ(j["fits"][1]["law"], "bingham_tanh");
   EXPECT_EQ(j["fits"][2]["law"], "bingham+transition_time");
-  EXPECT_EQ(j["fits"][3]["law"], "bingham+lost_motion");  // on the law kept, not on the time refused
-  EXPECT_EQ(j["fits"][4]["law"], "bingham+viscous_lost_motion");
-  EXPECT_EQ(j["fits"][5]["law"], "bingham_tanh+transition_time");
-  EXPECT_EQ(j["fits"][6]["law"], "bingham_tanh+lost_motion");
-  EXPECT_EQ(j["fits"][7]["law"], "bingham_tanh+viscous_lost_motion");
+  EXPECT_EQ(j["fits"][3]["law"], "bingham+viscous_lost_motion");  // on the law kept, not on the time refused
+  EXPECT_EQ(j["fits"][4]["law"], "bingham_tanh+transition_time");
+  EXPECT_EQ(j["fits"][5]["law"], "bingham_tanh+viscous_lost_motion");
   EXPECT_TRUE(fs::exists(out_.path() / "report.md"));
   EXPECT_FALSE(fs::exists(out_.path() / "loops_1.png"));
 
@@ -173,6 +171,9 @@ TEST_F(CalibrateCli, BadLawAndBadBaselineFileAreOneLineErrors) {
   EXPECT_EQ(shape.exit_code, 2);
   EXPECT_NE(shape.err.find("--transition: expected linear, tanh or auto, got 'cubic'"), std::string::npos)
       << shape.err;
+  const auto form = run_mrd("calibrate --measured " + a.string() + " --lost-motion-form plastic", scratch_.path());
+  EXPECT_EQ(form.exit_code, 2);
+  EXPECT_NE(form.err.find("--lost-motion-form: plastic not in {both,share,viscous}"), std::string::npos) << form.err;
 
   const auto bad = scratch_.path() / "damper.toml";
   std::ofstream(bad) << "[model]\nlaw = \"spring\"\n";
