@@ -20,7 +20,7 @@ namespace mrd::discrepancy {
 namespace {
 
 /// The parameters a calibration can fit.
-enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kPlayC, kSlots };
+enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kBand, kSlots };
 
 constexpr std::array<const char*, kSlots> kSlotName{
     "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
@@ -52,7 +52,7 @@ double& slot_ref(Baseline& b, Slot s) {
     case kPlay: return b.lost_motion_m_per_n;
     case kShare: return b.lost_motion_share;
     case kTau: return b.transition_time_s;
-    case kPlayC: return b.lost_motion_band_m_s;
+    case kBand: return b.lost_motion_band_m_s;
     default: break;
   }
   return b.v_tf_m_s;
@@ -382,7 +382,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   layout.free.push_back(kDelay);
   if (extras.lost_motion) {
     layout.free.push_back(kPlay);
-    layout.free.push_back(extras.viscous_play ? kPlayC : kShare);
+    layout.free.push_back(extras.viscous_play ? kBand : kShare);
   }
 
   // Base: the thesis's coil and participant ratio (not identifiable here),
@@ -515,7 +515,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   fit.sigma.force_delay_s = sigma[kDelay];
   fit.sigma.lost_motion_m_per_n = sigma[kPlay];
   fit.sigma.lost_motion_share = sigma[kShare];
-  fit.sigma.lost_motion_band_m_s = sigma[kPlayC];
+  fit.sigma.lost_motion_band_m_s = sigma[kBand];
   fit.sigma.transition_time_s = sigma[kTau];
 
   std::vector<Slot> shown{kYa, kYb, kYc, kCa, kCb, kCc};
@@ -529,7 +529,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   shown.push_back(kDelay);
   if (extras.lost_motion) {
     shown.push_back(kPlay);
-    shown.push_back(extras.viscous_play ? kPlayC : kShare);
+    shown.push_back(extras.viscous_play ? kBand : kShare);
   }
   for (const Slot s : shown)
     fit.params.push_back({kSlotName[s], slot_ref(fit.baseline, s), sigma[s], fitted[s], at_bound[s]});
@@ -689,7 +689,7 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   const auto try_extra = [&](std::size_t cur, Extras add, const std::string& implausible) -> std::size_t {
     std::vector<Slot> slots;  // the new extra's parameters
     if (add.transition_time) slots.push_back(kTau);
-    if (add.lost_motion) slots.insert(slots.end(), {kPlay, add.viscous_play ? kPlayC : kShare});
+    if (add.lost_motion) slots.insert(slots.end(), {kPlay, add.viscous_play ? kBand : kShare});
     const LawFit from = res.fits[cur];
     Extras extras = extras_of(from.baseline);
     extras.transition_time = extras.transition_time || add.transition_time;
