@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include "host_sim/discrepancy/baseline_check.hpp"
 #include "host_sim/discrepancy/damper_model.hpp"
@@ -417,16 +418,19 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   if (from != nullptr && extras.lost_motion && !from->baseline.has_lost_motion()) {
     // From the fit without it: a play at the largest current of 5 % or 20 %
     // of the smallest half range (a plateau short against the stroke),
-    // holding up a third or two thirds of the force.
-    // A force inside the play over a band of 3 or 12 times the transition's
-    // (a plateau at a fraction of the force at the velocities past it).
+    // holding up a third or two thirds of the force, or (the viscous form,
+    // its share held at 1 by `base`) with a force inside the play over a
+    // band of 3 or 12 times the transition's.
     const double y_top = std::max(std::fabs(from->baseline.yield_n.at(top_current_a(p))), 1e-3);
     for (const double f : {0.05, 0.2})
-      for (const double level : {0.33, 0.67}) {
+      for (const auto& [share, band_per_v_tf] : {std::pair{0.33, 3.0}, std::pair{0.67, 12.0}}) {
         Baseline s = from->baseline;
         s.lost_motion_m_per_n = f * amp_min / y_top;
-        s.lost_motion_share = extras.viscous_play ? 1.0 : level;
-        if (extras.viscous_play) s.lost_motion_band_m_s = (level < 0.5 ? 3.0 : 12.0) * from->baseline.v_tf_m_s;
+        if (extras.viscous_play) {
+          s.lost_motion_band_m_s = band_per_v_tf * from->baseline.v_tf_m_s;
+        } else {
+          s.lost_motion_share = share;
+        }
         starts.push_back(s);
       }
   } else if (from != nullptr) {
@@ -743,19 +747,17 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     if (options.transition_time && res.fits[cur].baseline.law == BaseLaw::bingham)
       cur = try_extra(cur, {.transition_time = true}, "the transition time on its search bound");
     if (options.lost_motion) {
-      // Two forms of the force inside the play, each tried on the same fit;
-      // of those kept, the lower gap on the check records.
-      const char* why = "a lost-motion parameter on its bound, or a play as wide as the stroke";
+      // Each form of the force inside the play asked for, tried on the same
+      // fit; of those kept, the lower gap on the check records.
       const LostMotionForm form = options.lost_motion_form;
-      const std::size_t shared = form == LostMotionForm::viscous ? cur : try_extra(cur, {.lost_motion = true}, why);
-      const std::size_t viscous = form == LostMotionForm::share
-                                      ? cur
-                                      : try_extra(cur, {.lost_motion = true, .viscous_play = true}, why);
-      if (shared != cur && viscous != cur) {
-        cur = check_gap(viscous) < check_gap(shared) ? viscous : shared;
-      } else {
-        cur = shared != cur ? shared : viscous;
+      std::size_t kept = cur;
+      for (const bool viscous : {false, true}) {
+        if (form == (viscous ? LostMotionForm::share : LostMotionForm::viscous)) continue;
+        const std::size_t k = try_extra(cur, {.lost_motion = true, .viscous_play = viscous},
+                                        "a lost-motion parameter on its bound, or a play as wide as the stroke");
+        if (k != cur && (kept == cur || check_gap(k) < check_gap(kept))) kept = k;
       }
+      cur = kept;
     }
     finals.push_back(cur);
   }

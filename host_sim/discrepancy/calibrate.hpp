@@ -95,6 +95,8 @@ struct CalibrateOptions {
   /// kept when it lowers the BIC by at least kBicMargin and the gap on the
   /// check records (calibrate()).
   bool lost_motion = true;
+  /// The lost motion's forms tried, each on the same fit (the one with the
+  /// lower check gap kept when both are).
   LostMotionForm lost_motion_form = LostMotionForm::both;
   std::size_t samples_per_record = 4000;
   double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s;

@@ -256,7 +256,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   // on the damper's own motion (after any mounting play).
   const bool lost_motion = p_.has_lost_motion();
   const double share = std::clamp(p_.lost_motion_share, 0.0, 1.0);
-  const double play_band = lost_motion ? std::max(p_.lost_motion_band_m_s, 0.0) : 0.0;
+  const double play_band = std::max(p_.lost_motion_band_m_s, 0.0);
   if (lost_motion) {
     ws.lm_half_gap.resize(n);
     for (std::size_t k = 0; k < n; ++k) ws.lm_half_gap[k] = 0.5 * p_.lost_motion_m_per_n * std::fabs(a_y[k] + b_y[k]);

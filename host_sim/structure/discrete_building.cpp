@@ -13,8 +13,8 @@ DiscreteModel discretize_zoh(const ContinuousModel& model, double dt_s) {
     throw std::invalid_argument("discretization step must be finite and > 0 s, got " + std::to_string(dt_s));
   }
   // Dynamic-size matrices for the one-time setup (the exponential and the
-  // eigen-decomposition below): the fixed 14×14 and 12×12 forms unroll into
-  // code that took most of this file's compile time, and run once.
+  // eigen-decomposition below): they run once, and the fixed 14×14 and
+  // 12×12 forms unroll into more code to compile.
   constexpr int kAug = kStates + kInputs;
   Eigen::MatrixXd aug = Eigen::MatrixXd::Zero(kAug, kAug);
   aug.topLeftCorner<kStates, kStates>() = model.a * dt_s;

@@ -26,8 +26,8 @@ ModalResult modal_analysis(const BuildingParams& params) {
   ModalResult r;
 
   // Damped modes: one eigenvalue of each conjugate pair (Im λ > 0).
-  // Dynamic sizes (one-time analysis; the fixed 12×12 solver unrolls into
-  // code that dominated this file's compile time).
+  // Dynamic sizes (one-time analysis; the fixed-size solvers unrolled into
+  // half of this file's compile time).
   Eigen::EigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(cm.a), /*computeEigenvectors=*/false);
   if (es.info() != Eigen::Success) throw std::runtime_error("modal analysis: eigenvalues of A did not converge");
   std::array<DampedMode, kDofs> modes{};

@@ -89,6 +89,18 @@ ModelInput triangle_wave_at_one_ampere() {
   return in;
 }
 
+/// Bingham with Y(1 A) = 1364.665 N, no viscous term and a transition
+/// velocity far below the triangle wave's 20 mm/s (so the plain force is
+/// Y sgn v), and a lost motion of λ = 2.2e-7 m/N (its share and band to set).
+Baseline yield_only_with_a_play() {
+  Baseline b;
+  b.yield_n = {500.0, 1500.0, 2.0};
+  b.viscous_ns_m = {0.0, 0.0, 1.0};
+  b.v_tf_m_s = 1e-5;
+  b.lost_motion_m_per_n = 2.2e-7;
+  return b;
+}
+
 // Lost motion at reversals (baseline.hpp), by hand. A triangle wave of
 // ±2 mm at 20 mm/s (0.2 s per stroke), 1 kHz, at 1 A; Bingham with a
 // transition velocity far below 20 mm/s and no viscous term, so the plain
@@ -99,11 +111,7 @@ ModelInput triangle_wave_at_one_ampere() {
 // (1 − r) Y = 545.87 N in the new direction, and from 20 ms on (the play
 // ends at 15.01 ms, plus the window) it is Y.
 TEST(DiscrepancyBaseline, LostMotionHoldsUpItsShareForItsPlay) {
-  Baseline b;
-  b.yield_n = {500.0, 1500.0, 2.0};
-  b.viscous_ns_m = {0.0, 0.0, 1.0};
-  b.v_tf_m_s = 1e-5;
-  b.lost_motion_m_per_n = 2.2e-7;
+  Baseline b = yield_only_with_a_play();
   b.lost_motion_share = 0.6;
   const ModelInput in = triangle_wave_at_one_ampere();
   const DamperModel model(in, b);
@@ -129,11 +137,7 @@ TEST(DiscrepancyBaseline, LostMotionHoldsUpItsShareForItsPlay) {
 // the new direction, and from 20 ms on it is Y. With the share r = 0.6 kept,
 // inside the play it is (1 − r) Y + Y tanh(0.5) = 545.87 + 630.64 = 1176.51 N.
 TEST(DiscrepancyBaseline, ViscousLostMotionGivesTheBandsForceInsideThePlay) {
-  Baseline b;
-  b.yield_n = {500.0, 1500.0, 2.0};
-  b.viscous_ns_m = {0.0, 0.0, 1.0};
-  b.v_tf_m_s = 1e-5;
-  b.lost_motion_m_per_n = 2.2e-7;
+  Baseline b = yield_only_with_a_play();
   b.lost_motion_share = 1.0;
   b.lost_motion_band_m_s = 0.04;
   ASSERT_TRUE(b.has_viscous_lost_motion());
