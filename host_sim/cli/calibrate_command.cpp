@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <map>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,6 +39,11 @@ lowest BIC. So the check records' gaps are those of a validation set; --test rec
 judged only after everything is chosen (an untouched test set). A note says when every
 check record repeats the amplitude and frequency of a fitted one (within 1.25x): such a
 check judges the current laws, not other motions.
+--floors fits the chosen form again to each record alone (its current laws constants at the
+record's current), from the calibrated baseline: that record's floor, the gap no one model of
+the form gets below on it. A gap above its floor is what the form loses by being one model for
+all the records (other strokes, frequencies, currents, test sessions); the floor is what it
+cannot describe in the record itself.
 With three or more currents the current laws are fitted whole; with two,
 rate_per_a is held at the thesis value; with one, the laws are constants.
 The coil time constants (Eq. 4.5) and the participant ratio are not identifiable from
@@ -49,7 +55,8 @@ Input (--measured, --check, --test): CSV or .mat records as for `mrd discrepancy
 Files: damper.toml; summary.json (chosen_law, choice_reason, records, currents_a, notes, fits:
 law, parameters {value, sigma, fitted, at_bound}, record_gaps, expected_gap, samples,
 rss_normalized, n_eff, bic; held_out: gap per law of the --check records; test: the same for
-the --test records, and test_gap_rms: the chosen form's RMS gap over them; validity);
+the --test records, and test_gap_rms: the chosen form's RMS gap over them; floors: measured,
+check and test lists with --floors, else null; validity);
 report.md; loops_<n>.png per --measured record (force-velocity and force-displacement; the
 plain laws and the chosen form).
 Gap: sqrt(sum (F_model - F_meas)^2 / sum F_meas^2), a fraction.)"};
@@ -63,6 +70,7 @@ struct CalibrateCliOptions {
   bool no_plots = false;
   bool no_lost_motion = false;
   bool no_transition_time = false;
+  bool floors = false;
   std::string transition = "auto";
   std::string lost_motion_form = "both";
 };
@@ -89,6 +97,9 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
       ->check(CLI::IsMember(kLostMotionForms))
       ->capture_default_str();
   app.add_flag("--no-transition-time", o.no_transition_time, "Do not try the transition time (bingham)");
+  app.add_flag("--floors", o.floors,
+               "Also fit the chosen form to each record alone: its floor on the record, beside the gap (one fit per "
+               "record)");
 }
 
 discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
@@ -117,6 +128,7 @@ struct Outcome {
   discrepancy::CalibrationResult result;
   discrepancy::HeldOut held_out;
   discrepancy::HeldOut test;
+  discrepancy::RecordFloors floors;
 };
 
 void print_summary(const Outcome& out) {
@@ -136,6 +148,18 @@ void print_summary(const Outcome& out) {
       std::printf("\n");
     }
   }
+  if (!out.floors.empty()) {
+    // The chosen form's gap against its floor, record by record.
+    const auto rows = [](const std::vector<std::string>& sources, const char* tag, std::span<const double> gaps,
+                         std::span<const double> floors) {
+      for (std::size_t i = 0; i < sources.size(); ++i)
+        std::printf("floor: %-40s gap %6.2f %%  floor %6.2f %%\n", (sources[i] + tag).c_str(), 100.0 * gaps[i],
+                    100.0 * floors[i]);
+    };
+    rows(r.sources, "", r.best().record_gaps, out.floors.measured);
+    rows(out.held_out.sources, " (check)", out.held_out.gaps[r.chosen], out.floors.check);
+    rows(out.test.sources, " (test)", out.test.gaps[r.chosen], out.floors.test);
+  }
   for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());
   std::printf("chosen: %s\n", r.choice_reason.c_str());
   if (!out.test.sources.empty())
@@ -152,15 +176,16 @@ void execute(const CalibrateCliOptions& o) {
   compute_print_write(
       "calibrate", o.out_dir,
       [&] {
-        Outcome out{discrepancy::calibrate(records, opt, checks), {}, {}};
+        Outcome out{discrepancy::calibrate(records, opt, checks), {}, {}, {}};
         out.held_out = discrepancy::held_out_gaps(out.result, checks, opt);
         out.test = discrepancy::held_out_gaps(out.result, tests, opt);
+        if (o.floors) out.floors = discrepancy::record_floors(out.result, records, checks, tests, opt);
         return out;
       },
       print_summary,
       [&](const std::filesystem::path& dir, const Outcome& out) {
         return discrepancy::write_calibration_outputs(dir, records, out.result, out.held_out, opt, !o.no_plots,
-                                                        out.test);
+                                                        out.test, out.floors);
       });
 }
 

@@ -354,9 +354,10 @@ Extras extras_of(const Baseline& b) {
 /// Fits `law` (with the tanh transition when `tanh` and the law is Bingham)
 /// with `extras` to the records. With `from` given (a fit of the
 /// same law with one extra fewer), starts from it with the new extra's
-/// parameters on a grid.
+/// parameters on a grid; with `start_at` (a baseline of this form), from it
+/// alone, its current laws taken at the records' current when they are one.
 LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions& opt,
-               const LawFit* from = nullptr, Extras extras = {}) {
+               const LawFit* from = nullptr, Extras extras = {}, const Baseline* start_at = nullptr) {
   const JointData& d = p.data;
   const std::size_t n_currents = p.currents_a.size();
   const Baseline thesis = thesis_baseline();
@@ -415,7 +416,14 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   // the force lag at 1 ms and 10 ms (a lag near a period's fraction has
   // neighbouring minima on a sine).
   std::vector<Baseline> starts;
-  if (from != nullptr && extras.lost_motion && !from->baseline.has_lost_motion()) {
+  if (start_at != nullptr) {
+    Baseline s = *start_at;
+    if (layout.constant_laws) {
+      s.yield_n.at_zero = s.yield_n.at(top_current_a(p));
+      s.viscous_ns_m.at_zero = s.viscous_ns_m.at(top_current_a(p));
+    }
+    starts.push_back(s);
+  } else if (from != nullptr && extras.lost_motion && !from->baseline.has_lost_motion()) {
     // From the fit without it: a play at the largest current of 5 % or 20 %
     // of the smallest half range (a plateau short against the stroke),
     // holding up a third or two thirds of the force, or (the viscous form,
@@ -555,6 +563,17 @@ std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const Meas
                                       std::span<const double>(force).subspan(moving.begin, moving.size())));
   }
   return gaps;
+}
+
+std::vector<double> record_floor_gaps(const Baseline& form, std::span<const MeasuredData> records,
+                                      const CalibrateOptions& options) {
+  std::vector<double> floors;
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    const Prepared p = prepare(records.subspan(r, 1), options);
+    const LawFit f = fit_law(p, form.law, form.tanh_transition, options, nullptr, extras_of(form), &form);
+    floors.push_back(baseline_gaps(f.baseline, records.subspan(r, 1), options.smoothing_half_window_s).front());
+  }
+  return floors;
 }
 
 double rms_over_records(std::span<const double> gaps) {

@@ -140,6 +140,19 @@ struct CalibrationResult {
 [[nodiscard]] std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const MeasuredData> records,
                                                 double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
 
+/// The form of `form` (law, transition, extras) fitted to each record
+/// alone, from `form` itself (a constant-current record: its current laws
+/// constants at that current): normalized_rms_gap of that fit on each
+/// record, as baseline_gaps.
+/// It is the record's floor, the gap no one model of that form gets below on
+/// it (up to the fit's local minimum, from a start whose gap is the
+/// calibrated one's): a calibrated gap above its floor is what the form lost
+/// by being one model for every record (other strokes, frequencies and
+/// currents, or a difference between test sessions), the floor itself what
+/// it cannot describe in that record. One fit per record.
+[[nodiscard]] std::vector<double> record_floor_gaps(const Baseline& form, std::span<const MeasuredData> records,
+                                                    const CalibrateOptions& options = {});
+
 /// sqrt(mean of gaps²): the RMS over records of per-record gaps (0 for none).
 [[nodiscard]] double rms_over_records(std::span<const double> gaps);
 

@@ -1,6 +1,8 @@
 #include "host_sim/discrepancy/calibrate_report.hpp"
 
 #include <algorithm>
+#include <string_view>
+#include <tuple>
 #include <utility>
 
 #include "host_sim/discrepancy/baseline_file.hpp"
@@ -78,7 +80,16 @@ void cell(std::string& md, std::string_view text) {
   md += " |";
 }
 
-std::string markdown(const CalibrationResult& r, const HeldOut& h, const HeldOut& test, bool plots) {
+/// "- <what> records: RMS gap of the chosen form X, its floor Y": the
+/// chosen form's gaps and floors over one set of records, each as an RMS.
+std::string floor_line(std::string_view what, std::span<const double> gaps, std::span<const double> floors) {
+  return "- " + std::string(what) + " records: RMS gap of the chosen form " + pct(rms_over_records(gaps)) +
+         ", its floor " + pct(rms_over_records(floors)) + "\n";
+}
+
+std::string markdown(const CalibrationResult& r, const HeldOut& h, const HeldOut& test, const RecordFloors& floors,
+                     bool plots) {
+  const bool with_floors = !floors.empty();
   std::string md = "# Damper calibration\n\n";
   md += "Chosen law: **" + std::string(baseline_form_name(r.best().baseline)) + "** (" + r.choice_reason + ").\n\n";
   for (const std::string& n : r.notes) md += "- " + n + "\n";
@@ -93,24 +104,36 @@ std::string markdown(const CalibrationResult& r, const HeldOut& h, const HeldOut
   }
   md += "## Gap per record (normalized RMS of model - measured force)\n\n| record |";
   for (const LawFit& f : r.fits) cell(md, baseline_form_name(f.baseline));
+  if (with_floors) cell(md, "floor: the chosen form fitted to the record alone");
   md += "\n|---|";
-  for (std::size_t i = 0; i < r.fits.size(); ++i) md += "---|";
+  for (std::size_t i = 0; i < r.fits.size() + (with_floors ? 1 : 0); ++i) md += "---|";
   md += "\n";
   for (std::size_t i = 0; i < r.sources.size(); ++i) {
     md += "| " + r.sources[i] + " |";
     for (const LawFit& f : r.fits) cell(md, pct(f.record_gaps[i]));
+    if (with_floors) cell(md, pct(floors.measured[i]));
     md += "\n";
   }
-  for (const auto& [set, tag] : {std::pair{&h, " (check)"}, std::pair{&test, " (test)"}}) {
+  for (const auto& [set, tag, floor] : {std::tuple{&h, " (check)", &floors.check},
+                                        std::tuple{&test, " (test)", &floors.test}}) {
     for (std::size_t i = 0; i < set->sources.size(); ++i) {
       md += "| " + set->sources[i] + tag + " |";
       for (std::size_t l = 0; l < r.fits.size(); ++l) cell(md, pct(set->gaps[l][i]));
+      if (with_floors) cell(md, pct((*floor)[i]));
       md += "\n";
     }
   }
   if (!h.sources.empty() || !test.sources.empty())
     md += "\n(check) records are not fitted but choose the extras and the form; (test) records are seen by nothing "
           "in the calibration.\n";
+  if (with_floors) {
+    md += "\nA record's floor is the gap of the chosen form fitted to that record alone (its current laws constants "
+          "at the record's current): what the form cannot describe in the record. The gap above it is what the form "
+          "loses by being one model for every record.\n\n";
+    md += floor_line("fitted", r.best().record_gaps, floors.measured);
+    if (!h.sources.empty()) md += floor_line("check", h.gaps[r.chosen], floors.check);
+    if (!test.sources.empty()) md += floor_line("test", test.gaps[r.chosen], floors.test);
+  }
   if (!test.sources.empty())
     md += "\nRMS gap of the chosen form on the test records: **" + pct(rms_over_records(test.gaps[r.chosen])) + "**.\n";
   const ValidityRange& v = r.best().baseline.range;
@@ -136,7 +159,15 @@ HeldOut held_out_gaps(const CalibrationResult& r, std::span<const MeasuredData> 
   return h;
 }
 
-json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOut& test) {
+RecordFloors record_floors(const CalibrationResult& r, std::span<const MeasuredData> records,
+                           std::span<const MeasuredData> check, std::span<const MeasuredData> test,
+                           const CalibrateOptions& options) {
+  const Baseline& form = r.best().baseline;
+  return {record_floor_gaps(form, records, options), record_floor_gaps(form, check, options),
+          record_floor_gaps(form, test, options)};
+}
+
+json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOut& test, const RecordFloors& floors) {
   json fits = json::array();
   for (const LawFit& f : r.fits) fits.push_back(fit_json(f, r));
   const auto per_record = [&](const HeldOut& set) {
@@ -160,6 +191,10 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
           {"held_out", held},
           {"test", test_json},
           {"test_gap_rms", test.sources.empty() ? json(nullptr) : json(rms_over_records(test.gaps[r.chosen]))},
+          {"floors", floors.empty() ? json(nullptr)
+                                    : json{{"measured", floors.measured},
+                                           {"check", floors.check},
+                                           {"test", floors.test}}},
           {"validity",
            {{"current_min_a", v.current_min_a},
             {"current_max_a", v.current_max_a},
@@ -175,15 +210,15 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
 std::vector<std::string> write_calibration_outputs(const std::filesystem::path& dir,
                                                    std::span<const MeasuredData> records, const CalibrationResult& r,
                                                    const HeldOut& held_out, const CalibrateOptions& options,
-                                                   bool plots, const HeldOut& test) {
+                                                   bool plots, const HeldOut& test, const RecordFloors& floors) {
   std::vector<std::string> problems;
   write_baseline_file(baseline_file_of(r), dir / "damper.toml");
   if (plots) {
     for (std::size_t i = 0; i < records.size(); ++i)
       plot_record(dir / ("loops_" + std::to_string(i + 1) + ".png"), records[i], r, options, problems);
   }
-  report::write_file_atomically(dir / "report.md", markdown(r, held_out, test, plots));
-  report::write_summary_json(dir, calibration_json(r, held_out, test));
+  report::write_file_atomically(dir / "report.md", markdown(r, held_out, test, floors, plots));
+  report::write_summary_json(dir, calibration_json(r, held_out, test, floors));
   return problems;
 }
 

@@ -132,7 +132,8 @@ TEST_F(CalibrateCli, TestRecordsAreJudgedButChooseNothing) {
   TempDir plain;
   const auto r0 = run_mrd(common + plain.path().string(), scratch_.path());
   ASSERT_EQ(r0.exit_code, 0) << r0.err;
-  const auto r1 = run_mrd(common + out_.path().string() + " --test " + same.string() + " " + twice.string(),
+  const auto r1 = run_mrd(common + out_.path().string() + " --test " + same.string() + " " + twice.string() +
+                              " --floors",
                           scratch_.path());
   ASSERT_EQ(r1.exit_code, 0) << r1.err;
   EXPECT_EQ(slurp(plain.path() / "damper.toml"), slurp(out_.path() / "damper.toml"));
@@ -154,6 +155,25 @@ TEST_F(CalibrateCli, TestRecordsAreJudgedButChooseNothing) {
   EXPECT_NE(r1.out.find("twice.csv (test)"), std::string::npos) << r1.out;
   EXPECT_NE(r1.out.find("test records (seen by no choice): RMS gap of the chosen form"), std::string::npos) << r1.out;
   EXPECT_NE(slurp(out_.path() / "report.md").find("twice.csv (test)"), std::string::npos);
+
+  // --floors: the chosen form fitted to each record alone. The twice-as-strong
+  // damper's force is the same form with Y and C doubled, so alone it is
+  // described as well as a fitted record (below 0.02), where the one
+  // calibrated model misses it by 0.5: the floor tells a damper (or a test
+  // session) unlike the others from a force the form cannot take.
+  EXPECT_TRUE(j0["floors"].is_null());
+  const auto& fl = j["floors"];
+  ASSERT_EQ(fl["measured"].size(), 3u);
+  ASSERT_EQ(fl["check"].size(), 1u);
+  ASSERT_EQ(fl["test"].size(), 2u);
+  for (const char* set : {"measured", "check", "test"})
+    for (const auto& g : fl[set]) EXPECT_LT(g.get<double>(), 0.02) << set;
+  // From the calibrated model as its start, a fit to the record alone ends no
+  // worse on it (judged at full rate, where the fit saw a thinned record: 1e-3).
+  EXPECT_LE(fl["test"][0].get<double>(), g_same + 1e-3);
+  EXPECT_NE(r1.out.find("floor:"), std::string::npos) << r1.out;
+  EXPECT_EQ(r0.out.find("floor:"), std::string::npos) << r0.out;
+  EXPECT_NE(slurp(out_.path() / "report.md").find("the chosen form fitted to the record alone"), std::string::npos);
 }
 
 TEST_F(CalibrateCli, MissingMeasuredIsAUsageError) {

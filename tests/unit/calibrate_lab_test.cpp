@@ -157,7 +157,8 @@ TEST(CalibrateLab, CheckRecordsThatRepeatTheFittedMotionsAreNamed) {
 // records choose there (the tanh transition with a transition time) and
 // judged on the 25 mm family, the viscous form must carry to the slow
 // strokes better than the share form and than none, with a play at 1 A in
-// the range read off the loops.
+// the range read off the loops. On those records, the chosen form's floors
+// (record_floor_gaps) lie below its gaps.
 TEST(CalibrateLab, ViscousLostMotionCarriesToTheSlowStrokes) {
   ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
   const std::vector<MeasuredData> fit = lab_families("2mm_5Hz", "5mm_3Hz");
@@ -184,6 +185,20 @@ TEST(CalibrateLab, ViscousLostMotionCarriesToTheSlowStrokes) {
   // against the 0.15–0.25 read off its loop (v_p → 0 is a step).
   EXPECT_GT(b.lost_motion_band_m_s, 0.005);
   EXPECT_LT(b.lost_motion_band_m_s, 0.07);
+
+  // The 25 mm records' floors: the chosen form fitted to each alone, from the
+  // calibrated baseline. From that start a fit ends no worse on the record
+  // (1e-3: judged at full rate, fitted on a thinned record). On the 1 A record
+  // the form alone must fit at least as well as the field's standard model
+  // fitted to that record alone: Spencer et al. (1997)'s modified Bouc–Wen
+  // (α, c0, c1, k0, k1, the yield displacement and a force lag; n = 2,
+  // β = γ), integrated at 2 kHz and fitted by Nelder–Mead outside this code,
+  // left 8.79 % (README, discrepancy section).
+  const std::vector<double> floors = record_floor_gaps(b, held, opt);
+  const std::vector<double> gaps = baseline_gaps(b, held);
+  ASSERT_EQ(floors.size(), held.size());
+  for (std::size_t i = 0; i < held.size(); ++i) EXPECT_LE(floors[i], gaps[i] + 1e-3) << held[i].source;
+  EXPECT_LT(floors.back(), 0.0879) << held.back().source;
 }
 
 TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
