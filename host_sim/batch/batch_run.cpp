@@ -10,6 +10,10 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__x86_64__)
+#include <cpuid.h>
+#endif
+
 #include "host_sim/batch/lane_block.hpp"
 #include "host_sim/structure/discrete_building.hpp"
 #include "mrd/physics/bingham.hpp"
@@ -19,17 +23,41 @@
 namespace mrd::batch {
 namespace {
 
-bool cpu_runs(LaneIsa isa) {
 #if defined(__x86_64__)
+/// CPUID leaf `leaf`'s ECX has every bit of `bits`.
+bool cpuid_ecx_has(unsigned leaf, unsigned bits) {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  return __get_cpuid(leaf, &a, &b, &c, &d) != 0 && (c & bits) == bits;
+}
+#endif
+
+}  // namespace
+
+bool lane_isa_cpu_runs(LaneIsa isa) {
+#if defined(__x86_64__)
+  // The x86-64 psABI's levels: v3 is AVX, AVX2, BMI1, BMI2, F16C, FMA, LZCNT,
+  // MOVBE and XSAVE; v4 adds AVX-512 F, BW, CD, DQ and VL. The builtin checks
+  // that the OS saves the AVX (and AVX-512) state, which needs XSAVE; F16C,
+  // LZCNT and MOVBE come from CPUID, as Clang's builtin does not name them.
+  const auto v3 = [] {
+    return __builtin_cpu_supports("avx") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
+           __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma") &&
+           cpuid_ecx_has(1, bit_F16C | bit_MOVBE) && cpuid_ecx_has(0x80000001u, bit_LZCNT);
+  };
   switch (isa) {
-    case LaneIsa::kX86_64V3: return __builtin_cpu_supports("x86-64-v3") != 0;
-    case LaneIsa::kX86_64V4: return __builtin_cpu_supports("x86-64-v4") != 0;
+    case LaneIsa::kX86_64V3: return v3();
+    case LaneIsa::kX86_64V4:
+      return v3() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+             __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+             __builtin_cpu_supports("avx512vl");
     default: return true;
   }
 #else
   return isa == LaneIsa::kGeneric || isa == LaneIsa::kAuto;
 #endif
 }
+
+namespace {
 
 LaneKernel kernel_of(LaneIsa isa) {
   switch (isa) {
@@ -351,8 +379,8 @@ const char* lane_isa_name(LaneIsa isa) noexcept {
 
 bool lane_isa_available(LaneIsa isa) {
   if (isa == LaneIsa::kAuto || isa == LaneIsa::kGeneric) return true;
-  static const bool v3 = cpu_runs(LaneIsa::kX86_64V3) && exp_agrees(kernel_of(LaneIsa::kX86_64V3));
-  static const bool v4 = cpu_runs(LaneIsa::kX86_64V4) && exp_agrees(kernel_of(LaneIsa::kX86_64V4));
+  static const bool v3 = lane_isa_cpu_runs(LaneIsa::kX86_64V3) && exp_agrees(kernel_of(LaneIsa::kX86_64V3));
+  static const bool v4 = lane_isa_cpu_runs(LaneIsa::kX86_64V4) && exp_agrees(kernel_of(LaneIsa::kX86_64V4));
   return isa == LaneIsa::kX86_64V3 ? v3 : v4;
 }
 

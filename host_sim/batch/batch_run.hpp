@@ -67,6 +67,9 @@ std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& p
 /// "auto" | "generic" | "x86-64-v3" | "x86-64-v4".
 const char* lane_isa_name(LaneIsa isa) noexcept;
 
+/// True when this CPU (and the OS) has every instruction `isa`'s kernel may use.
+bool lane_isa_cpu_runs(LaneIsa isa);
+
 /// True when this CPU runs `isa`'s kernel and, for the FMA kernels, its
 /// exp() agrees bit for bit with the C library's on a set of test values.
 bool lane_isa_available(LaneIsa isa);

@@ -120,7 +120,7 @@ void print_summary(const peers::DriveNode& node, const Options& o) {
 int run(const app::BoardConfig& board, const peers::DriveConfig& dc, const Options& o) {
   try {
     posix::SocketCanBus bus(board.can_interface, peers::drive_filters(board.nodes));
-    peers::DriveNode node(bus, dc, board.period_s(), o.lockstep);
+    peers::DriveNode node(bus, dc, board.period_s());
     posix::PosixClock clock;
     if (o.sched_fifo > 0) std::fputs(posix::apply_realtime({o.sched_fifo, true, -1}).c_str(), stdout);
     const std::int64_t period_ns = static_cast<std::int64_t>(board.period_us) * 1000;

@@ -24,7 +24,7 @@ InProcessBoard::InProcessBoard(const app::BoardConfig& board, const plant::Plant
   runtime_ = std::make_unique<Runtime>(core_, app::RuntimePorts{clock_, *controller_ep_, io_}, board.task_config(), rc);
   DriveConfig dc = drive;
   dc.nodes = board.nodes;
-  drive_ = std::make_unique<DriveNode>(*drive_ep_, dc, board.period_s(), true);
+  drive_ = std::make_unique<DriveNode>(*drive_ep_, dc, board.period_s());
   plant_ = std::make_unique<PlantNode>(*plant_ep_, board.nodes, plant);
 }
 

@@ -113,9 +113,8 @@ void PlantNode::free_tick(double ground_accel_m_s2) noexcept {
 
 // ---- Drive -----------------------------------------------------------------
 
-DriveNode::DriveNode(hal::CanBus& bus, const DriveConfig& config, double period_s, bool lockstep)
-    : bus_(bus), c_(config), logic_(config), period_ns_(static_cast<std::int64_t>(period_s * 1e9 + 0.5)),
-      lockstep_(lockstep) {}
+DriveNode::DriveNode(hal::CanBus& bus, const DriveConfig& config, double period_s)
+    : bus_(bus), c_(config), logic_(config), period_ns_(static_cast<std::int64_t>(period_s * 1e9 + 0.5)) {}
 
 void DriveNode::decide(std::int64_t now_ns, std::uint8_t counter) noexcept {
   const DriveOutput o = logic_.tick(now_ns, fault_, measured_a_);

@@ -68,7 +68,7 @@ class PlantNode {
 /// PWM drive node.
 class DriveNode {
  public:
-  DriveNode(hal::CanBus& bus, const DriveConfig& config, double period_s, bool lockstep);
+  DriveNode(hal::CanBus& bus, const DriveConfig& config, double period_s);
 
   /// Lockstep: handles every received frame; sends DriveStatus on the plant's
   /// SimCoilState and SimCoilDrive once the tick's command arrived. Returns
@@ -94,7 +94,6 @@ class DriveNode {
   DriveConfig c_;
   DriveLogic logic_;
   std::int64_t period_ns_;
-  bool lockstep_;
   bool fault_ = false;
   bool awaiting_ = false;
   std::uint8_t pending_counter_ = 0;

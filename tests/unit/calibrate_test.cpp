@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "host_sim/discrepancy/baseline_file.hpp"
@@ -57,8 +58,9 @@ std::vector<MeasuredData> synth_set(const Baseline& truth) {
   return recs;
 }
 
-/// The calibration's options for the synthetic records: under AddressSanitizer
-/// (10–30× slower) each record is thinned to 600 samples instead of 4000; the
+/// The calibration's options for the synthetic records: under the sanitizers
+/// (10–30× slower) each record is thinned to 600 samples instead of 4000
+/// (MRD_CALIBRATE_TEST_SAMPLES, tests/unit/CMakeLists.txt); the
 /// fits and their uncertainties are the same statistics on fewer samples.
 /// The laboratory records keep the default 4000 in every build: thinned to
 /// 600, the 25 mm / 0.25 Hz records (4630 samples at 200 Hz) keep one sample
@@ -68,9 +70,7 @@ std::vector<MeasuredData> synth_set(const Baseline& truth) {
 /// the full records reject).
 CalibrateOptions test_options() {
   CalibrateOptions opt;
-#if defined(__SANITIZE_ADDRESS__)
-  opt.samples_per_record = 600;
-#endif
+  opt.samples_per_record = MRD_CALIBRATE_TEST_SAMPLES;
   return opt;
 }
 
@@ -118,8 +118,9 @@ void expect_recovered(const Baseline& truth, const LawFit& fit) {
 void expect_extra_recovered(const LawFit& fit, const std::vector<std::pair<const char*, double>>& want,
                             double relative) {
   for (const auto& [name, value] : want) {
+    const std::string_view wanted = name;
     const auto p = std::find_if(fit.params.begin(), fit.params.end(),
-                                [&](const ParamEstimate& q) { return q.name == name; });
+                                [wanted](const ParamEstimate& q) { return q.name == wanted; });
     ASSERT_NE(p, fit.params.end()) << name;
     EXPECT_FALSE(p->at_bound) << name;
     EXPECT_LE(std::fabs(p->value - value), 3.0 * p->sigma) << name << " = " << p->value << " ± " << p->sigma;

@@ -150,8 +150,9 @@ TEST(BatchExp, EveryKernelsExpIsTheCLibrarysBitForBit) {
   x.push_back(0.25);  // an odd count: the kernels' partial last vector
   std::vector<mrd::batch::LaneKernel> kernels = {mrd::batch::generic_lane_kernel()};
 #if defined(__x86_64__)
-  if (__builtin_cpu_supports("x86-64-v3")) kernels.push_back(mrd::batch::x86_64_v3_lane_kernel());
-  if (__builtin_cpu_supports("x86-64-v4")) kernels.push_back(mrd::batch::x86_64_v4_lane_kernel());
+  using mrd::batch::LaneIsa;
+  if (mrd::batch::lane_isa_cpu_runs(LaneIsa::kX86_64V3)) kernels.push_back(mrd::batch::x86_64_v3_lane_kernel());
+  if (mrd::batch::lane_isa_cpu_runs(LaneIsa::kX86_64V4)) kernels.push_back(mrd::batch::x86_64_v4_lane_kernel());
 #endif
   for (const auto& k : kernels) {
     SCOPED_TRACE(k.name);
@@ -164,6 +165,17 @@ TEST(BatchExp, EveryKernelsExpIsTheCLibrarysBitForBit) {
     }
     EXPECT_EQ(differ, 0u);
   }
+}
+
+// The instruction check against GCC's own reading of the psABI levels
+// (libgcc's __builtin_cpu_supports("x86-64-v3"/"x86-64-v4"), which Clang 14
+// lacks): under GCC both must agree on this CPU.
+TEST(Batch, CpuLevelsAgreeWithGccsOwnCheck) {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  EXPECT_EQ(mrd::batch::lane_isa_cpu_runs(LaneIsa::kX86_64V3), __builtin_cpu_supports("x86-64-v3") != 0);
+  EXPECT_EQ(mrd::batch::lane_isa_cpu_runs(LaneIsa::kX86_64V4), __builtin_cpu_supports("x86-64-v4") != 0);
+#endif
+  EXPECT_TRUE(mrd::batch::lane_isa_cpu_runs(LaneIsa::kGeneric));
 }
 
 TEST(Batch, AutoPicksAKernelThisCpuRuns) {
