@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mrd::discrepancy {
 namespace {
@@ -112,10 +113,18 @@ void DamperModel::coefficients(const std::vector<double>& current_a, std::vector
   b_y.resize(n);
   a_c.resize(n);
   b_c.resize(n);
+  // A current held from one sample to the next (a constant-current test,
+  // a settled coil) reuses the previous sample's exponentials.
+  double i_prev = std::numeric_limits<double>::quiet_NaN();
+  double e_y = 1.0;
+  double e_c = 1.0;
   for (std::size_t k = 0; k < n; ++k) {
     const double i = std::fabs(current_a[k]);
-    const double e_y = std::exp(-y.rate_per_a * i);
-    const double e_c = std::exp(-c.rate_per_a * i);
+    if (i != i_prev) {
+      e_y = std::exp(-y.rate_per_a * i);
+      e_c = std::exp(-c.rate_per_a * i);
+      i_prev = i;
+    }
     a_y[k] = y.at_zero * e_y;
     b_y[k] = y.limit * (1.0 - e_y);
     a_c[k] = c.at_zero * e_c;
