@@ -83,12 +83,27 @@ struct JointData {
   std::vector<double> rms_force_n;
   std::size_t total = 0;
 
+  /// One model per record, on `b`.
+  std::vector<DamperModel> models(const Baseline& b) const {
+    std::vector<DamperModel> m;
+    m.reserve(inputs.size());
+    for (const ModelInput& in : inputs) m.emplace_back(in, b);
+    return m;
+  }
+
   /// (F_model − F_meas)/RMS at every fit sample of every record.
   bool residuals(const Baseline& b, double* out) const {
+    std::vector<DamperModel> m = models(b);
     ModelWorkspace ws;
+    return residuals(m, ws, b, out);
+  }
+
+  /// The same with `models` (one per record, from models()) put on `b`.
+  bool residuals(std::vector<DamperModel>& models, ModelWorkspace& ws, const Baseline& b, double* out) const {
     std::size_t at = 0;
     for (std::size_t r = 0; r < inputs.size(); ++r) {
-      const DamperModel m(inputs[r], b);
+      DamperModel& m = models[r];
+      m.set_baseline(b);
       std::span<double> dst(out + at, index[r].size());
       m.simulate_at(EffectSet{}, {}, ws, index[r], dst);
       const double inv = 1.0 / rms_force_n[r];
@@ -105,7 +120,7 @@ struct JointData {
 class JointCost final : public ceres::CostFunction {
  public:
   JointCost(const JointData& data, const Layout& layout, const Baseline& base)
-      : data_(data), layout_(layout), base_(base) {
+      : data_(data), layout_(layout), base_(base), models_(data.models(base)) {
     set_num_residuals(static_cast<int>(data.total));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(layout.free.size()));
   }
@@ -114,14 +129,14 @@ class JointCost final : public ceres::CostFunction {
     const double* theta = parameters[0];
     const std::size_t k = layout_.free.size();
     const std::size_t m = data_.total;
-    if (!data_.residuals(layout_.apply(base_, theta), residuals)) return false;
+    if (!data_.residuals(models_, ws_, layout_.apply(base_, theta), residuals)) return false;
     if (jacobians == nullptr || jacobians[0] == nullptr) return true;
     std::vector<double> tp(theta, theta + k);
     std::vector<double> rp(m);
     for (std::size_t j = 0; j < k; ++j) {
       const double h = tp[j] + kStep > std::log(kUpper[layout_.free[j]]) ? -kStep : kStep;
       tp[j] = theta[j] + h;
-      if (!data_.residuals(layout_.apply(base_, tp.data()), rp.data())) return false;
+      if (!data_.residuals(models_, ws_, layout_.apply(base_, tp.data()), rp.data())) return false;
       tp[j] = theta[j];
       for (std::size_t r = 0; r < m; ++r) jacobians[0][r * k + j] = (rp[r] - residuals[r]) / h;
     }
@@ -133,6 +148,10 @@ class JointCost final : public ceres::CostFunction {
   const JointData& data_;
   const Layout& layout_;
   Baseline base_;
+  // One solve's models and scratch, put on each evaluated baseline in turn
+  // (Ceres evaluates from one thread: lm_solver_options).
+  mutable std::vector<DamperModel> models_;
+  mutable ModelWorkspace ws_;
 };
 
 /// Iterations of each start, and of the best start to the end (fit_law).

@@ -56,9 +56,7 @@ ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s)
   return in;
 }
 
-DamperModel::DamperModel(ModelInput input, Baseline baseline) : in_(std::move(input)), p_(std::move(baseline)) {
-  const double scale = p_.force_scale_n();
-  force_ratio_ = scale > 0.0 ? scale / thesis_force_scale_n() : 1.0;
+DamperModel::DamperModel(ModelInput input, Baseline baseline) : in_(std::move(input)) {
   const std::size_t n = in_.time_s.size();
   step_s_.resize(n);
   for (std::size_t k = 0; k + 1 < n; ++k) step_s_[k] = in_.time_s[k + 1] - in_.time_s[k];
@@ -70,9 +68,21 @@ DamperModel::DamperModel(ModelInput input, Baseline baseline) : in_(std::move(in
       break;
     }
   }
-  coil_current(1.0, base_current_a_);
+  set_baseline(std::move(baseline));
+}
+
+void DamperModel::set_baseline(Baseline baseline) {
+  const physics::CurrentDynamicsParams& was = p_.coil;
+  const physics::CurrentDynamicsParams& now = baseline.coil;
+  const bool same_coil = base_current_a_.size() == size() && was.tau_slow_s == now.tau_slow_s &&
+                         was.tau_fast_s == now.tau_fast_s && was.weight_slow == now.weight_slow &&
+                         was.weight_fast == now.weight_fast;
+  p_ = std::move(baseline);
+  const double scale = p_.force_scale_n();
+  force_ratio_ = scale > 0.0 ? scale / thesis_force_scale_n() : 1.0;
+  if (!same_coil) coil_current(1.0, base_current_a_);
   coefficients(base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_);
-  if (p_.has_transition_time() && in_.accel_abs_m_s2.size() != n)
+  if (p_.has_transition_time() && in_.accel_abs_m_s2.size() != size())
     in_.accel_abs_m_s2 = averaged_abs_acceleration(in_.time_s, in_.vel_m_s);
 }
 

@@ -79,6 +79,10 @@ class DamperModel {
   [[nodiscard]] const ModelInput& input() const noexcept { return in_; }
   [[nodiscard]] std::size_t size() const noexcept { return in_.time_s.size(); }
   [[nodiscard]] const Baseline& baseline() const noexcept { return p_; }
+  /// Puts the model on another baseline, as if constructed with it: the
+  /// coil current is recomputed only when the coil's constants changed (a
+  /// fit that varies the laws evaluates many baselines on the same record).
+  void set_baseline(Baseline baseline);
   /// force_scale_n() of the baseline over that of the thesis damper: the
   /// factor on the effects' force-valued bounds.
   [[nodiscard]] double force_ratio() const noexcept { return force_ratio_; }
