@@ -45,6 +45,35 @@ TEST(DiscrepancyModel, BaselineMatchesMrDamper) {
   }
 }
 
+// A model put on another baseline (as a calibration does at every
+// evaluation) gives, bit for bit, the force of a model built on it: for new
+// current laws with the same coil, for another coil, and for a baseline that
+// needs the averaged acceleration the first one did not.
+TEST(DiscrepancyModel, PutOnAnotherBaselineEqualsBuiltOnIt) {
+  const ModelInput in = sine_input(4000, 0.02, 0.7, {0.0, 2.5, 1.0, 0.3}, 0.9);
+  Baseline laws = thesis_baseline();
+  laws.yield_n.at_zero *= 1.3;
+  laws.viscous_ns_m.rate_per_a *= 0.7;
+  Baseline coil = laws;
+  coil.coil.tau_slow_s *= 2.0;
+  Baseline timed = coil;
+  timed.transition_time_s = 0.004;
+  ASSERT_TRUE(timed.has_transition_time());
+  DamperModel moved(in);
+  ModelWorkspace ws;
+  for (const Baseline* b : {&laws, &coil, &timed}) {
+    moved.set_baseline(*b);
+    const DamperModel built(in, *b);
+    std::vector<double> f_moved, f_built;
+    moved.simulate(EffectSet{}, {}, ws, f_moved);
+    built.simulate(EffectSet{}, {}, ws, f_built);
+    EXPECT_EQ(f_moved, f_built);
+    EXPECT_EQ(moved.baseline_current_a(), built.baseline_current_a());
+  }
+  // The coil's constants matter: the second coil's current differs from the first's.
+  EXPECT_NE(DamperModel(in, laws).baseline_current_a(), DamperModel(in, coil).baseline_current_a());
+}
+
 TEST(DiscrepancyModel, IdleSettlingMatchesMrDamperWithTheSameSq) {
   const ModelInput in = sine_input(8000, 0.0254, 0.5, {2.5}, 100.0);
   const DamperModel model(in);
