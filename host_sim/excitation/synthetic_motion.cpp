@@ -129,13 +129,13 @@ double output(const DiscreteFilter& f, const std::array<double, kStates>& x) {
   return y;
 }
 
-std::string format_number(double value) { return io::format_number("%.6g", value); }
+std::string format_short(double value) { return io::format_number("%.6g", value); }
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 
 void require_positive(double v, const char* what) {
   if (!positive(v)) {
-    throw UsageError(std::string("synthetic motion: ") + what + " must be a positive number, got " + format_number(v));
+    throw UsageError(std::string("synthetic motion: ") + what + " must be a positive number, got " + format_short(v));
   }
 }
 
@@ -151,37 +151,37 @@ void validate(const SyntheticMotionParams& p) {
   }
   const double nyquist_rad_s = units::kPi / p.dt_s;
   if (p.ground_frequency_rad_s >= nyquist_rad_s) {
-    throw UsageError("synthetic motion: Kanai-Tajimi frequency omega_g (" + format_number(p.ground_frequency_rad_s) +
-                     " rad/s) must be below the Nyquist frequency pi/dt (" + format_number(nyquist_rad_s) + " rad/s)");
+    throw UsageError("synthetic motion: Kanai-Tajimi frequency omega_g (" + format_short(p.ground_frequency_rad_s) +
+                     " rad/s) must be below the Nyquist frequency pi/dt (" + format_short(nyquist_rad_s) + " rad/s)");
   }
   if (!std::isfinite(p.rise_time_s) || p.rise_time_s < 0.0) {
-    throw UsageError("synthetic motion: envelope rise time t1 must be >= 0 s, got " + format_number(p.rise_time_s));
+    throw UsageError("synthetic motion: envelope rise time t1 must be >= 0 s, got " + format_short(p.rise_time_s));
   }
   if (!std::isfinite(p.plateau_end_s) || p.plateau_end_s < p.rise_time_s) {
-    throw UsageError("synthetic motion: envelope plateau end t2 (" + format_number(p.plateau_end_s) +
-                     " s) must not come before the rise time t1 (" + format_number(p.rise_time_s) + " s)");
+    throw UsageError("synthetic motion: envelope plateau end t2 (" + format_short(p.plateau_end_s) +
+                     " s) must not come before the rise time t1 (" + format_short(p.rise_time_s) + " s)");
   }
   if (!std::isfinite(p.decay_rate_1_s) || p.decay_rate_1_s < 0.0) {
     throw UsageError("synthetic motion: envelope decay rate must be >= 0 1/s, got " +
-                     format_number(p.decay_rate_1_s));
+                     format_short(p.decay_rate_1_s));
   }
   const double steps = p.duration_s / p.dt_s;
   if (!(steps >= 1.0) || !(steps < kMaxSamples)) {
-    throw UsageError("synthetic motion: duration " + format_number(p.duration_s) + " s at dt " +
-                     format_number(p.dt_s) + " s must give between 2 and 1e9 samples");
+    throw UsageError("synthetic motion: duration " + format_short(p.duration_s) + " s at dt " +
+                     format_short(p.dt_s) + " s must give between 2 and 1e9 samples");
   }
 }
 
 std::string describe(const SyntheticMotionParams& p) {
-  std::string s = "Kanai-Tajimi filtered white noise (omega_g=" + format_number(p.ground_frequency_rad_s) +
-                  " rad/s, zeta_g=" + format_number(p.ground_damping_ratio) + ")";
+  std::string s = "Kanai-Tajimi filtered white noise (omega_g=" + format_short(p.ground_frequency_rad_s) +
+                  " rad/s, zeta_g=" + format_short(p.ground_damping_ratio) + ")";
   if (p.high_pass) {
-    s += ", Clough-Penzien high-pass (omega_f=" + format_number(p.high_pass_frequency_rad_s) +
-         " rad/s, zeta_f=" + format_number(p.high_pass_damping_ratio) + ")";
+    s += ", Clough-Penzien high-pass (omega_f=" + format_short(p.high_pass_frequency_rad_s) +
+         " rad/s, zeta_f=" + format_short(p.high_pass_damping_ratio) + ")";
   }
-  s += ", envelope t1=" + format_number(p.rise_time_s) + " s, t2=" + format_number(p.plateau_end_s) +
-       " s, c=" + format_number(p.decay_rate_1_s) + " 1/s, dt=" + format_number(p.dt_s) +
-       " s, duration=" + format_number(p.duration_s) + " s, PGA=" + format_number(p.target_pga_m_s2) +
+  s += ", envelope t1=" + format_short(p.rise_time_s) + " s, t2=" + format_short(p.plateau_end_s) +
+       " s, c=" + format_short(p.decay_rate_1_s) + " 1/s, dt=" + format_short(p.dt_s) +
+       " s, duration=" + format_short(p.duration_s) + " s, PGA=" + format_short(p.target_pga_m_s2) +
        " m/s^2, seed=" + std::to_string(p.seed);
   return s;
 }

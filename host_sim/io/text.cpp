@@ -105,6 +105,8 @@ void check_status(const std::string& file, const struct stat& st, std::size_t ma
 
 }  // namespace
 
+std::string errno_text(int err) { return std::strerror(err); }
+
 void check_regular_file(const std::filesystem::path& path, std::size_t max_bytes) {
   const std::string file = file_label(path);
   struct stat st {};

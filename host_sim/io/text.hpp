@@ -56,6 +56,9 @@ namespace mrd::io {
 /// the file themselves.
 void check_regular_file(const std::filesystem::path& path, std::size_t max_bytes);
 
+/// The system's text for the errno value `err` (std::strerror).
+[[nodiscard]] std::string errno_text(int err);
+
 /// "<file>:<line_no>: ", the start of a message about one line of a file.
 [[nodiscard]] std::string line_prefix(const std::string& file, std::size_t line_no);
 

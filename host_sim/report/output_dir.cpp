@@ -4,16 +4,16 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
 #include <string>
 #include <system_error>
+
+#include "host_sim/io/text.hpp"
 
 namespace mrd::report {
 namespace fs = std::filesystem;
 using io::UsageError;
 
 namespace {
-std::string errno_text(int err) { return std::strerror(err); }
 
 void write_all(int fd, std::string_view content, const fs::path& tmp) {
   const char* p = content.data();
@@ -25,7 +25,7 @@ void write_all(int fd, std::string_view content, const fs::path& tmp) {
       const int err = errno;
       ::close(fd);
       ::unlink(tmp.c_str());
-      throw UsageError("cannot write '" + tmp.string() + "': " + errno_text(err));
+      throw UsageError("cannot write '" + tmp.string() + "': " + io::errno_text(err));
     }
     p += n;
     left -= static_cast<std::size_t>(n);
@@ -45,7 +45,7 @@ void prepare_output_dir(const fs::path& dir) {
   const fs::path probe = dir / ".mrd-write-probe";
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
-    throw UsageError("--out '" + dir.string() + "' is not writable: " + errno_text(errno));
+    throw UsageError("--out '" + dir.string() + "' is not writable: " + io::errno_text(errno));
   }
   ::close(fd);
   ::unlink(probe.c_str());
@@ -55,18 +55,18 @@ void write_file_atomically(const fs::path& path, std::string_view content) {
   const fs::path tmp = path.string() + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
-    throw UsageError("cannot create '" + tmp.string() + "': " + errno_text(errno));
+    throw UsageError("cannot create '" + tmp.string() + "': " + io::errno_text(errno));
   }
   write_all(fd, content, tmp);
   if (::fsync(fd) != 0 || ::close(fd) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());
-    throw UsageError("cannot flush '" + tmp.string() + "': " + errno_text(err));
+    throw UsageError("cannot flush '" + tmp.string() + "': " + io::errno_text(err));
   }
   if (::rename(tmp.c_str(), path.c_str()) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());
-    throw UsageError("cannot rename '" + tmp.string() + "' to '" + path.string() + "': " + errno_text(err));
+    throw UsageError("cannot rename '" + tmp.string() + "' to '" + path.string() + "': " + io::errno_text(err));
   }
 }
 

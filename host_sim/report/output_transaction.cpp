@@ -11,11 +11,11 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <system_error>
 #include <vector>
 
+#include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
 
 namespace mrd::report {
@@ -141,7 +141,6 @@ Registry& registry() {
   return r;
 }
 
-std::string errno_text(int err) { return std::strerror(err); }
 
 /// "." + name + suffix, built by appending (GCC 12's -Wrestrict misreads the
 /// inlined `const char* + std::string&&` at -O3).
@@ -254,7 +253,7 @@ fs::path swap_in(const Transaction& t) {
     err = errno;
   }
   if (err != EINVAL && err != ENOSYS && err != ENOTSUP) {
-    throw UsageError("--out '" + t.target.string() + "': cannot put the new result in place: " + errno_text(err));
+    throw UsageError("--out '" + t.target.string() + "': cannot put the new result in place: " + io::errno_text(err));
   }
   // A file system without renameat2 flags: set the previous result aside, then rename.
   const fs::path old = t.target.parent_path() / (old_prefix(t.target) + std::to_string(::getpid()));
@@ -264,7 +263,7 @@ fs::path swap_in(const Transaction& t) {
     err = errno;
     if (had_old) ::rename(old.c_str(), t.target.c_str());
     publish(t.slot, t.staging);
-    throw UsageError("--out '" + t.target.string() + "': cannot put the new result in place: " + errno_text(err));
+    throw UsageError("--out '" + t.target.string() + "': cannot put the new result in place: " + io::errno_text(err));
   }
   return had_old ? old : fs::path{};
 }
@@ -302,7 +301,7 @@ fs::path begin_output(const fs::path& given) {
     const int err = errno;
     release(t);
     remove_created_parents(t);
-    throw UsageError("--out '" + shown + "' is not writable: " + errno_text(err));
+    throw UsageError("--out '" + shown + "' is not writable: " + io::errno_text(err));
   }
   reg.open.push_back(t);
   return t.staging;

@@ -14,11 +14,11 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <system_error>
 
+#include "host_sim/io/text.hpp"
 #include "host_sim/report/time_series.hpp"
 
 extern char** environ;
@@ -40,7 +40,6 @@ constexpr std::array<unsigned char, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r
 // Longest stderr tail kept from gnuplot for the failure reason.
 constexpr std::size_t kMaxStderrBytes = 16 * 1024;
 
-std::string errno_text(int err) { return std::strerror(err); }
 
 void validate_size(int width_px, int height_px) {
   const auto ok = [](int v) { return v >= kMinPlotSidePx && v <= kMaxPlotSidePx; };
@@ -385,13 +384,15 @@ PlotResult run_gnuplot(const std::string& script, const fs::path& dir, const Plo
   }
 
   Fd script_fd(::memfd_create("mrd-plot-script", MFD_CLOEXEC));
-  if (script_fd.get() < 0) return fail("cannot create the gnuplot script buffer: " + errno_text(errno));
+  if (script_fd.get() < 0) return fail("cannot create the gnuplot script buffer: " + io::errno_text(errno));
   if (!write_all(script_fd.get(), script) || ::lseek(script_fd.get(), 0, SEEK_SET) != 0) {
-    return fail("cannot write the gnuplot script: " + errno_text(errno));
+    return fail("cannot write the gnuplot script: " + io::errno_text(errno));
   }
 
   std::array<int, 2> pipe_fds{-1, -1};
-  if (::pipe2(pipe_fds.data(), O_CLOEXEC) != 0) return fail("cannot create a pipe for gnuplot: " + errno_text(errno));
+  if (::pipe2(pipe_fds.data(), O_CLOEXEC) != 0) {
+    return fail("cannot create a pipe for gnuplot: " + io::errno_text(errno));
+  }
   Fd err_read(pipe_fds[0]);
   Fd err_write(pipe_fds[1]);
 
@@ -401,7 +402,7 @@ PlotResult run_gnuplot(const std::string& script, const fs::path& dir, const Plo
   if (rc == 0) rc = ::posix_spawn_file_actions_addopen(actions.get(), STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   if (rc == 0) rc = ::posix_spawn_file_actions_adddup2(actions.get(), err_write.get(), STDERR_FILENO);
   if (rc == 0) rc = ::posix_spawn_file_actions_addchdir_np(actions.get(), dir.c_str());
-  if (rc != 0) return fail("cannot prepare to run gnuplot: " + errno_text(rc));
+  if (rc != 0) return fail("cannot prepare to run gnuplot: " + io::errno_text(rc));
 
   // -d: ignore the user's ~/.gnuplot so plots look the same everywhere.
   // The script is read as a file so gnuplot stops at the first error.
@@ -413,7 +414,7 @@ PlotResult run_gnuplot(const std::string& script, const fs::path& dir, const Plo
   pid_t pid = -1;
   rc = search_path ? ::posix_spawnp(&pid, exe.c_str(), actions.get(), nullptr, argv.data(), environ)
                    : ::posix_spawn(&pid, exe.c_str(), actions.get(), nullptr, argv.data(), environ);
-  if (rc != 0) return fail("cannot run gnuplot ('" + exe_name + "'): " + errno_text(rc));
+  if (rc != 0) return fail("cannot run gnuplot ('" + exe_name + "'): " + io::errno_text(rc));
   err_write.reset();
   script_fd.reset();
 
@@ -425,7 +426,7 @@ PlotResult run_gnuplot(const std::string& script, const fs::path& dir, const Plo
   if (timed_out) {
     return fail("gnuplot did not finish within " + std::to_string(options.timeout.count()) + " ms and was stopped");
   }
-  if (status < 0) return fail("cannot wait for gnuplot: " + errno_text(errno));
+  if (status < 0) return fail("cannot wait for gnuplot: " + io::errno_text(errno));
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return PlotResult{true, {}};
   std::string why = WIFEXITED(status) ? "gnuplot failed (exit status " + std::to_string(WEXITSTATUS(status)) + ")"
                                       : "gnuplot was killed by signal " + std::to_string(WTERMSIG(status));
@@ -465,7 +466,7 @@ PlotResult render(const std::vector<const PlotSpec*>& panels, const std::string&
     result = fail("gnuplot did not write a PNG image");
   }
   if (result.ok && ::rename(tmp.c_str(), png.c_str()) != 0) {
-    result = fail("cannot rename '" + tmp.string() + "' to '" + png.string() + "': " + errno_text(errno));
+    result = fail("cannot rename '" + tmp.string() + "' to '" + png.string() + "': " + io::errno_text(errno));
   }
   if (!result.ok) fs::remove(tmp, ec);
   return result;

@@ -33,7 +33,7 @@ double parse_number(std::string_view field, const std::string& prefix, const cha
   return v;
 }
 
-std::string num(double v) {
+std::string num4(double v) {
   char b[40];
   std::snprintf(b, sizeof b, "%.4g", v);
   return b;
@@ -141,7 +141,7 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
     std::vector<double> freq;
     for (const auto& [tau, fit] : curves) {
       if (!idle.empty() && tau == idle.back()) {
-        throw io::UsageError("fragility.csv: two curves for " + r.control + ", " + name + " at idle " + num(tau) +
+        throw io::UsageError("fragility.csv: two curves for " + r.control + ", " + name + " at idle " + num4(tau) +
                              " years");
       }
       idle.push_back(tau);
@@ -246,7 +246,7 @@ std::vector<std::string> write_risk_outputs(const std::filesystem::path& dir, co
   for (const auto& n : r.limit_states) csv += "," + n + "_per_year";
   csv += "\n";
   std::string md = "# Lifetime risk per mixing policy\n\nControl mode: " + r.control + ". Hazard: " + r.hazard_source +
-                   ".\nService life: " + num(r.schedule.options.world.years) + " years (mrd schedule, seed " +
+                   ".\nService life: " + num4(r.schedule.options.world.years) + " years (mrd schedule, seed " +
                    std::to_string(r.schedule.options.world.seed) + ").\n\n| policy | cycles/year | mean idle (years) |";
   for (const auto& n : r.limit_states) md += " " + n + " (1/year) | vs fully mixed |";
   md += "\n|---|---|---|";
@@ -257,15 +257,15 @@ std::vector<std::string> write_risk_outputs(const std::filesystem::path& dir, co
     char b[200];
     std::snprintf(b, sizeof b, "%s,%.9g,%.9g", p.name.c_str(), p.cycles_per_year, p.mean_equivalent_idle_years);
     csv += b;
-    md += "| " + p.name + " | " + (std::isfinite(p.cycles_per_year) ? num(p.cycles_per_year) : "-") + " | " +
-          num(p.mean_equivalent_idle_years) + " |";
+    md += "| " + p.name + " | " + (std::isfinite(p.cycles_per_year) ? num4(p.cycles_per_year) : "-") + " | " +
+          num4(p.mean_equivalent_idle_years) + " |";
     for (const auto& n : r.limit_states) {
       std::snprintf(b, sizeof b, ",%.9g", p.annual_exceedance.at(n));
       csv += b;
       const double base = ref.annual_exceedance.at(n);
-      const std::string ratio = base > 0.0 ? num(p.annual_exceedance.at(n) / base) + "x" : std::string("-");
+      const std::string ratio = base > 0.0 ? num4(p.annual_exceedance.at(n) / base) + "x" : std::string("-");
       md += " ";
-      md += num(p.annual_exceedance.at(n));
+      md += num4(p.annual_exceedance.at(n));
       md += " | ";
       md += ratio;
       md += " |";

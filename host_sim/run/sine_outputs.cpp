@@ -18,7 +18,7 @@ namespace mrd::run {
 namespace {
 
 /// Plots keep every fifth sample.
-constexpr std::size_t kPlotStride = 5;
+constexpr std::size_t kSinePlotStride = 5;
 
 double pct_error(double model, double measured) { return 100.0 * (model - measured) / measured; }
 
@@ -63,7 +63,7 @@ std::vector<std::string> write_sine_outputs(const std::filesystem::path& dir, co
   report::write_csv(ts, dir / "sine.csv");
 
   std::vector<double> t, x_mm, f_kn;
-  for (std::size_t k = 0; k < rec.time_s.size(); k += kPlotStride) {
+  for (std::size_t k = 0; k < rec.time_s.size(); k += kSinePlotStride) {
     t.push_back(rec.time_s[k]);
     x_mm.push_back(rec.disp_m[k] * 1e3);
     f_kn.push_back(rec.force_n[k] / 1e3);

@@ -14,7 +14,6 @@
 namespace mrd::schedule {
 namespace {
 
-constexpr double kDay_s = 86400.0;
 
 void check(bool ok, const std::string& message) {
   if (!ok) throw io::UsageError(message);
@@ -35,7 +34,7 @@ nlohmann::json policy_json(const PolicyResult& p, double threshold) {
       {"maintenance_requests_per_year", p.maintenance_requests_per_year},
       {"earthquakes_met", p.quake_capacity.size()},
   };
-  if (p.spec.kind == PolicyKind::kFixedInterval) j["interval_days"] = p.spec.interval_s / kDay_s;
+  if (p.spec.kind == PolicyKind::kFixedInterval) j["interval_days"] = p.spec.interval_s / units::kSecondsPerDay;
   return j;
 }
 
@@ -62,7 +61,7 @@ ScheduleResult run_schedule(const ScheduleOptions& o) {
   c.scheduler.capacity_threshold = o.threshold;
   c.scheduler.actuator_fitted = o.actuator;
   c.scheduler.lead_time_s = o.lead_hours * 3600.0;
-  c.maintenance_response_s = o.maintenance_days * kDay_s;
+  c.maintenance_response_s = o.maintenance_days * units::kSecondsPerDay;
   // A request must come early enough for the visit, plus the same lead as
   // with an actuator (event grid and start of the cycle).
   c.scheduler.maintenance_lead_time_s = c.maintenance_response_s + c.scheduler.lead_time_s;
@@ -75,7 +74,7 @@ ScheduleResult run_schedule(const ScheduleOptions& o) {
 
   if (o.interval_days > 0.0) {
     r.interval_from_option = true;
-    r.search.interval_s = o.interval_days * kDay_s;
+    r.search.interval_s = o.interval_days * units::kSecondsPerDay;
   } else {
     r.search = longest_fixed_interval(r.world, c);
   }
@@ -100,8 +99,8 @@ nlohmann::json summary_json(const ScheduleResult& r) {
       {"earthquakes_per_year", o.world.earthquakes_per_year},
       {"earthquakes", r.world.quake_times_s.size()},
       {"ambient_median_litres_per_day", o.world.ambient_median_m3_per_day * 1e3},
-      {"max_settling_time_days", r.max_settling_time_s / kDay_s},
-      {"threshold_idle_days", r.threshold_idle_s / kDay_s},
+      {"max_settling_time_days", r.max_settling_time_s / units::kSecondsPerDay},
+      {"threshold_idle_days", r.threshold_idle_s / units::kSecondsPerDay},
       {"lead_hours", o.lead_hours},
       {"maintenance_days", o.maintenance_days},
       {"numeric", numeric_build_name(o.numeric)},
@@ -112,7 +111,7 @@ nlohmann::json summary_json(const ScheduleResult& r) {
         {"displaced_volume_l", r.plan.volume_m3 * 1e3},
         {"duration_s", r.plan.duration_s},
         {"peak_velocity_m_s", r.plan.peak_velocity_m_s}}},
-      {"fixed_interval_days", r.search.interval_s / kDay_s},
+      {"fixed_interval_days", r.search.interval_s / units::kSecondsPerDay},
       {"fixed_interval_source", r.interval_from_option ? "option" : "search"},
       {"policies", policies},
       {"estimator_meets_threshold", est.min_capacity_any_time >= o.threshold},
@@ -132,7 +131,7 @@ std::vector<std::string> write_schedule_outputs(const std::filesystem::path& dir
   daily.reserve(days);
   std::vector<double> row(cols.size());
   for (std::size_t d = 0; d < days; ++d) {
-    row[0] = units::s_to_years(static_cast<double>(d) * kDay_s);
+    row[0] = units::s_to_years(static_cast<double>(d) * units::kSecondsPerDay);
     for (std::size_t k = 0; k < r.policies.size(); ++k) row[k + 1] = r.policies[k].daily_min_capacity[d];
     daily.add_row(row);
   }
@@ -180,7 +179,7 @@ std::vector<std::string> write_schedule_outputs(const std::filesystem::path& dir
   double t_end_days = 0.0;
   for (const auto& p : r.policies) {
     std::vector<double> days_x(p.detail_time_s.size());
-    for (std::size_t i = 0; i < days_x.size(); ++i) days_x[i] = p.detail_time_s[i] / kDay_s;
+    for (std::size_t i = 0; i < days_x.size(); ++i) days_x[i] = p.detail_time_s[i] / units::kSecondsPerDay;
     if (!days_x.empty()) t_end_days = std::max(t_end_days, days_x.back());
     detail.series.push_back(report::Series{p.name, std::move(days_x), p.detail_capacity, "lines"});
   }

@@ -16,7 +16,6 @@
 namespace mrd::schedule {
 namespace {
 
-constexpr double kDay_s = 86400.0;
 constexpr double kRtc0_s = 1.7e9;  // wall-clock stamp of commissioning, s (any value works)
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kSamplesPerMixingPeriod = 20;  // hits the stroke's peaks: 4A per period exactly
@@ -78,7 +77,7 @@ class Run {
       period_s_ = mc.estimator.period_s;
     }
     next_fixed_s_ = fixed_ ? p.interval_s : kInf;
-    const auto days = static_cast<std::size_t>(std::ceil(w.duration_s / kDay_s));
+    const auto days = static_cast<std::size_t>(std::ceil(w.duration_s / units::kSecondsPerDay));
     r_.daily_min_capacity.assign(std::max<std::size_t>(days, 1), kInf);
     r_.name = policy_name(p.kind);
     r_.spec = p;
@@ -116,10 +115,10 @@ class Run {
   double ambient_m3(double t0, double t1) const {
     double v = 0.0;
     while (t0 < t1) {
-      const auto day = static_cast<std::size_t>(t0 / kDay_s);
+      const auto day = static_cast<std::size_t>(t0 / units::kSecondsPerDay);
       if (day >= w_.ambient_m3_per_day.size()) break;
-      const double end = std::min(t1, (static_cast<double>(day) + 1.0) * kDay_s);
-      v += w_.ambient_m3_per_day[day] * (end - t0) / kDay_s;
+      const double end = std::min(t1, (static_cast<double>(day) + 1.0) * units::kSecondsPerDay);
+      v += w_.ambient_m3_per_day[day] * (end - t0) / units::kSecondsPerDay;
       t0 = end;
     }
     return v;
@@ -128,7 +127,7 @@ class Run {
   void sample() {
     const double cap = truth_.capacity_fraction(t_);
     r_.min_capacity_any_time = std::min(r_.min_capacity_any_time, cap);
-    const auto day = std::min(static_cast<std::size_t>(t_ / kDay_s), r_.daily_min_capacity.size() - 1);
+    const auto day = std::min(static_cast<std::size_t>(t_ / units::kSecondsPerDay), r_.daily_min_capacity.size() - 1);
     r_.daily_min_capacity[day] = std::min(r_.daily_min_capacity[day], cap);
     if (t_ <= c_.detail_s) {
       r_.detail_time_s.push_back(t_);
@@ -317,7 +316,7 @@ World make_world(const WorldConfig& c) {
   w.quake_accel_m_s2 = c.quake_accel_m_s2;
 
   // Ambient: log-normal daily volume, exp(ln(median) + σ·z).
-  const auto days = static_cast<std::size_t>(std::ceil(w.duration_s / kDay_s));
+  const auto days = static_cast<std::size_t>(std::ceil(w.duration_s / units::kSecondsPerDay));
   w.ambient_m3_per_day.resize(days, 0.0);
   excitation::StandardNormal z(c.seed * 2 + 1);
   if (c.ambient_median_m3_per_day > 0.0) {

@@ -15,10 +15,11 @@ inline constexpr double kMeterPerMicrometer = 1.0e-6;
 inline constexpr double kNsPerM_per_kNsPerMm = 1.0e6;
 /// Standard gravity, m/s² (used to express PGA in g).
 inline constexpr double kStandardGravity_m_s2 = 9.80665;
+inline constexpr double kSecondsPerDay = 86400.0;
 /// A year of idle time is a Julian year (365.25 days). The thesis does not say
 /// which year it uses; with the Julian year Eq. 5.4 gives 0.8534 years against
 /// the thesis's 0.8531 (0.04 %), with a 365-day year 0.8540 (0.1 %).
-inline constexpr double kSecondsPerYear = 365.25 * 86400.0;
+inline constexpr double kSecondsPerYear = 365.25 * kSecondsPerDay;
 inline constexpr double kPi = 3.14159265358979323846;
 
 constexpr double kn_to_n(double f_kn) noexcept { return f_kn * kNewtonPerKilonewton; }
