@@ -152,6 +152,9 @@ namespace {
 /// the actuator's velocity over a few contact lengths (a compliant stop).
 /// c → 0 is the hard play. Solved exactly over the step. Returns the rod's
 /// new position, given the actuator's new position x_new.
+/// Beyond 700 contact lengths of travel the rest, (h − w)·e^−700 with
+/// e^−700 = 9.9e−305, is far below half an ulp of h: w is h exactly, and the
+/// exp's underflow (libm's slow path, which sets errno) is not taken.
 double soft_contact_step(double dx, double u, double h, double c, double x_new) {
   if (dx == 0.0) return x_new - u;
   const double sgn = dx > 0.0 ? 1.0 : -1.0;
@@ -163,7 +166,10 @@ double soft_contact_step(double dx, double u, double h, double c, double x_new) 
     w += free;
     s -= free;
   }
-  if (s > 0.0) w = h - (h - std::min(w, h)) * std::exp(-s / c);
+  if (s > 0.0) {
+    const double lengths = s / c;
+    w = lengths < 700.0 ? h - (h - std::min(w, h)) * std::exp(-lengths) : h;
+  }
   return x_new - w * sgn;
 }
 
