@@ -209,7 +209,7 @@ EffectParams without(EffectParams p, Effect e) {
 }
 
 std::vector<double> noise_free_force(const Scenario& s, const std::vector<double>& t_s) {
-  return sample_force(simulate(s), t_s, s.effects.force_delay_s);
+  return sample_force(simulate(s, Channels::force_only), t_s, s.effects.force_delay_s);
 }
 
 double effect_to_noise_ratio(const std::vector<double>& a, const std::vector<double>& b, double noise_rms) {
@@ -356,7 +356,7 @@ Case generate(const Spec& spec) {
     if (e == Effect::force_lowpass || e == Effect::series_compliance) {
       Scenario off = sc;
       off.effects = without(sc.effects, e);
-      const FineRun raw = simulate(off);
+      const FineRun raw = simulate(off, Channels::force_only);
       const auto enr_at = [&](double d_s) {
         return effect_to_noise_ratio(c.clean_force_n, sample_force(raw, t_true, off.effects.force_delay_s + d_s),
                                      c.force_noise_rms_n);

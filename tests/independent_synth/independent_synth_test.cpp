@@ -187,6 +187,31 @@ TEST(IndependentDamper, OutOfCatalogueForms) {
   EXPECT_NEAR(0.1 * 1.0 - s.rod_disp_m[at(s, 1.0)], 1.76077e-3, 1e-6);
 }
 
+TEST(IndependentDamper, ForceOnlyRunIntegratesLikeAFullOne) {
+  // Keeping only the force channel must not change the integration: the same
+  // force bit for bit, with smooth play, a filter, a thermal fade with cooling
+  // and settling all carrying state from step to step, and no states kept.
+  EffectParams e;
+  e.free_play_m = 0.004;
+  e.contact_fraction = 0.1;
+  e.force_filter_s = 0.005;
+  e.fade_yield_per_k = 0.002;
+  e.cooling_time_s = 30.0;
+  e.settling_quotient = 0.5;
+  Scenario s = ramp(0.0, 1.5, e, 1.5);
+  s.motion = Motion{};
+  s.motion.sines.push_back({0.02, 1.5, 0.3});
+  const FineRun all = simulate(s);
+  const FineRun force = simulate(s, Channels::force_only);
+  ASSERT_EQ(force.force_channel_n.size(), all.force_channel_n.size());
+  for (std::size_t j = 0; j < all.force_channel_n.size(); ++j) {
+    ASSERT_EQ(force.force_channel_n[j], all.force_channel_n[j]) << "at j = " << j;
+  }
+  EXPECT_TRUE(force.rod_disp_m.empty() && force.coil_current_a.empty() && force.temperature_rise_k.empty());
+  EXPECT_GT(all.temperature_rise_k.back(), 0.0);
+  EXPECT_LT(all.participant_ratio.front(), 1.0);
+}
+
 TEST(IndependentSynth, EffectToNoiseRatio) {
   // RMS of {1, −1, 1, −1} is 1; over a noise RMS of 0.5 that is 2.
   EXPECT_DOUBLE_EQ(effect_to_noise_ratio({1, -1, 1, -1}, {0, 0, 0, 0}, 0.5), 2.0);

@@ -131,7 +131,7 @@ class MotionStepper {
 
 }  // namespace
 
-FineRun simulate(const Scenario& s) {
+FineRun simulate(const Scenario& s, Channels channels) {
   if (!(s.duration_s > 0.0) || !(s.rate_hz > 0.0) || s.oversample < 1) {
     throw std::invalid_argument("indep::simulate: duration, rate and oversampling must be positive");
   }
@@ -144,12 +144,15 @@ FineRun simulate(const Scenario& s) {
   const double h = 1.0 / (s.rate_hz * s.oversample);
   run.step_s = h;
   const auto n = static_cast<std::size_t>(std::ceil((s.duration_s + 1.0 / s.rate_hz) / h)) + 2;
+  const bool states = channels == Channels::all;
   run.force_channel_n.resize(n);
-  run.coil_current_a.resize(n);
-  run.rod_disp_m.resize(n);
-  run.rod_vel_m_s.resize(n);
-  run.participant_ratio.resize(n);
-  run.temperature_rise_k.resize(n);
+  if (states) {
+    run.coil_current_a.resize(n);
+    run.rod_disp_m.resize(n);
+    run.rod_vel_m_s.resize(n);
+    run.participant_ratio.resize(n);
+    run.temperature_rise_k.resize(n);
+  }
 
   const double u0 = s.current.at(0.0);
   Coil coil{kCoilTauSlow_s * e.coil_tau_scale, kCoilTauFast_s * e.coil_tau_scale, u0, u0};
@@ -208,11 +211,13 @@ FineRun simulate(const Scenario& s) {
     // The filter's output at t_j has seen the force up to t_(j−1), held over each step.
     run.force_channel_n[j] = e.force_filter_s > 0.0 ? channel_n : f;
     channel_n += filter_gain * (f - channel_n);
-    run.coil_current_a[j] = current;
-    run.rod_disp_m[j] = xd;
-    run.rod_vel_m_s[j] = vd;
-    run.participant_ratio[j] = pr;
-    run.temperature_rise_k[j] = temp_k;
+    if (states) {
+      run.coil_current_a[j] = current;
+      run.rod_disp_m[j] = xd;
+      run.rod_vel_m_s[j] = vd;
+      run.participant_ratio[j] = pr;
+      run.temperature_rise_k[j] = temp_k;
+    }
 
     // Advance the states to t + h.
     volume_l += std::abs(vd) * kFlowArea_m2 * h * 1000.0;

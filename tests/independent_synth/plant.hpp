@@ -72,7 +72,8 @@ struct Scenario {
 };
 
 /// The run on the fine grid t_j = j h, j = 0 … n−1, covering the duration
-/// plus one output step.
+/// plus one output step. With Channels::force_only, only force_channel_n is
+/// filled and the other channels stay empty.
 struct FineRun {
   double step_s = 0.0;
   std::vector<double> force_channel_n;  ///< what the load cell sees, before the delay
@@ -83,10 +84,14 @@ struct FineRun {
   std::vector<double> temperature_rise_k;
 };
 
+/// Which channels a run keeps. A record needs only the force channel; the
+/// states are kept for the generator's own tests. Both integrate alike.
+enum class Channels { all, force_only };
+
 /// Integrates the scenario. Throws std::invalid_argument for a scenario out
 /// of range (non-positive duration, rate or oversampling; free play together
 /// with a series compliance).
-[[nodiscard]] FineRun simulate(const Scenario& s);
+[[nodiscard]] FineRun simulate(const Scenario& s, Channels channels = Channels::all);
 
 /// The force channel at instants `t_s` (any, within the run), delayed by
 /// `delay_s`, linearly interpolated between fine-grid points; before the run
