@@ -141,7 +141,6 @@ Registry& registry() {
   return r;
 }
 
-
 /// "." + name + suffix, built by appending (GCC 12's -Wrestrict misreads the
 /// inlined `const char* + std::string&&` at -O3).
 std::string hidden_name(const fs::path& target, const char* suffix) {

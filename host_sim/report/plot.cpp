@@ -40,7 +40,6 @@ constexpr std::array<unsigned char, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r
 // Longest stderr tail kept from gnuplot for the failure reason.
 constexpr std::size_t kMaxStderrBytes = 16 * 1024;
 
-
 void validate_size(int width_px, int height_px) {
   const auto ok = [](int v) { return v >= kMinPlotSidePx && v <= kMaxPlotSidePx; };
   if (!ok(width_px) || !ok(height_px)) {

@@ -33,11 +33,7 @@ double parse_number(std::string_view field, const std::string& prefix, const cha
   return v;
 }
 
-std::string num4(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
+std::string num4(double v) { return io::format_number("%.4g", v); }
 
 }  // namespace
 

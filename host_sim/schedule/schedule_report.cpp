@@ -14,7 +14,6 @@
 namespace mrd::schedule {
 namespace {
 
-
 void check(bool ok, const std::string& message) {
   if (!ok) throw io::UsageError(message);
 }

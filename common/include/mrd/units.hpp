@@ -15,6 +15,7 @@ inline constexpr double kMeterPerMicrometer = 1.0e-6;
 inline constexpr double kNsPerM_per_kNsPerMm = 1.0e6;
 /// Standard gravity, m/s² (used to express PGA in g).
 inline constexpr double kStandardGravity_m_s2 = 9.80665;
+/// A day, s.
 inline constexpr double kSecondsPerDay = 86400.0;
 /// A year of idle time is a Julian year (365.25 days). The thesis does not say
 /// which year it uses; with the Julian year Eq. 5.4 gives 0.8534 years against
