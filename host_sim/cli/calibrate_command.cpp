@@ -46,8 +46,12 @@ all the records (other strokes, frequencies, currents, test sessions); the floor
 cannot describe in the record itself.
 With three or more currents the current laws are fitted whole; with two,
 rate_per_a is held at the thesis value; with one, the laws are constants.
-The coil time constants (Eq. 4.5) and the participant ratio are not identifiable from
-constant-current records: thesis values, marked identified = false.
+The coil time constants (Eq. 4.5) leave no trace while the current holds: with constant-current
+records they keep the thesis values, marked identified = false (a later record whose current
+changes is then named in `mrd discrepancy`'s findings). When a --measured record's current
+changes (a step above 2 % of its largest current), tau_slow_s and tau_fast_s are fitted with
+the rest (weights 1/2 each; equal, one first-order lag) and marked identified = true. The
+participant ratio is not identifiable from such records: thesis values.
 Standard errors: sigma^2 (J^T J)^-1 at the optimum, inflated by n/n_eff (effective sample count
 of the residual).
 

@@ -38,7 +38,7 @@ one is added; repeated
 until no candidate earns its parameters, then each effect is checked again without it.
 
 Verdict: baseline_mismatch (force scale, velocity or current far outside the baseline: nothing is
-fitted), none (no effect needed, residual without structure), explained (the effects take at
+fitted; a force scale that agrees is said to be a record outside the range described), none (no effect needed, residual without structure), explained (the effects take at
 least half of the discrepancy found on the held-out part), unexplained (otherwise: where the
 residual concentrates, what it looks like, which candidates were rejected and why).
 
@@ -53,7 +53,9 @@ Fields of DIR/summary.json:
   verdict            none | explained | unexplained | baseline_mismatch
   findings           sentences behind the verdict (numbers, where, what it looks like, rejections)
   baseline           name, expected_gap, mismatch, mismatch_reasons, force_ratio (least-squares
-                     measured/baseline) with min_force_ratio and max_force_ratio, record ranges
+                     measured/baseline) with min_force_ratio and max_force_ratio, record ranges,
+                     outside_coverage (an amplitude or frequency beyond those calibrated on, or a
+                     current that changes where the baseline's coil was not identified)
   effects            the explanation, in the order added ([] unless explained)
   gap_before         normalized RMS force error of the baseline, sqrt(sum(F_meas-F)^2/sum F_meas^2),
                      on the samples the fits saw (70 %), full rate

@@ -129,6 +129,11 @@ struct Baseline {
   /// t − force_delay_s. 0 for the thesis model.
   double force_delay_s = 0.0;
   physics::CurrentDynamicsParams coil{};
+  /// Whether `coil` describes this damper: the thesis's Eq. 4.5 was measured
+  /// on its drive and coil (§3); a calibration identifies it only from
+  /// records whose current changes (calibrate.hpp), and otherwise keeps the
+  /// thesis values, false here.
+  bool coil_identified = true;
   physics::ParticipantRatioParams pr{};
   ValidityRange range;
   /// Normalized RMS gap expected on a record inside the range, from the

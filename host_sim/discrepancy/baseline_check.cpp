@@ -31,6 +31,7 @@ BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> m
   c.min_force_ratio = kSettledRatioMargin * (bb > 0.0 ? sb / bb : 1.0);
   if (!(c.force_ratio >= c.min_force_ratio && c.force_ratio <= kMaxForceRatio)) {
     c.mismatch = true;
+    c.force_scale_outside = true;
     c.reasons.push_back("force scale: the measured force is " + format_number("%.3g", c.force_ratio) +
                         " times the baseline's (least squares; RMS " + format_number("%.4g", rms_meas) + " N against " +
                         format_number("%.4g", rms_base) + " N), outside [" + format_number("%.3g", c.min_force_ratio) +
@@ -57,6 +58,30 @@ BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> m
                         " A, the baseline covers up to " + format_number("%.3g", r.current_max_a) + " A");
   }
   return c;
+}
+
+CommandChanges command_changes(std::span<const double> current_cmd_a) {
+  CommandChanges c;
+  if (current_cmd_a.empty()) return c;
+  const auto [lo, hi] = std::minmax_element(current_cmd_a.begin(), current_cmd_a.end());
+  c.min_a = *lo;
+  c.max_a = *hi;
+  const double step = std::max(kCommandChangeShare * std::max(std::fabs(c.min_a), std::fabs(c.max_a)),
+                               kCommandResolution_a);
+  for (std::size_t k = 1; k < current_cmd_a.size(); ++k)
+    if (std::fabs(current_cmd_a[k] - current_cmd_a[k - 1]) > step) ++c.steps;
+  return c;
+}
+
+std::vector<std::string> coil_notes(const Baseline& baseline, std::span<const double> current_cmd_a) {
+  const CommandChanges c = command_changes(current_cmd_a);
+  if (baseline.coil_identified || c.steps == 0) return {};
+  return {"the record's current command changes (" + std::to_string(c.steps) + " steps between " +
+          format_number("%.3g", c.min_a) + " and " + format_number("%.3g", c.max_a) +
+          " A), but the baseline's coil dynamics (Eq. 4.5) were not identified: its calibration records held the "
+          "current constant, so after each change the model's current follows an assumed coil (time constants " +
+          format_number("%.3g", baseline.coil.tau_slow_s) + " and " + format_number("%.3g", baseline.coil.tau_fast_s) +
+          " s), not this damper's; calibrating with a record whose current changes identifies them"};
 }
 
 std::vector<std::string> coverage_notes(const ValidityRange& range, double amplitude_m, double frequency_hz,

@@ -4,6 +4,7 @@
 /// range is not judged against it: no catalogue effect may be fitted to hide
 /// a baseline that describes another damper.
 
+#include <cstddef>
 #include <span>
 #include <string>
 #include <vector>
@@ -41,6 +42,7 @@ inline constexpr double kCoverageFactor = 1.25;
 struct BaselineCheck {
   bool mismatch = false;
   std::vector<std::string> reasons;  ///< one sentence each, with the numbers
+  bool force_scale_outside = false;  ///< the mismatch is (also) one of force scale, not only of range
   double force_ratio = 1.0;          ///< least-squares s in F_meas ≈ s·F_baseline
   double min_force_ratio = 0.0;      ///< the lower limit it was checked against
   double velocity_max_m_s = 0.0;     ///< of the record
@@ -48,7 +50,7 @@ struct BaselineCheck {
   double current_max_a = 0.0;
   double amplitude_m = 0.0;                 ///< the record's displacement half range
   double frequency_hz = 0.0;                ///< its dominant frequency (0: fewer than two crossings)
-  std::vector<std::string> outside_coverage;  ///< coverage_notes(): one sentence each
+  std::vector<std::string> outside_coverage;  ///< coverage_notes() and coil_notes(): one sentence each
 };
 
 /// Where a record's half range `amplitude_m` and dominant frequency
@@ -59,6 +61,28 @@ struct BaselineCheck {
 /// scale, velocity and current decide that.
 [[nodiscard]] std::vector<std::string> coverage_notes(const ValidityRange& range, double amplitude_m,
                                                       double frequency_hz, double expected_gap);
+
+/// A command change smaller than this share of the record's largest |I|
+/// (or than kCommandResolution_a) is the drive's or the logger's resolution,
+/// not a change of current.
+inline constexpr double kCommandChangeShare = 0.02;
+inline constexpr double kCommandResolution_a = 1e-3;
+
+/// The changes of the commanded current in a record: how many samples step
+/// by more than the resolution above, and the range. A record with none
+/// holds its current (a characterization test).
+struct CommandChanges {
+  std::size_t steps = 0;
+  double min_a = 0.0;
+  double max_a = 0.0;
+};
+[[nodiscard]] CommandChanges command_changes(std::span<const double> current_cmd_a);
+
+/// When the record's current changes but the baseline's coil dynamics were
+/// not identified (Baseline::coil_identified), one sentence that says so with
+/// the numbers: the force after each change follows an assumed coil. Empty
+/// otherwise.
+[[nodiscard]] std::vector<std::string> coil_notes(const Baseline& baseline, std::span<const double> current_cmd_a);
 
 /// `settled_force_n`: the baseline with idle_settling at SQ = 1 on the record.
 [[nodiscard]] BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> measured_force_n,

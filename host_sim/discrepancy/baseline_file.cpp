@@ -258,12 +258,15 @@ std::string baseline_toml(const BaselineFile& f) {
   t += "force_delay_s = " + num(b.force_delay_s) + "\n";
   t += "force_delay_s_sigma = " + num(f.sigma.force_delay_s) + "\n";
   t += "\n[coil]  # Eq. 4.5";
-  t += f.coil_identified ? "\n" : ": assumed (thesis values), not identified from the records\n";
+  t += b.coil_identified ? ", fitted to the records whose current changes\n"
+                         : ": assumed (thesis values), not identified from the records\n";
   t += "tau_slow_s = " + num(b.coil.tau_slow_s) + "\n";
+  if (b.coil_identified) t += "tau_slow_s_sigma = " + num(f.sigma.coil_tau_slow_s) + "\n";
   t += "tau_fast_s = " + num(b.coil.tau_fast_s) + "\n";
+  if (b.coil_identified) t += "tau_fast_s_sigma = " + num(f.sigma.coil_tau_fast_s) + "\n";
   t += "weight_slow = " + num(b.coil.weight_slow) + "\n";
   t += "weight_fast = " + num(b.coil.weight_fast) + "\n";
-  t += std::string("identified = ") + (f.coil_identified ? "true" : "false") + "\n";
+  t += std::string("identified = ") + (b.coil_identified ? "true" : "false") + "\n";
   const auto& p = b.pr;
   t += "\n[participant_ratio]  # Eq. 5.6-5.11, Table 5.6";
   t += f.pr_identified ? "\n" : ": assumed (thesis values), not identified from the records\n";
@@ -381,7 +384,9 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     b.coil.tau_fast_s = c.positive("tau_fast_s");
     b.coil.weight_slow = c.number("weight_slow");
     b.coil.weight_fast = c.number("weight_fast");
-    f.coil_identified = c.boolean("identified");
+    b.coil_identified = c.boolean("identified");
+    if (c.has("tau_slow_s_sigma")) f.sigma.coil_tau_slow_s = c.number("tau_slow_s_sigma");
+    if (c.has("tau_fast_s_sigma")) f.sigma.coil_tau_fast_s = c.number("tau_fast_s_sigma");
     if (std::fabs(b.coil.weight_slow + b.coil.weight_fast - 1.0) > 1e-9)
       fail(origin, c.where("weight_fast"), "coil.weight_fast", "expected weight_slow + weight_fast = 1 (unity DC gain)");
     c.no_unknown_keys();

@@ -15,6 +15,7 @@
 ///                    band_m_s (m/s) with _sigma when the force inside the play grows over a band
 ///   [channels]       force_delay_s, force_delay_s_sigma
 ///   [coil]           tau_slow_s, tau_fast_s, weight_slow, weight_fast, identified        Eq. 4.5
+///                    tau_slow_s_sigma, tau_fast_s_sigma (only when identified)
 ///   [participant_ratio]  Table 5.6 coefficients, flow_area_m2, volume_unit_m3, identified
 ///   [validity]       current_min_a … frequency_max_hz, expected_gap
 ///   [[fit]]          file, law, transition ("tanh", when so), transition_time, lost_motion and
@@ -50,8 +51,7 @@ struct BaselineFile {
   Baseline baseline;
   BaselineSigmas sigma;
   CurrentLawFitted yield_fitted, viscous_fitted;
-  bool coil_identified = false;
-  bool pr_identified = false;
+  bool pr_identified = false;  ///< the coil's is Baseline::coil_identified
   std::vector<std::string> source_records;
   std::vector<RecordFit> fits;
 };

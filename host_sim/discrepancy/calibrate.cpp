@@ -21,22 +21,27 @@ namespace mrd::discrepancy {
 namespace {
 
 /// The parameters a calibration can fit.
-enum Slot : std::size_t { kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kBand, kSlots };
+enum Slot : std::size_t {
+  kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kBand, kCoilSlow, kCoilFast, kSlots
+};
 
 constexpr std::array<const char*, kSlots> kSlotName{
     "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
     "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m",
     "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share",  "transition_time_s",
-    "lost_motion_band_m_s"};
+    "lost_motion_band_m_s", "coil.tau_slow_s",      "coil.tau_fast_s"};
 
 /// Search bounds, SI (the fit works on their logarithms).
 /// The force-channel lag between 10 µs (none, in effect) and 100 ms; the
 /// lost motion between 1 nm and 10 mm per kN, its share between 0.1 % and all;
 /// the transition time between 1 µs (none: 10 µm/s at 10 m/s²) and 100 ms;
-/// the band of the force inside the play between 10 µm/s and 10 m/s.
-constexpr std::array<double, kSlots> kLower{1e-3,  1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5,
-                                            1e-7,  1e-2, 1e-5, 1e-12, 1e-3, 1e-6, 1e-5};
-constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1, 1e9, 0.1, 1e-5, 1.0, 0.1, 10.0};
+/// the band of the force inside the play between 10 µm/s and 10 m/s; the
+/// coil's time constants between 0.1 ms (a current drive faster than any
+/// sampling here) and 10 s (a field that never settles within a test).
+constexpr std::array<double, kSlots> kLower{1e-3,  1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7,
+                                            1e-2,  1e-5, 1e-12, 1e-3, 1e-6, 1e-5, 1e-4, 1e-4};
+constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1,
+                                            1e9, 0.1, 1e-5, 1.0,  0.1,  10.0, 10.0, 10.0};
 
 double& slot_ref(Baseline& b, Slot s) {
   switch (s) {
@@ -54,6 +59,8 @@ double& slot_ref(Baseline& b, Slot s) {
     case kShare: return b.lost_motion_share;
     case kTau: return b.transition_time_s;
     case kBand: return b.lost_motion_band_m_s;
+    case kCoilSlow: return b.coil.tau_slow_s;
+    case kCoilFast: return b.coil.tau_fast_s;
     default: break;
   }
   return b.v_tf_m_s;
@@ -292,6 +299,9 @@ struct Prepared {
   std::vector<double> vmax_m_s;      ///< per record
   std::vector<double> half_range_m;  ///< per record
   std::vector<double> currents_a;    ///< distinct currents with ≥ 2 % of the samples
+  /// Some record's current changes (command_changes): the coil's time
+  /// constants are fitted (fit_law); otherwise they leave no trace in the force.
+  bool current_changes = false;
 };
 
 Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& opt) {
@@ -311,6 +321,7 @@ Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& 
     for (std::size_t k = moving.begin; k < moving.end; ++k) ss += rec.force_n[k] * rec.force_n[k];
     for (const double v : in.vel_m_s) vmax = std::max(vmax, std::fabs(v));
     for (const double c : rec.current_cmd_a) ++count[current_key(c)];
+    if (command_changes(rec.current_cmd_a).steps > 0) p.current_changes = true;
     all += n;
     p.data.rms_force_n.push_back(ss > 0.0 ? std::sqrt(ss / static_cast<double>(moving.size())) : 1.0);
     p.data.total += idx.size();
@@ -405,11 +416,21 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     layout.free.push_back(kPlay);
     layout.free.push_back(extras.viscous_play ? kBand : kShare);
   }
+  // The coil's two time constants of Eq. 4.5 (weights held at ½ each, the
+  // unity DC gain of current_dynamics.hpp), when a record's current changes:
+  // equal, they are one first-order lag from command to field, the form of
+  // Spencer et al. (1997)'s filter u̇ = −η (u − v) for a small damper's drive.
+  if (p.current_changes) {
+    layout.free.push_back(kCoilSlow);
+    layout.free.push_back(kCoilFast);
+  }
 
-  // Base: the thesis's coil and participant ratio (not identifiable here),
-  // current laws from the per-current regression.
+  // Base: the thesis's coil (the start of its fit when a current changes,
+  // else held: not identifiable) and participant ratio (not identifiable
+  // here), current laws from the per-current regression.
   Baseline base = thesis;
   base.name = opt.name;
+  base.coil_identified = p.current_changes;
   base.law = law;
   base.tanh_transition = law == BaseLaw::bingham && tanh;
   if (extras.viscous_play) base.lost_motion_share = 1.0;  // the whole law's force waits for the play
@@ -473,18 +494,25 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
         starts.push_back(s);
       }
   } else {
-    for (const double f : {0.02, 0.1, 0.3})
-      for (const double lag_s : {1e-3, 10e-3}) {
-        Baseline s = base;
-        s.force_delay_s = lag_s;
-        if (law == BaseLaw::bingham) {
-          s.v_tf_m_s = f * vmax;
-        } else {
-          s.yield_disp_m = f * amp_min;
-          s.stiffness_n_m = k_start;
+    // With a current that changes, each start also with the thesis's coil
+    // and with one 30 times faster (0.7 s / 30 ms → 23 ms / 1 ms: a small
+    // damper's coil behind a current drive).
+    const std::vector<double> coil_scales = p.current_changes ? std::vector{1.0, 1.0 / 30.0} : std::vector{1.0};
+    for (const double coil_scale : coil_scales)
+      for (const double f : {0.02, 0.1, 0.3})
+        for (const double lag_s : {1e-3, 10e-3}) {
+          Baseline s = base;
+          s.force_delay_s = lag_s;
+          s.coil.tau_slow_s *= coil_scale;
+          s.coil.tau_fast_s *= coil_scale;
+          if (law == BaseLaw::bingham) {
+            s.v_tf_m_s = f * vmax;
+          } else {
+            s.yield_disp_m = f * amp_min;
+            s.stiffness_n_m = k_start;
+          }
+          starts.push_back(s);
         }
-        starts.push_back(s);
-      }
   }
 
   // Every start for a few iterations, then the best one to convergence:
@@ -548,6 +576,8 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   fit.sigma.lost_motion_share = sigma[kShare];
   fit.sigma.lost_motion_band_m_s = sigma[kBand];
   fit.sigma.transition_time_s = sigma[kTau];
+  fit.sigma.coil_tau_slow_s = sigma[kCoilSlow];
+  fit.sigma.coil_tau_fast_s = sigma[kCoilFast];
 
   std::vector<Slot> shown{kYa, kYb, kYc, kCa, kCb, kCc};
   if (law == BaseLaw::bingham) {
@@ -561,6 +591,10 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   if (extras.lost_motion) {
     shown.push_back(kPlay);
     shown.push_back(extras.viscous_play ? kBand : kShare);
+  }
+  if (p.current_changes) {
+    shown.push_back(kCoilSlow);
+    shown.push_back(kCoilFast);
   }
   for (const Slot s : shown)
     fit.params.push_back({kSlotName[s], slot_ref(fit.baseline, s), sigma[s], fitted[s], at_bound[s]});
@@ -671,8 +705,13 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   } else if (p.currents_a.size() == 2) {
     res.notes.push_back("two currents in the records: rate_per_a held at the thesis value (Table 4.1)");
   }
-  res.notes.push_back("coil (Eq. 4.5) and participant ratio (Eq. 5.6-5.11): thesis values, assumed (constant-current "
-                      "records do not identify them)");
+  if (p.current_changes) {
+    res.notes.push_back("coil (Eq. 4.5): tau_slow_s and tau_fast_s fitted to the records whose current changes "
+                        "(weights held at 1/2 each); participant ratio (Eq. 5.6-5.11): thesis values, assumed");
+  } else {
+    res.notes.push_back("coil (Eq. 4.5) and participant ratio (Eq. 5.6-5.11): thesis values, assumed (constant-current "
+                        "records do not identify them)");
+  }
 
   std::vector<BaseLaw> laws;
   if (options.law) {

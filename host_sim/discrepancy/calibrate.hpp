@@ -16,8 +16,12 @@
 /// What constant-current records identify: the current laws from the spread
 /// of the currents (three or more currents: at_zero, limit and rate_per_a;
 /// two: rate_per_a fixed at the thesis value; one: a constant value). The
-/// coil time constants (Eq. 4.5) and the participant ratio (Eq. 5.6–5.11)
-/// are not identifiable and keep the thesis values.
+/// coil time constants (Eq. 4.5) leave no trace in the force while the
+/// current holds: they keep the thesis values (Baseline::coil_identified
+/// false) unless some record's current changes (command_changes,
+/// baseline_check.hpp), and then both are fitted with the rest. The
+/// participant ratio (Eq. 5.6–5.11) is not identifiable from such records
+/// and keeps the thesis values.
 
 #include <cstddef>
 #include <optional>
@@ -52,6 +56,8 @@ struct BaselineSigmas {
   double lost_motion_share = 0.0;
   double lost_motion_band_m_s = 0.0;
   double transition_time_s = 0.0;
+  double coil_tau_slow_s = 0.0;
+  double coil_tau_fast_s = 0.0;
 };
 
 /// Which parameters of the current laws were fitted.

@@ -635,6 +635,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   check.frequency_hz = dominant_frequency_hz(data.time_s, model.input().disp_m);
   check.outside_coverage =
       coverage_notes(opt.baseline.range, check.amplitude_m, check.frequency_hz, opt.baseline.expected_gap);
+  for (std::string& note : coil_notes(opt.baseline, data.current_cmd_a)) check.outside_coverage.push_back(std::move(note));
   if (!res.baseline_check.mismatch) {
     const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
     const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * check.amplitude_m, base_rms};
@@ -658,9 +659,17 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   res.signatures_after = signatures_of(res, data, res.updated_force_n, split, band);
   if (res.baseline_check.mismatch) {
     res.verdict = Verdict::baseline_mismatch;
-    res.findings.push_back("The baseline (" + res.baseline_name +
-                           ") does not describe this damper; no effect was fitted. Calibrate a baseline to it "
-                           "(mrd calibrate) and pass it with --baseline.");
+    if (res.baseline_check.force_scale_outside) {
+      res.findings.push_back("The baseline (" + res.baseline_name +
+                             ") does not describe this damper; no effect was fitted. Calibrate a baseline to it "
+                             "(mrd calibrate) and pass it with --baseline.");
+    } else {
+      // The force scale agrees: the damper may be the one calibrated, driven
+      // beyond what its characterization covered.
+      res.findings.push_back("The record lies outside the range the baseline (" + res.baseline_name +
+                             ") describes; no effect was fitted. Calibrate with records that cover it "
+                             "(mrd calibrate) and pass the baseline with --baseline.");
+    }
     for (const auto& r : res.baseline_check.reasons) res.findings.push_back(r);
   } else {
     decide_verdict(res, current, baseline, fd.index.size(), held.index.size());

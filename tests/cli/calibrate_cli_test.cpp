@@ -55,7 +55,7 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   const discrepancy::BaselineFile f = discrepancy::read_baseline_file(toml);
   EXPECT_EQ(f.baseline.law, discrepancy::BaseLaw::bingham);
   EXPECT_EQ(f.source_records.size(), 3u);
-  EXPECT_FALSE(f.coil_identified);
+  EXPECT_FALSE(f.baseline.coil_identified);  // constant-current records
   // The yield force at 1 A of the generating law is 1000 N (tanh close to 1 at speed).
   EXPECT_NEAR(f.baseline.yield_n.at(1.0), 1000.0, 150.0);
   EXPECT_DOUBLE_EQ(f.baseline.range.current_max_a, 1.0);

@@ -386,7 +386,13 @@ BaselineFile sample_file(BaseLaw law) {
   f.viscous_fitted = {true, true, false};
   f.source_records = {"a.csv", "b \"quoted\".csv"};
   f.fits = {{"a.csv", BaseLaw::bingham, 0.1, 4000}, {"a.csv", BaseLaw::bouc_wen, 0.2, 4000}};
+  // The Bingham sample's coil identified (records whose current changed), the Bouc–Wen one's assumed.
+  f.baseline.coil_identified = law == BaseLaw::bingham;
   if (law == BaseLaw::bingham) {
+    f.baseline.coil.tau_slow_s = 0.021;
+    f.baseline.coil.tau_fast_s = 0.0017;
+    f.sigma.coil_tau_slow_s = 0.0012;
+    f.sigma.coil_tau_fast_s = 0.0003;
     f.baseline.lost_motion_m_per_n = 3e-7;
     f.baseline.lost_motion_share = 0.45;
     f.sigma.lost_motion_m_per_n = 2e-8;
@@ -433,7 +439,9 @@ TEST(BaselineFile, RoundTripsExactly) {
     EXPECT_EQ(g.sigma.stiffness_n_m, f.sigma.stiffness_n_m);
     EXPECT_FALSE(g.viscous_fitted.rate_per_a);
     EXPECT_TRUE(g.viscous_fitted.limit);
-    EXPECT_FALSE(g.coil_identified);
+    EXPECT_EQ(b.coil_identified, law == BaseLaw::bingham);
+    EXPECT_EQ(g.sigma.coil_tau_slow_s, f.sigma.coil_tau_slow_s);
+    EXPECT_EQ(g.sigma.coil_tau_fast_s, f.sigma.coil_tau_fast_s);
     EXPECT_EQ(g.source_records, f.source_records);
     EXPECT_EQ(b.lost_motion_m_per_n, a.lost_motion_m_per_n);
     EXPECT_EQ(b.lost_motion_share, a.lost_motion_share);
@@ -508,8 +516,10 @@ TEST(BaselineFile, RefusesBadFieldsNamingFileLineAndField) {
       {"at_zero = 100.0", "at_zero = nan", "at_zero = ", "yield_n.at_zero", "expected a finite number"},
       {"v_tf_m_s = 0.005", "v_tf_m_s = \"fast\"", "v_tf_m_s = ", "bingham.v_tf_m_s", "expected a number"},
       {"current_max_a = 1.0", "current_max_a = inf", "current_max_a", "validity.current_max_a", "finite"},
-      {"tau_fast_s = 0.03", "tau_fast_s = 0.03\ntau_fastest_s = 0.01", "tau_fastest_s", "coil.tau_fastest_s",
+      {"weight_fast = 0.5", "weight_fast = 0.5\ntau_fastest_s = 0.01", "tau_fastest_s", "coil.tau_fastest_s",
        "unknown key"},
+      {"tau_slow_s_sigma = 0.0012", "tau_slow_s_sigma = -0.0012", "tau_slow_s_sigma", "coil.tau_slow_s_sigma",
+       "expected a number >= 0"},
       {"share = 0.45", "share = 1.5", "share = ", "lost_motion.share", "expected a share in (0, 1]"},
       {"m_per_n = 3e-07", "m_per_n = 0", "m_per_n = ", "lost_motion.m_per_n", "expected a number > 0"},
       {"band_m_s = 0.015", "band_m_s = 0", "band_m_s = ", "lost_motion.band_m_s", "expected a number > 0"},

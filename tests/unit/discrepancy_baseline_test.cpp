@@ -268,16 +268,44 @@ TEST(DiscrepancyBaseline, CheckFlagsAHundredfoldForceAndAFastRecord) {
   EXPECT_FALSE(check_baseline(b, same, base, settled, v, i).mismatch);
   const BaselineCheck c = check_baseline(b, small, base, settled, v, i);
   EXPECT_TRUE(c.mismatch);
+  EXPECT_TRUE(c.force_scale_outside);
   EXPECT_NEAR(c.force_ratio, 0.01, 1e-12);
   EXPECT_NEAR(c.min_force_ratio, 0.1, 1e-12);
-  // Above 2 × 0.2491 m/s (Table 3.1) = 0.4982 m/s.
+  // Above 2 × 0.2491 m/s (Table 3.1) = 0.4982 m/s: outside the range, the force scale agreeing.
   std::vector<double> fast{0.50, -0.1, 0.05, -0.05};
-  EXPECT_TRUE(check_baseline(b, same, base, settled, fast, i).mismatch);
+  const BaselineCheck f = check_baseline(b, same, base, settled, fast, i);
+  EXPECT_TRUE(f.mismatch);
+  EXPECT_FALSE(f.force_scale_outside);
   std::vector<double> quick{0.49, -0.1, 0.05, -0.05};
   EXPECT_FALSE(check_baseline(b, same, base, settled, quick, i).mismatch);
   // 4 A is beyond 1.5 × 2.5 A + 0.05 A.
   std::vector<double> high{4.0, 2.5, 2.5, 2.5};
   EXPECT_TRUE(check_baseline(b, same, base, settled, v, high).mismatch);
+}
+
+TEST(DiscrepancyBaseline, CommandChangesCountStepsAboveTheResolution) {
+  // Largest |I| 2 A: a change counts above 2 % of it, 40 mA.
+  const std::vector<double> i{0.0, 0.0, 2.0, 2.0, 1.97, 1.0, 1.0};  // 0→2, 1.97→1 count; 2→1.97 (30 mA) does not
+  const CommandChanges c = command_changes(i);
+  EXPECT_EQ(c.steps, 2u);
+  EXPECT_EQ(c.min_a, 0.0);
+  EXPECT_EQ(c.max_a, 2.0);
+  // Near 0 A the floor is 1 mA: 0.5 mA of logger noise is no change.
+  EXPECT_EQ(command_changes(std::vector<double>{0.0, 0.0005, 0.0, 0.0005}).steps, 0u);
+  EXPECT_EQ(command_changes(std::vector<double>{}).steps, 0u);
+}
+
+TEST(DiscrepancyBaseline, CoilNotesNameAChangingCurrentOnAnAssumedCoil) {
+  Baseline b = thesis_baseline();
+  const std::vector<double> steps{0.0, 0.0, 1.0, 1.0, 0.0};
+  const std::vector<double> held{1.0, 1.0, 1.0, 1.0, 1.0};
+  EXPECT_TRUE(coil_notes(b, steps).empty());  // the thesis's coil is Eq. 4.5, measured (§3)
+  b.coil_identified = false;
+  EXPECT_TRUE(coil_notes(b, held).empty());   // a held current does not see the coil
+  const std::vector<std::string> n = coil_notes(b, steps);
+  ASSERT_EQ(n.size(), 1u);
+  EXPECT_NE(n[0].find("2 steps between 0 and 1 A"), std::string::npos) << n[0];
+  EXPECT_NE(n[0].find("time constants 0.7 and 0.03 s"), std::string::npos) << n[0];
 }
 
 TEST(DiscrepancyBaseline, CoverageNamesARecordBeyondTheCalibratedAmplitudesAndFrequencies) {
