@@ -27,6 +27,7 @@ tests named effects added to the model:
   thermal_fade         yield/viscosity falling with dissipated energy         yield_coeff_per_k, viscous_coeff_per_k
   time_delay           transport delay of the measured force                  delay_s [0-0.1]
   coil_lag             coil time constants of Eq. 4.5 scaled                  tau_scale [1-10]
+                       ([0.005-10] when the baseline's coil was assumed: not identified)
   force_offset         load-cell zero offset                                  offset_n [-3e4-3e4]*
   direction_asymmetry  force x(1+a) in extension, x(1-a) in compression        asymmetry [-0.5-0.5]
   preyield_hysteresis  yield force building over x_y after reversals           yield_disp_m [0-0.01]

@@ -92,7 +92,7 @@ void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a)
   const std::size_t n = size();
   current_a.resize(n);
   if (n == 0) return;
-  const double scale = std::max(tau_scale, 0.05);
+  const double scale = std::max(tau_scale, kAssumedCoilMinScale);
   const double tau_s = p_.coil.tau_slow_s * scale;
   const double tau_f = p_.coil.tau_fast_s * scale;
   const double ws = p_.coil.weight_slow;

@@ -86,6 +86,8 @@ class DamperModel {
   /// force_scale_n() of the baseline over that of the thesis damper: the
   /// factor on the effects' force-valued bounds.
   [[nodiscard]] double force_ratio() const noexcept { return force_ratio_; }
+  /// What the effects' bounds depend on: force_ratio() and whether the coil was identified.
+  [[nodiscard]] ParamScale param_scale() const noexcept { return {force_ratio_, p_.coil_identified}; }
   /// Coil current of Eq. 4.5 from the commanded current, A.
   [[nodiscard]] const std::vector<double>& baseline_current_a() const noexcept { return base_current_a_; }
 

@@ -33,8 +33,9 @@ constexpr std::array kDelayParams{
     ParamInfo{"delay_s", 0.0, 0.1, 0.0, false, {0.002, 0.005, 0.012, 0.03, 0.06}},
 };
 constexpr std::array kCoilParams{
-    // Both time constants of Eq. 4.5 scaled by this factor (1 = Eq. 4.5).
-    ParamInfo{"tau_scale", 1.0, 10.0, 1.0, false, {1.3, 2.0, 3.0, 5.0, 8.0}},
+    // Both time constants of Eq. 4.5 scaled by this factor (1 = Eq. 4.5); below 1
+    // too when the baseline's coil was assumed (scaled_param).
+    ParamInfo{"tau_scale", 1.0, 10.0, 1.0, false, {1.3, 2.0, 3.0, 5.0, 8.0}, false, true},
 };
 constexpr std::array kOffsetParams{
     // Zero offset of the 250 kN load cell (§3.2), up to 12 % of its range.
@@ -68,7 +69,9 @@ const std::array<EffectInfo, kEffectCount>& catalogue() {
                  kThermalParams},
       EffectInfo{Effect::time_delay, "time_delay", "pure transport delay between displacement and force channels",
                  kDelayParams},
-      EffectInfo{Effect::coil_lag, "coil_lag", "coil current slower than Eq. 4.5: both time constants scaled",
+      EffectInfo{Effect::coil_lag, "coil_lag",
+                 "coil current slower than the baseline's Eq. 4.5 (or faster, when the baseline's coil was assumed): "
+                 "both time constants scaled",
                  kCoilParams},
       EffectInfo{Effect::force_offset, "force_offset", "load-cell zero offset: a constant force", kOffsetParams},
       EffectInfo{Effect::direction_asymmetry, "direction_asymmetry",
@@ -84,13 +87,18 @@ const std::array<EffectInfo, kEffectCount>& catalogue() {
 
 }  // namespace
 
-ParamInfo scaled_param(const ParamInfo& p, double force_ratio) noexcept {
-  if (!p.force_scaled) return p;
+ParamInfo scaled_param(const ParamInfo& p, const ParamScale& scale) noexcept {
   ParamInfo s = p;
-  s.lower *= force_ratio;
-  s.upper *= force_ratio;
-  s.null_value *= force_ratio;
-  for (double& g : s.init_grid) g *= force_ratio;
+  if (p.force_scaled) {
+    s.lower *= scale.force_ratio;
+    s.upper *= scale.force_ratio;
+    s.null_value *= scale.force_ratio;
+    for (double& g : s.init_grid) g *= scale.force_ratio;
+  }
+  if (p.coil_time && !scale.coil_identified) {
+    s.lower = kAssumedCoilMinScale;
+    s.init_grid = {0.01, 0.04, 0.15, 0.5, 3.0};
+  }
   return s;
 }
 

@@ -45,11 +45,29 @@ struct ParamInfo {
   /// The value is a force (or force per metre): bounds and grid are for the
   /// thesis's 200 kN damper and scale with the baseline's force scale.
   bool force_scaled = false;
+  /// The value scales the coil's time constants: above 1 only (slower) on a
+  /// coil that was measured, either way on one that was assumed.
+  bool coil_time = false;
 };
 
-/// `p` with bounds, null value and grid multiplied by `force_ratio` when it is
-/// force-scaled (DamperModel::force_ratio()); `p` itself otherwise.
-[[nodiscard]] ParamInfo scaled_param(const ParamInfo& p, double force_ratio) noexcept;
+/// What an effect's bounds depend on besides the effect: the baseline's
+/// force scale over the thesis damper's (DamperModel::force_ratio()) and
+/// whether its coil was identified (Baseline::coil_identified).
+struct ParamScale {
+  double force_ratio = 1.0;
+  bool coil_identified = true;
+};
+
+/// Smallest scale of the coil's time constants fitted on a baseline whose coil
+/// was assumed: Eq. 4.5's 0.7 s and 30 ms become 3.5 ms and 0.15 ms, a small
+/// damper's coil behind a current drive (Spencer et al. 1997: 5 ms) and faster.
+inline constexpr double kAssumedCoilMinScale = 0.005;
+
+/// `p` with bounds, null value and grid multiplied by `scale.force_ratio` when
+/// it is force-scaled; a coil_time parameter of a baseline whose coil was not
+/// identified with its lower bound at kAssumedCoilMinScale and a grid on both
+/// sides of 1; `p` itself otherwise.
+[[nodiscard]] ParamInfo scaled_param(const ParamInfo& p, const ParamScale& scale) noexcept;
 
 struct EffectInfo {
   Effect effect;

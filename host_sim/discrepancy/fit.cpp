@@ -15,11 +15,11 @@ struct Bound {
   double range;
 };
 
-std::vector<Bound> bounds_of(const EffectSet& set, double force_ratio) {
+std::vector<Bound> bounds_of(const EffectSet& set, const ParamScale& scale) {
   std::vector<Bound> b;
   for (const Effect e : set.effects) {
     for (const auto& info : effect_info(e).params) {
-      const ParamInfo p = scaled_param(info, force_ratio);
+      const ParamInfo p = scaled_param(info, scale);
       b.push_back({p.lower, p.upper - p.lower});
     }
   }
@@ -30,7 +30,7 @@ std::vector<Bound> bounds_of(const EffectSet& set, double force_ratio) {
 /// normalized parameters u ∈ [0, 1]^k, with a forward-difference Jacobian.
 class SetCost final : public ceres::CostFunction {
  public:
-  SetCost(const FitData& data, const EffectSet& set) : data_(data), set_(set), bounds_(bounds_of(set, data.model->force_ratio())) {
+  SetCost(const FitData& data, const EffectSet& set) : data_(data), set_(set), bounds_(bounds_of(set, data.model->param_scale())) {
     set_num_residuals(static_cast<int>(data.index.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(bounds_.size()));
     model_.resize(data.index.size());
@@ -180,8 +180,8 @@ FitOutcome fit_effects(const FitData& data, const EffectSet& set, std::vector<do
                        std::size_t max_starts) {
   FitOutcome out;
   out.set = set;
-  const double ratio = data.model->force_ratio();
-  const std::vector<Bound> b = bounds_of(set, ratio);
+  const ParamScale scale = data.model->param_scale();
+  const std::vector<Bound> b = bounds_of(set, scale);
   const std::size_t k = b.size();
   ModelWorkspace ws;
 
@@ -200,7 +200,7 @@ FitOutcome fit_effects(const FitData& data, const EffectSet& set, std::vector<do
       for (std::size_t c = 0; c < combos; ++c) {
         std::size_t rest = c;
         for (std::size_t i = 0; i < params.size(); ++i) {
-          trial[*off + i] = scaled_param(params[i], ratio).init_grid[rest % params[i].init_grid.size()];
+          trial[*off + i] = scaled_param(params[i], scale).init_grid[rest % params[i].init_grid.size()];
           rest /= params[i].init_grid.size();
         }
         starts.emplace_back(fit_rss(data, set, trial, ws), trial);

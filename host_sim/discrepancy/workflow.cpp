@@ -85,11 +85,11 @@ struct Trial {
 
 }  // namespace
 
-std::string implausibility(Effect e, std::span<const double> params, double force_ratio) {
+std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale) {
   const auto& info = effect_info(e);
   bool all_null = true;
   for (std::size_t i = 0; i < info.params.size(); ++i) {
-    const ParamInfo p = scaled_param(info.params[i], force_ratio);
+    const ParamInfo p = scaled_param(info.params[i], scale);
     const double range = p.upper - p.lower;
     const double v = params[i];
     if (std::fabs(v - p.null_value) > kNullFraction * range) all_null = false;
@@ -106,11 +106,11 @@ std::string implausibility(Effect e, std::span<const double> params, double forc
   return {};
 }
 
-std::vector<std::string> bound_flags(Effect e, std::span<const double> params, double force_ratio) {
+std::vector<std::string> bound_flags(Effect e, std::span<const double> params, const ParamScale& scale) {
   const auto& info = effect_info(e);
   std::vector<std::string> flags(info.params.size());
   for (std::size_t i = 0; i < info.params.size(); ++i) {
-    const ParamInfo p = scaled_param(info.params[i], force_ratio);
+    const ParamInfo p = scaled_param(info.params[i], scale);
     const double range = p.upper - p.lower;
     const double v = params[i];
     if (v - p.lower <= kAtBoundFraction * range && p.lower != p.null_value) {
@@ -264,13 +264,13 @@ std::vector<Trial> alternative_trials(const SelectionContext& ctx, const Selecti
 /// effect of its model whose fitted parameters are.
 std::vector<std::string> implausibility_reasons(const SelectionContext& ctx, const std::vector<Trial>& trials) {
   std::vector<std::string> why(trials.size());
-  const double ratio = ctx.fd.model->force_ratio();
+  const ParamScale scale = ctx.fd.model->param_scale();
   for (std::size_t i = 0; i < trials.size(); ++i) {
     const FitOutcome& f = trials[i].fit;
     why[i] = collapse_reason(ctx, f);
     if (!why[i].empty()) continue;
     for (const Effect e : f.set.effects) {
-      const std::string w = implausibility(e, own_params(f.set, f.params, e), ratio);
+      const std::string w = implausibility(e, own_params(f.set, f.params, e), scale);
       if (w.empty()) continue;
       if (trials[i].alternative) {
         why[i] = std::string(effect_name(e)) + ": " + w;
@@ -308,7 +308,7 @@ CandidateResult score_trial(const SelectionContext& ctx, const Selection& curren
   c.alternative = t.alternative;
   c.all_params = f.params;
   c.params = own_params(f.set, f.params, t.effect);
-  c.flags = bound_flags(t.effect, c.params, ctx.fd.model->force_ratio());
+  c.flags = bound_flags(t.effect, c.params, ctx.fd.model->param_scale());
   c.n_eff = n_eff;
   c.rss_reduction = current.rss > 0.0 ? 1.0 - f.rss_n2 / current.rss : 0.0;
   ModelWorkspace ws;

@@ -180,10 +180,12 @@ struct DiscrepancyResult {
 
 /// Physical plausibility of fitted parameters of one effect: empty when
 /// plausible, else the reason (at its null value, or pinned at a bound).
-/// `force_ratio`: DamperModel::force_ratio() (force-valued bounds scale).
-[[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, double force_ratio = 1.0);
+/// `scale`: DamperModel::param_scale() (force-valued bounds scale; an
+/// assumed coil may be faster).
+[[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale = {});
 
 /// Per parameter of effect `e`: "" or "at its lower/upper bound …".
-[[nodiscard]] std::vector<std::string> bound_flags(Effect e, std::span<const double> params, double force_ratio = 1.0);
+[[nodiscard]] std::vector<std::string> bound_flags(Effect e, std::span<const double> params,
+                                                   const ParamScale& scale = {});
 
 }  // namespace mrd::discrepancy

@@ -119,6 +119,25 @@ TEST(Plausibility, Rules) {
   EXPECT_TRUE(implausibility(Effect::thermal_fade, fade_one).empty());  // viscosity alone fades
 }
 
+TEST(Plausibility, AnAssumedCoilMayBeFasterAMeasuredOneOnlySlower) {
+  const ParamInfo& tau = effect_info(Effect::coil_lag).params[0];
+  const ParamScale measured{1.0, true};
+  const ParamScale assumed{1.0, false};
+  EXPECT_EQ(scaled_param(tau, measured).lower, 1.0);  // Eq. 4.5 measured (§3): a fault only slows it
+  EXPECT_EQ(scaled_param(tau, assumed).lower, kAssumedCoilMinScale);
+  EXPECT_EQ(scaled_param(tau, assumed).upper, 10.0);
+  EXPECT_EQ(scaled_param(tau, assumed).null_value, 1.0);  // the assumed coil itself
+  EXPECT_LT(scaled_param(tau, assumed).init_grid.front(), 1.0);
+  // A coil five times faster than assumed is a finding; pinned at the smallest scale it is not.
+  const std::vector<double> faster{0.2}, fastest{kAssumedCoilMinScale};
+  EXPECT_TRUE(implausibility(Effect::coil_lag, faster, assumed).empty());
+  EXPECT_NE(implausibility(Effect::coil_lag, fastest, assumed).find("lower physical bound"), std::string::npos);
+  // The force scale leaves a time scale alone, and the coil's state leaves a force alone.
+  const ParamInfo& offset = effect_info(Effect::force_offset).params[0];
+  EXPECT_EQ(scaled_param(offset, ParamScale{0.01, false}).upper, 300.0);  // 30 kN × 0.01
+  EXPECT_EQ(scaled_param(tau, ParamScale{0.01, true}).upper, 10.0);
+}
+
 TEST(Workflow, CleanBaselineRecordNamesNone) {
   SynthSpec spec;
   spec.seed = 5;
