@@ -39,19 +39,23 @@ one is added; repeated
 until no candidate earns its parameters, then each effect is checked again without it.
 
 Verdict: baseline_mismatch (force scale, velocity or current far outside the baseline: nothing is
-fitted; a force scale that agrees is said to be a record outside the range described), none (no effect needed, residual without structure), explained (the effects take at
+fitted; a force scale that agrees is said to be a record outside the range described), none (no
+effect needed, residual without structure), explained (the effects take at
 least half of the discrepancy found on the held-out part), unexplained (otherwise: where the
 residual concentrates, what it looks like, which candidates were rejected and why).
 
 Input (--measured): CSV with a header of named columns with units, at least
 time_s, displacement_m, current_cmd_A, force_N (units converted: _ms, _mm, _cm, _in, _mA, _kN,
 _kip, _lbf; velocity_m_s optional, derived from the displacement when absent; current_A is
-taken as the command when there is no current_cmd column; other columns ending in a unit are
-kept), uniform or non-uniform time. Or a MATLAB .mat file with vectors named like the columns.
+taken as the command when there is no current_cmd column, and beside one it is the measured coil
+current: the model's field then lags it by Eq. 4.5's slow branch alone, the fast branch (drive
+and coil) being what was measured; other columns ending in a unit are kept), uniform or
+non-uniform time. Or a MATLAB .mat file with vectors named like the columns.
 Force sign of Eq. 4.1 (positive when the damper resists positive velocity).
 
 Fields of DIR/summary.json:
   verdict            none | explained | unexplained | baseline_mismatch
+  velocity, coil_current   measured, or derived (velocity) / commanded (coil current)
   findings           sentences behind the verdict (numbers, where, what it looks like, rejections)
   baseline           name, expected_gap, mismatch, mismatch_reasons, force_ratio (least-squares
                      measured/baseline) with min_force_ratio and max_force_ratio, record ranges,
@@ -114,8 +118,9 @@ discrepancy::DiscrepancyOptions discrepancy_options(const DiscrepancyCliOptions&
 }
 
 void print_summary(const discrepancy::MeasuredData& data, const discrepancy::DiscrepancyResult& r) {
-  std::printf("%s: %zu samples, %.3f s, velocity %s\n", data.source.c_str(), data.size(), data.duration_s(),
-              r.velocity_derived ? "derived" : "measured");
+  std::printf("%s: %zu samples, %.3f s, velocity %s, coil current %s\n", data.source.c_str(), data.size(),
+              data.duration_s(), r.velocity_derived ? "derived" : "measured",
+              data.current_a.empty() ? "from the command" : "measured");
   for (std::size_t i = 0; i < r.rounds.size(); ++i) {
     const auto& rd = r.rounds[i];
     std::printf("round %zu (model: %s, gap %.2f %%):\n", i + 1, discrepancy::EffectSet{rd.model}.label().c_str(),

@@ -73,14 +73,23 @@ CommandChanges command_changes(std::span<const double> current_cmd_a) {
   return c;
 }
 
-std::vector<std::string> coil_notes(const Baseline& baseline, std::span<const double> current_cmd_a) {
-  const CommandChanges c = command_changes(current_cmd_a);
+std::vector<std::string> coil_notes(const Baseline& baseline, std::span<const double> current_cmd_a,
+                                    std::span<const double> current_meas_a) {
+  const bool measured = !current_meas_a.empty();
+  const CommandChanges c = command_changes(current_cmd_a);  // a measured current's noise is no change
   if (baseline.coil_identified || c.steps == 0) return {};
-  return {"the record's current command changes (" + std::to_string(c.steps) + " steps between " +
-          format_number("%.3g", c.min_a) + " and " + format_number("%.3g", c.max_a) +
-          " A), but the baseline's coil dynamics (Eq. 4.5) were not identified: its calibration records held the "
-          "current constant, so after each change the model's current follows an assumed coil (time constants " +
-          format_number("%.3g", baseline.coil.tau_slow_s) + " and " + format_number("%.3g", baseline.coil.tau_fast_s) +
+  const std::string changes = std::to_string(c.steps) + " steps between " + format_number("%.3g", c.min_a) +
+                              " and " + format_number("%.3g", c.max_a) + " A";
+  const std::string why = " identified: its calibration records held the current constant, so after each change "
+                          "the model ";
+  if (measured)
+    return {"the record's current command changes (" + changes + "), but the baseline's field lag behind the "
+            "measured coil current (Eq. 4.5's slow branch) was not" + why + "follows an assumed lag (time constant " +
+            format_number("%.3g", baseline.coil.tau_slow_s) +
+            " s), not this damper's; calibrating with a record whose current changes identifies it"};
+  return {"the record's current command changes (" + changes +
+          "), but the baseline's coil dynamics (Eq. 4.5) were not" + why + "follows an assumed coil (time constants " + format_number("%.3g", baseline.coil.tau_slow_s) + " and " +
+          format_number("%.3g", baseline.coil.tau_fast_s) +
           " s), not this damper's; calibrating with a record whose current changes identifies them"};
 }
 

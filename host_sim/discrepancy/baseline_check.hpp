@@ -78,11 +78,13 @@ struct CommandChanges {
 };
 [[nodiscard]] CommandChanges command_changes(std::span<const double> current_cmd_a);
 
-/// When the record's current changes but the baseline's coil dynamics were
-/// not identified (Baseline::coil_identified), one sentence that says so with
-/// the numbers: the force after each change follows an assumed coil. Empty
-/// otherwise.
-[[nodiscard]] std::vector<std::string> coil_notes(const Baseline& baseline, std::span<const double> current_cmd_a);
+/// When the record's commanded current changes but the baseline's coil
+/// dynamics were not identified (Baseline::coil_identified), one sentence
+/// that says so with the numbers: the force after each change follows an
+/// assumed coil (with a measured coil current `current_meas_a`, non-empty,
+/// its assumed slow branch). Empty otherwise.
+[[nodiscard]] std::vector<std::string> coil_notes(const Baseline& baseline, std::span<const double> current_cmd_a,
+                                                  std::span<const double> current_meas_a = {});
 
 /// `settled_force_n`: the baseline with idle_settling at SQ = 1 on the record.
 [[nodiscard]] BaselineCheck check_baseline(const Baseline& baseline, std::span<const double> measured_force_n,

@@ -299,9 +299,14 @@ struct Prepared {
   std::vector<double> vmax_m_s;      ///< per record
   std::vector<double> half_range_m;  ///< per record
   std::vector<double> currents_a;    ///< distinct currents with ≥ 2 % of the samples
-  /// Some record's current changes (command_changes): the coil's time
-  /// constants are fitted (fit_law); otherwise they leave no trace in the force.
+  /// Some record's commanded current changes (command_changes; a measured
+  /// current's noise is no change): the coil's slow time constant is fitted
+  /// (fit_law); otherwise the time constants leave no trace in the force.
   bool current_changes = false;
+  /// Some record's commanded current changes and it has no measured one: the
+  /// fast time constant (the drive and coil, which a measured current
+  /// replaces: DamperModel) is fitted too.
+  bool command_drives_coil = false;
 };
 
 Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& opt) {
@@ -321,7 +326,10 @@ Prepared prepare(std::span<const MeasuredData> records, const CalibrateOptions& 
     for (std::size_t k = moving.begin; k < moving.end; ++k) ss += rec.force_n[k] * rec.force_n[k];
     for (const double v : in.vel_m_s) vmax = std::max(vmax, std::fabs(v));
     for (const double c : rec.current_cmd_a) ++count[current_key(c)];
-    if (command_changes(rec.current_cmd_a).steps > 0) p.current_changes = true;
+    if (command_changes(rec.current_cmd_a).steps > 0) {
+      p.current_changes = true;
+      if (rec.current_a.empty()) p.command_drives_coil = true;
+    }
     all += n;
     p.data.rms_force_n.push_back(ss > 0.0 ? std::sqrt(ss / static_cast<double>(moving.size())) : 1.0);
     p.data.total += idx.size();
@@ -420,10 +428,9 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   // unity DC gain of current_dynamics.hpp), when a record's current changes:
   // equal, they are one first-order lag from command to field, the form of
   // Spencer et al. (1997)'s filter u̇ = −η (u − v) for a small damper's drive.
-  if (p.current_changes) {
-    layout.free.push_back(kCoilSlow);
-    layout.free.push_back(kCoilFast);
-  }
+  // A measured coil current stands for the fast branch: the slow one alone.
+  if (p.current_changes) layout.free.push_back(kCoilSlow);
+  if (p.command_drives_coil) layout.free.push_back(kCoilFast);
 
   // Base: the thesis's coil (the start of its fit when a current changes,
   // else held: not identifiable) and participant ratio (not identifiable
@@ -592,10 +599,8 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     shown.push_back(kPlay);
     shown.push_back(extras.viscous_play ? kBand : kShare);
   }
-  if (p.current_changes) {
-    shown.push_back(kCoilSlow);
-    shown.push_back(kCoilFast);
-  }
+  if (p.current_changes) shown.push_back(kCoilSlow);
+  if (p.command_drives_coil) shown.push_back(kCoilFast);
   for (const Slot s : shown)
     fit.params.push_back({kSlotName[s], slot_ref(fit.baseline, s), sigma[s], fitted[s], at_bound[s]});
   return fit;
@@ -705,9 +710,20 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   } else if (p.currents_a.size() == 2) {
     res.notes.push_back("two currents in the records: rate_per_a held at the thesis value (Table 4.1)");
   }
-  if (p.current_changes) {
+  const auto measured = static_cast<std::size_t>(
+      std::count_if(records.begin(), records.end(), [](const MeasuredData& r) { return !r.current_a.empty(); }));
+  if (measured > 0)
+    res.notes.push_back("coil current measured in " + std::to_string(measured) + " of " +
+                        std::to_string(records.size()) +
+                        " records: the laws act on it, lagged by Eq. 4.5's slow branch alone (the fast branch, the "
+                        "drive and coil, is what was measured)");
+  if (p.command_drives_coil) {
     res.notes.push_back("coil (Eq. 4.5): tau_slow_s and tau_fast_s fitted to the records whose current changes "
                         "(weights held at 1/2 each); participant ratio (Eq. 5.6-5.11): thesis values, assumed");
+  } else if (p.current_changes) {
+    res.notes.push_back("coil (Eq. 4.5): tau_slow_s (the field lagging the measured coil current) fitted to the "
+                        "records whose measured current changes; tau_fast_s not used with a measured current, thesis "
+                        "value; participant ratio (Eq. 5.6-5.11): thesis values, assumed");
   } else {
     res.notes.push_back("coil (Eq. 4.5) and participant ratio (Eq. 5.6-5.11): thesis values, assumed (constant-current "
                         "records do not identify them)");

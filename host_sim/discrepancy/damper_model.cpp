@@ -43,6 +43,7 @@ ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s)
   ModelInput in;
   in.time_s = data.time_s;
   in.current_cmd_a = data.current_cmd_a;
+  in.current_meas_a = data.current_a;
   const double half_window_s = smoothing_half_window_for(data.time_s, data.displacement_m, smoothing_half_window_s);
   SmoothedMotion s = smooth_motion(data.time_s, data.displacement_m, half_window_s);
   in.disp_m = std::move(s.displacement_m);
@@ -89,6 +90,11 @@ void DamperModel::set_baseline(Baseline baseline) {
 void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a) const {
   // Eq. 4.5 with unity DC gain, exact for a command held over each step (see
   // physics/current_dynamics.hpp); the coil starts steady at the first command.
+  // A measured coil current is the drive's and the coil's answer to the
+  // command: it stands for the fast branch, and the field lags it by the slow
+  // one (the resolution of hardware_damper_params, host_sim/plant/plant.hpp, for §3's drive).
+  const bool measured = !in_.current_meas_a.empty();
+  const std::vector<double>& u_a = measured ? in_.current_meas_a : in_.current_cmd_a;
   const std::size_t n = size();
   current_a.resize(n);
   if (n == 0) return;
@@ -97,17 +103,17 @@ void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a)
   const double tau_f = p_.coil.tau_fast_s * scale;
   const double ws = p_.coil.weight_slow;
   const double wf = p_.coil.weight_fast;
-  double ys = in_.current_cmd_a[0];
-  double yf = in_.current_cmd_a[0];
+  double ys = u_a[0];
+  double yf = u_a[0];
   double as = std::exp(-step_s_[0] / tau_s);
   double af = std::exp(-step_s_[0] / tau_f);
   for (std::size_t k = 0; k < n; ++k) {
-    current_a[k] = ws * ys + wf * yf;
+    const double u = u_a[k];
+    current_a[k] = ws * ys + wf * (measured ? u : yf);
     if (!uniform_) {
       as = std::exp(-step_s_[k] / tau_s);
       af = std::exp(-step_s_[k] / tau_f);
     }
-    const double u = in_.current_cmd_a[k];
     ys = as * ys + (1.0 - as) * u;
     yf = af * yf + (1.0 - af) * u;
   }

@@ -8,6 +8,9 @@
 /// Per sample k (step dt_k = t_{k+1} − t_k, inputs held over the step):
 /// <pre>
 ///   i[k+1]   = Eq. 4.5 (ZOH-exact, unity DC gain), τ's scaled by tau_scale   (coil_lag)
+///              from the command; from a measured coil current i_m, only the
+///              slow branch (the field lagging the current, as the hardware
+///              plant's coil): i[k] = w_fast i_m[k] + w_slow slow[k]
 ///   x_d, v_d = actuator motion through a play operator of width free_play whose
 ///              last contact_share of the gap is a compliant stop (the rod takes
 ///              up the motion over that length), the engagement averaged over
@@ -53,6 +56,8 @@ struct ModelInput {
   /// transition time. Filled once per record by model_input(); a
   /// DamperModel fills it when it is empty and its baseline needs it.
   std::vector<double> accel_abs_m_s2;
+  /// The record's measured coil current, A (MeasuredData::current_a); empty when none.
+  std::vector<double> current_meas_a;
 };
 
 /// Half width of the averaging of the backlash engagement (contact

@@ -197,7 +197,9 @@ void plot_loops(const std::filesystem::path& dir, const MeasuredData& data, cons
 std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
   std::string md = "# Model discrepancy: " + data.source + "\n\n";
   md += std::to_string(data.size()) + " samples over " + g4(data.duration_s()) + " s; velocity " +
-        (r.velocity_derived ? "derived from the displacement" : "measured") + ".\n\n";
+        (r.velocity_derived ? "derived from the displacement" : "measured") + "; coil current " +
+        (data.current_a.empty() ? "from the command (Eq. 4.5)" : "measured (Eq. 4.5's slow branch on it)") +
+        ".\n\n";
   md += "Baseline: " + r.baseline_name + " (expected gap " + pct(r.expected_gap) + ").\n\n";
   md += "**Verdict: " + std::string(verdict_name(r.verdict)) + "**\n\n";
   for (const auto& f : r.findings) md += "- " + f + "\n";
@@ -285,6 +287,7 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
   j["samples"] = data.size();
   j["duration_s"] = data.duration_s();
   j["velocity"] = r.velocity_derived ? "derived" : "measured";
+  j["coil_current"] = data.current_a.empty() ? "commanded" : "measured";
   j["verdict"] = verdict_name(r.verdict);
   j["findings"] = r.findings;
   j["baseline"] = json{{"name", r.baseline_name},

@@ -30,7 +30,8 @@ std::vector<Bound> bounds_of(const EffectSet& set, const ParamScale& scale) {
 /// normalized parameters u ∈ [0, 1]^k, with a forward-difference Jacobian.
 class SetCost final : public ceres::CostFunction {
  public:
-  SetCost(const FitData& data, const EffectSet& set) : data_(data), set_(set), bounds_(bounds_of(set, data.model->param_scale())) {
+  SetCost(const FitData& data, const EffectSet& set)
+      : data_(data), set_(set), bounds_(bounds_of(set, data.model->param_scale())) {
     set_num_residuals(static_cast<int>(data.index.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(bounds_.size()));
     model_.resize(data.index.size());

@@ -141,6 +141,7 @@ struct HeaderRoles {
   std::vector<ColumnRole> roles;
   std::size_t time = 0, disp = 0, cmd = 0, force = 0;
   std::optional<std::size_t> vel;
+  std::optional<std::size_t> cur;  ///< measured coil current, beside the command
 };
 
 HeaderRoles header_roles(const std::vector<std::string>& names, const std::string& file_where,
@@ -162,10 +163,7 @@ HeaderRoles header_roles(const std::vector<std::string>& names, const std::strin
     cmd = cur;  // `current_A` is taken as the commanded current when there is no current_cmd column
     h.roles[*cmd].q = Quantity::current_cmd;
     cur.reset();
-  } else if (cmd && cur) {
-    h.roles[*cur].q = Quantity::extra;  // a measured current next to the command: kept
-    cur.reset();
-  }
+  }  // with both, `current_A` is the measured coil current beside the command
   const auto require = [&](Quantity q) {
     const auto& s = idx[static_cast<std::size_t>(q)];
     if (!s) {
@@ -180,6 +178,7 @@ HeaderRoles header_roles(const std::vector<std::string>& names, const std::strin
   h.cmd = require(Quantity::current_cmd);
   h.force = require(Quantity::force);
   h.vel = idx[static_cast<std::size_t>(Quantity::velocity)];
+  h.cur = cur;
   return h;
 }
 
@@ -214,6 +213,7 @@ MeasuredData build(RawTable&& raw, const std::string& label) {
   const std::size_t c_cmd = h.cmd;
   const std::size_t c_force = h.force;
   const auto& c_vel = h.vel;
+  const auto& c_cur = h.cur;
 
   const std::size_t n = raw.values.empty() ? 0 : raw.values[0].size();
   for (std::size_t c = 0; c < ncol; ++c) {
@@ -265,10 +265,12 @@ MeasuredData build(RawTable&& raw, const std::string& label) {
   m.current_cmd_a = convert(c_cmd);
   m.force_n = convert(c_force);
   if (c_vel) m.velocity_m_s = convert(*c_vel);
+  if (c_cur) m.current_a = convert(*c_cur);
   check_magnitude(m.force_n, kMaxMeasuredForce_n, "N", raw, c_force);
   check_magnitude(m.displacement_m, kMaxMeasuredDisplacement_m, "m", raw, c_disp);
   check_magnitude(m.current_cmd_a, kMaxMeasuredCurrent_a, "A", raw, c_cmd);
   if (c_vel) check_magnitude(m.velocity_m_s, kMaxMeasuredVelocity_m_s, "m/s", raw, *c_vel);
+  if (c_cur) check_magnitude(m.current_a, kMaxMeasuredCurrent_a, "A", raw, *c_cur);
   check_varies(m.force_n, "N", raw, c_force);
   check_varies(m.displacement_m, "m", raw, c_disp);
   for (std::size_t c = 0; c < ncol; ++c) {
@@ -660,6 +662,7 @@ void write_measured_mat(const MeasuredData& data, const fs::path& path) {
     put("displacement_m", data.displacement_m);
     if (!data.velocity_m_s.empty()) put("velocity_m_s", data.velocity_m_s);
     put("current_cmd_A", data.current_cmd_a);
+    if (!data.current_a.empty()) put("current_A", data.current_a);
     put("force_N", data.force_n);
     for (const auto& e : data.extra) put(e.name, e.values);
   }
@@ -675,7 +678,10 @@ std::string measured_to_csv(const MeasuredData& data) {
   std::string out = "time_s,displacement_m";
   const bool vel = !data.velocity_m_s.empty();
   if (vel) out += ",velocity_m_s";
-  out += ",current_cmd_A,force_N";
+  out += ",current_cmd_A";
+  const bool cur = !data.current_a.empty();
+  if (cur) out += ",current_A";
+  out += ",force_N";
   for (const auto& e : data.extra) out += "," + e.name;
   out += '\n';
   char buf[64];
@@ -690,6 +696,7 @@ std::string measured_to_csv(const MeasuredData& data) {
     add(data.displacement_m[k]);
     if (vel) add(data.velocity_m_s[k]);
     add(data.current_cmd_a[k]);
+    if (cur) add(data.current_a[k]);
     add(data.force_n[k]);
     for (const auto& e : data.extra) add(e.values[k]);
     out += '\n';

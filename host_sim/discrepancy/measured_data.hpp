@@ -9,6 +9,7 @@
 ///   displacement  m, mm, cm, in          actuator LVDT (§3.2)
 ///   velocity      m_s, mm_s, cm_s, in_s  optional; derived when absent
 ///   current_cmd   A, mA                  commanded coil current (`current_A` accepted too)
+///   current       A, mA                  optional beside current_cmd: the measured coil current
 ///   force         N, kN, kip, lbf        load cell, sign of Eq. 4.1
 /// </pre>
 /// Units are matched without regard to case and converted to SI. Other
@@ -36,6 +37,10 @@ struct MeasuredData {
   std::vector<double> displacement_m;  ///< actuator displacement
   std::vector<double> velocity_m_s;    ///< measured velocity; empty when the record had none
   std::vector<double> current_cmd_a;   ///< commanded coil current
+  /// Measured coil current (a `current` column beside `current_cmd`; §3's
+  /// current sensor); empty when the record has none. The model's coil
+  /// current then follows it (DamperModel, damper_model.hpp).
+  std::vector<double> current_a;
   std::vector<double> force_n;         ///< load-cell force, positive resisting positive velocity
   std::vector<ExtraColumn> extra;
 
@@ -78,12 +83,12 @@ inline constexpr double kMaxMeasuredCurrent_a = 1000.0;
 [[nodiscard]] MeasuredData read_measured(const std::filesystem::path& path);
 
 /// Writes `data` to a MATLAB v5 .mat file with one double vector per column
-/// (`time_s`, `displacement_m`, [`velocity_m_s`,] `current_cmd_A`, `force_N`,
-/// extras). Throws io::UsageError when the file cannot be written.
+/// (`time_s`, `displacement_m`, [`velocity_m_s`,] `current_cmd_A`, [`current_A`,]
+/// `force_N`, extras). Throws io::UsageError when the file cannot be written.
 void write_measured_mat(const MeasuredData& data, const std::filesystem::path& path);
 
 /// CSV text of `data` with SI column names: time_s, displacement_m,
-/// [velocity_m_s,] current_cmd_A, force_N, then the extra columns.
+/// [velocity_m_s,] current_cmd_A, [current_A,] force_N, then the extra columns.
 [[nodiscard]] std::string measured_to_csv(const MeasuredData& data);
 
 /// Velocity and smoothed displacement by a local quartic least-squares fit

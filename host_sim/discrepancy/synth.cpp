@@ -310,7 +310,7 @@ SynthCase synthesize(const SynthSpec& spec) {
     noise.disp_m = spec.disp_noise_m >= 0.0 ? spec.disp_noise_m : rng.uniform(5e-6, 20e-6);
     const double noise_rms = std::hypot(noise.white_n, noise.colored_n);
 
-    const DamperModel truth(ModelInput{t, m.x, m.v, i_cmd, false, {}});  // the thesis baseline needs no |a|
+    const DamperModel truth(ModelInput{t, m.x, m.v, i_cmd, false, {}, {}});  // the thesis baseline needs no |a|
     ModelWorkspace ws;
     std::vector<double> f_true, f_base;
     truth.simulate(set, params, ws, f_true);

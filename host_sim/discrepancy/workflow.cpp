@@ -635,7 +635,8 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   check.frequency_hz = dominant_frequency_hz(data.time_s, model.input().disp_m);
   check.outside_coverage =
       coverage_notes(opt.baseline.range, check.amplitude_m, check.frequency_hz, opt.baseline.expected_gap);
-  for (std::string& note : coil_notes(opt.baseline, data.current_cmd_a)) check.outside_coverage.push_back(std::move(note));
+  for (std::string& note : coil_notes(opt.baseline, data.current_cmd_a, data.current_a))
+    check.outside_coverage.push_back(std::move(note));
   if (!res.baseline_check.mismatch) {
     const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
     const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * check.amplitude_m, base_rms};

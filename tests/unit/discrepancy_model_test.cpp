@@ -45,6 +45,30 @@ TEST(DiscrepancyModel, BaselineMatchesMrDamper) {
   }
 }
 
+// A measured coil current stands for Eq. 4.5's fast branch; the field lags it
+// by the slow one alone. A step of the measured current from 0 to 2 A at
+// sample k0, weights ½, τ_slow = 0.7 s, ZOH at 1 kHz:
+//   i[k0]       = ½ · 2 + ½ · 0                      = 1 A (the slow branch has seen no 2 A yet)
+//   i[k0 + 700] = ½ · 2 + ½ · 2 (1 − e^(−700 · 1e-3 / 0.7)) = 1 + (1 − 0.367879) = 1.632121 A
+// The command (here a constant 2.5 A the drive did not deliver) is not used.
+TEST(DiscrepancyModel, AMeasuredCoilCurrentReplacesTheFastBranch) {
+  ModelInput in = sine_input(3000, 0.02, 0.7, {2.5}, 10.0);
+  constexpr std::size_t k0 = 1000;
+  for (std::size_t k = 0; k < in.time_s.size(); ++k) in.current_meas_a.push_back(k < k0 ? 0.0 : 2.0);
+  const DamperModel model(in);
+  const std::vector<double>& i = model.baseline_current_a();
+  EXPECT_DOUBLE_EQ(i[k0 - 1], 0.0);
+  EXPECT_NEAR(i[k0], 1.0, 1e-12);
+  EXPECT_NEAR(i[k0 + 700], 1.632121, 1e-6);
+  // coil_lag scales the slow branch it keeps: at twice τ_slow, 700 samples are half a time constant.
+  ModelWorkspace ws;
+  std::vector<double> f_lag;
+  const std::vector<double> twice{2.0};
+  model.simulate(EffectSet{{Effect::coil_lag}}, twice, ws, f_lag);
+  ASSERT_EQ(ws.current_a.size(), in.time_s.size());
+  EXPECT_NEAR(ws.current_a[k0 + 700], 1.0 + (1.0 - std::exp(-0.5)), 1e-6);
+}
+
 // A model put on another baseline (as a calibration does at every
 // evaluation) gives, bit for bit, the force of a model built on it: for new
 // current laws with the same coil, for another coil, and for a baseline that

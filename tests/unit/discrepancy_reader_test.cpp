@@ -72,21 +72,45 @@ TEST(MeasuredCsv, KeepsExtraColumnsAndAcceptsCurrentAsCommand) {
   }
   const auto m = parse_measured_csv(s, "lab.csv");
   EXPECT_DOUBLE_EQ(m.current_cmd_a[0], 1.5);
+  EXPECT_TRUE(m.current_a.empty());  // the command, not a measured current
   EXPECT_DOUBLE_EQ(m.force_n[0], 120e3);
   ASSERT_EQ(m.extra.size(), 1u);
   EXPECT_EQ(m.extra[0].name, "temp_top_degC");
   EXPECT_DOUBLE_EQ(m.extra[0].values[5], 25.0);
 }
 
-TEST(MeasuredCsv, MeasuredCurrentNextToCommandIsKept) {
-  std::string s = "time_s,displacement_m,current_cmd_A,current_A,force_N\n";
+TEST(MeasuredCsv, MeasuredCurrentNextToCommandIsTheCoilCurrent) {
+  std::string s = "time_s,displacement_m,current_cmd_A,current_mA,force_N\n";
   for (int k = 0; k < 1200; ++k) {
-    s += std::to_string(k * 1e-3) + "," + std::to_string(k % 2) + ",2,1.9," + std::to_string(5 + k % 2) + "\n";
+    s += std::to_string(k * 1e-3) + "," + std::to_string(k % 2) + ",2,1900," + std::to_string(5 + k % 2) + "\n";
   }
   const auto m = parse_measured_csv(s, "lab.csv");
   EXPECT_DOUBLE_EQ(m.current_cmd_a[0], 2.0);
-  ASSERT_EQ(m.extra.size(), 1u);
-  EXPECT_EQ(m.extra[0].name, "current_A");
+  ASSERT_EQ(m.current_a.size(), m.size());
+  EXPECT_DOUBLE_EQ(m.current_a[0], 1.9);  // 1900 mA
+  EXPECT_TRUE(m.extra.empty());
+  // Written back with SI names, read back the same.
+  const std::string csv = measured_to_csv(m);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time_s,displacement_m,current_cmd_A,current_A,force_N");
+  const auto again = parse_measured_csv(csv, "again.csv");
+  ASSERT_EQ(again.current_a.size(), m.size());
+  EXPECT_DOUBLE_EQ(again.current_a.back(), 1.9);
+}
+
+TEST(MeasuredCsv, AMeasuredCurrentBeyondAnyTestIsRefusedNamingItsLine) {
+  std::string s = "time_s,displacement_m,current_cmd_A,current_A,force_N\n";
+  for (int k = 0; k < 1200; ++k) {
+    s += std::to_string(k * 1e-3) + "," + std::to_string(k % 2) + ",2," + (k == 7 ? "5e4" : "1.9") + "," +
+         std::to_string(5 + k % 2) + "\n";
+  }
+  try {
+    (void)parse_measured_csv(s, "lab.csv");
+    FAIL() << "accepted";
+  } catch (const mrd::io::UsageError& e) {
+    const std::string w = e.what();
+    EXPECT_NE(w.find("lab.csv:9: column 'current_A'"), std::string::npos) << w;  // header line 1, sample 7 on line 9
+    EXPECT_NE(w.find("beyond any damper test"), std::string::npos) << w;
+  }
 }
 
 TEST(MeasuredCsv, AcceptsNonUniformTime) {
