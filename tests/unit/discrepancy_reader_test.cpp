@@ -220,6 +220,7 @@ class MeasuredMat : public ::testing::Test {
 TEST_F(MeasuredMat, RoundTripsThroughAMatFile) {
   auto m = parse_measured_csv(csv(kHeader, 1500), "lab.csv");
   m.extra.push_back({"temp_degC", std::vector<double>(m.size(), 21.5)});
+  m.current_a.assign(m.size(), 0.87);  // a measured coil current travels as current_A
   const auto p = dir_ / "lab.mat";
   write_measured_mat(m, p);
   const auto back = read_measured(p);
@@ -228,6 +229,7 @@ TEST_F(MeasuredMat, RoundTripsThroughAMatFile) {
   EXPECT_EQ(back.force_n, m.force_n);
   EXPECT_EQ(back.displacement_m, m.displacement_m);
   EXPECT_EQ(back.current_cmd_a, m.current_cmd_a);
+  EXPECT_EQ(back.current_a, m.current_a);
   ASSERT_EQ(back.extra.size(), 1u);
   EXPECT_EQ(back.extra[0].name, "temp_degC");
 }
