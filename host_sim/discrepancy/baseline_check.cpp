@@ -88,8 +88,8 @@ std::vector<std::string> coil_notes(const Baseline& baseline, std::span<const do
             format_number("%.3g", baseline.coil.tau_slow_s) +
             " s), not this damper's; calibrating with a record whose current changes identifies it"};
   return {"the record's current command changes (" + changes +
-          "), but the baseline's coil dynamics (Eq. 4.5) were not" + why + "follows an assumed coil (time constants " + format_number("%.3g", baseline.coil.tau_slow_s) + " and " +
-          format_number("%.3g", baseline.coil.tau_fast_s) +
+          "), but the baseline's coil dynamics (Eq. 4.5) were not" + why + "follows an assumed coil (time constants " +
+          format_number("%.3g", baseline.coil.tau_slow_s) + " and " + format_number("%.3g", baseline.coil.tau_fast_s) +
           " s), not this damper's; calibrating with a record whose current changes identifies them"};
 }
 

@@ -306,6 +306,13 @@ TEST(DiscrepancyBaseline, CoilNotesNameAChangingCurrentOnAnAssumedCoil) {
   ASSERT_EQ(n.size(), 1u);
   EXPECT_NE(n[0].find("2 steps between 0 and 1 A"), std::string::npos) << n[0];
   EXPECT_NE(n[0].find("time constants 0.7 and 0.03 s"), std::string::npos) << n[0];
+  // With the coil current measured, only the slow branch is assumed; its noise is no change of the command.
+  const std::vector<double> measured{0.0, 0.01, 0.98, 1.02, 0.0};
+  const std::vector<std::string> m = coil_notes(b, steps, measured);
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_NE(m[0].find("field lag behind the measured coil current"), std::string::npos) << m[0];
+  EXPECT_NE(m[0].find("time constant 0.7 s"), std::string::npos) << m[0];
+  EXPECT_TRUE(coil_notes(b, held, measured).empty());
 }
 
 TEST(DiscrepancyBaseline, CoverageNamesARecordBeyondTheCalibratedAmplitudesAndFrequencies) {
