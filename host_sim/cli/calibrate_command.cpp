@@ -50,8 +50,10 @@ The coil time constants (Eq. 4.5) leave no trace while the current holds: with c
 records they keep the thesis values, marked identified = false (a later record whose current
 changes is then named in `mrd discrepancy`'s findings). When a --measured record's current
 changes (a step above 2 % of its largest current), tau_slow_s and tau_fast_s are fitted with
-the rest (weights 1/2 each; equal, one first-order lag) and marked identified = true. The
-participant ratio is not identifiable from such records: thesis values.
+the rest (weights 1/2 each; equal, one first-order lag) and marked identified = true; a record
+with the coil current measured (current_A beside current_cmd_A) puts the laws on that current,
+and only tau_slow_s, the field's lag behind it, is fitted from it. The participant ratio is not
+identifiable from such records: thesis values.
 Standard errors: sigma^2 (J^T J)^-1 at the optimum, inflated by n/n_eff (effective sample count
 of the residual).
 
