@@ -722,8 +722,9 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
                         "(weights held at 1/2 each); participant ratio (Eq. 5.6-5.11): thesis values, assumed");
   } else if (p.current_changes) {
     res.notes.push_back("coil (Eq. 4.5): tau_slow_s (the field lagging the measured coil current) fitted to the "
-                        "records whose measured current changes; tau_fast_s not used with a measured current, thesis "
-                        "value; participant ratio (Eq. 5.6-5.11): thesis values, assumed");
+                        "records whose current command changes; tau_fast_s not used with a measured current, thesis "
+                        "value (a later record without the sensor gets it); participant ratio (Eq. 5.6-5.11): "
+                        "thesis values, assumed");
   } else {
     res.notes.push_back("coil (Eq. 4.5) and participant ratio (Eq. 5.6-5.11): thesis values, assumed (constant-current "
                         "records do not identify them)");

@@ -18,8 +18,10 @@
 /// two: rate_per_a fixed at the thesis value; one: a constant value). The
 /// coil time constants (Eq. 4.5) leave no trace in the force while the
 /// current holds: they keep the thesis values (Baseline::coil_identified
-/// false) unless some record's current changes (command_changes,
-/// baseline_check.hpp), and then both are fitted with the rest. The
+/// false) unless some record's current command changes (command_changes,
+/// baseline_check.hpp), and then they are fitted with the rest: both, or
+/// only the slow one where the changing records measured the coil current
+/// (the fast branch is then the measurement, damper_model.hpp). The
 /// participant ratio (Eq. 5.6–5.11) is not identifiable from such records
 /// and keeps the thesis values.
 
