@@ -15,6 +15,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "host_sim/report/path_ownership.hpp"
+
 namespace mrd::cli {
 
 struct Command {
@@ -60,6 +62,22 @@ Command add_synth_command(CLI::App& parent);
 Command add_schedule_command(CLI::App& parent);
 Command add_fragility_command(CLI::App& parent);
 Command add_risk_command(CLI::App& parent);
+
+/// Checks the list options of the parsed subcommand `sub` (`args`: the
+/// command line after the program name): an empty item ("0.1,,0.2") or a value
+/// given twice (as text, or as the same number) is an io::UsageError naming
+/// the option. CLI11 drops empty items itself, hence `args`.
+void check_list_values(const CLI::App& sub, const std::vector<std::string>& args);
+
+/// The inputs of the parsed subcommand `sub`: every value of an option other
+/// than --out and --journal that names an existing path (resolved), for
+/// report::declare_inputs.
+std::vector<report::InputPath> input_paths(const CLI::App& sub);
+
+/// With --out given to the parsed subcommand `sub`: report::check_output_folder
+/// on it, so that a folder that is not mrd's or overlaps an input is refused
+/// before any work.
+void check_given_out(const CLI::App& sub);
 
 /// Starts the transaction on the --out folder (report::begin_output) and
 /// returns the staging folder the outputs go to; io::UsageError naming the

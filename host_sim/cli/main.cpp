@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <vector>
 
 #include "host_sim/cli/command.hpp"
@@ -52,8 +53,13 @@ int main(int argc, char** argv) {
   }
 
   try {
+    const std::vector<std::string> args(argv + 1, argv + argc);
     for (const auto& c : commands) {
-      if (c.app->parsed()) c.run();
+      if (!c.app->parsed()) continue;
+      mrd::cli::check_list_values(*c.app, args);
+      mrd::report::declare_inputs(mrd::cli::input_paths(*c.app));
+      mrd::cli::check_given_out(*c.app);
+      c.run();
     }
     mrd::report::commit_outputs();
   } catch (const mrd::io::UsageError& e) {

@@ -17,6 +17,7 @@
 
 #include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
+#include "host_sim/report/path_ownership.hpp"
 
 namespace mrd::report {
 namespace fs = std::filesystem;
@@ -170,42 +171,21 @@ void remove_stale_staging(const fs::path& target) {
   for (fs::directory_iterator it(target.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     for (const std::string& prefix : {staging, old}) {
-      if (name.rfind(prefix, 0) == 0 && process_gone(name.substr(prefix.size()))) {
-        std::error_code rm;
+      if (name.rfind(prefix, 0) != 0 || !process_gone(name.substr(prefix.size()))) continue;
+      // Only a folder this program made: one holding the result marker, or an empty one (killed
+      // between its mkdir and the marker).
+      std::error_code rm;
+      if (it->is_directory(rm) && !it->is_symlink(rm) &&
+          (holds_marker(it->path(), kResultMarker) || fs::is_empty(it->path(), rm))) {
         fs::remove_all(it->path(), rm);
       }
     }
   }
 }
 
-/// The folder the user named, absolute, without a trailing separator, a
-/// symbolic link to a folder resolved to that folder.
-fs::path resolve_target(const std::string& shown, const fs::path& given) {
-  std::error_code ec;
-  fs::path t = fs::absolute(given, ec);
-  if (ec) throw UsageError("--out '" + shown + "': " + ec.message());
-  t = t.lexically_normal();
-  if (t.filename().empty()) t = t.parent_path();
-  if (fs::is_symlink(t, ec)) {
-    const fs::path real = fs::canonical(t, ec);
-    if (!ec) t = real;
-  }
-  if (t == t.root_path() || t.filename().empty()) throw UsageError("--out '" + shown + "': not a folder to replace");
-  return t;
-}
-
 void check_replaceable(const std::string& shown, const fs::path& target) {
-  std::error_code ec;
-  const fs::file_status st = fs::status(target, ec);
-  if (!fs::exists(st)) return;
-  if (!fs::is_directory(st)) throw UsageError("--out '" + shown + "' exists and is not a folder");
-  const bool empty = fs::is_empty(target, ec);
-  if (ec) throw UsageError("--out '" + shown + "' cannot be read: " + ec.message());
-  if (!empty && !fs::exists(target / "summary.json", ec)) {
-    throw UsageError("--out '" + shown +
-                     "' is a folder with other files and no summary.json (not an mrd result): refusing to replace "
-                     "it; name a new or empty folder");
-  }
+  check_clear_of_inputs("--out", shown, target);
+  check_owned_or_new("--out", shown, target, kResultMarker);
 }
 
 /// Creates the parent of `target`; returns the first folder created (empty if
@@ -269,11 +249,23 @@ fs::path swap_in(const Transaction& t) {
 
 }  // namespace
 
-fs::path begin_output(const fs::path& given) {
+fs::path output_target(const fs::path& given) {
   const std::string shown = given.string();
   if (shown.empty()) throw UsageError("--out: expected a folder, got an empty value");
-  const fs::path target = resolve_target(shown, given);
+  const fs::path t = resolve_path("--out", given);
+  if (t == t.root_path() || t.filename().empty()) throw UsageError("--out '" + shown + "': not a folder to replace");
+  return t;
+}
+
+void check_output_folder(const fs::path& given) { check_replaceable(given.string(), output_target(given)); }
+
+fs::path begin_output(const fs::path& given) {
+  const std::string shown = given.string();
+  const fs::path target = output_target(given);
   check_replaceable(shown, target);
+  for (const Transaction& other : registry().open) {
+    check_clear_of_output("--out", shown, target, "--out", other.shown.string(), other.target);
+  }
   Registry& reg = registry();
   std::size_t slot = kMaxOpen;
   for (std::size_t i = 0; i < kMaxOpen; ++i) {
@@ -303,6 +295,7 @@ fs::path begin_output(const fs::path& given) {
     throw UsageError("--out '" + shown + "' is not writable: " + io::errno_text(err));
   }
   reg.open.push_back(t);
+  write_marker("--out", t.staging, kResultMarker);
   return t.staging;
 }
 

@@ -22,12 +22,25 @@
 
 namespace mrd::report {
 
+/// The folder `--out` names, resolved (report::resolve_path): absolute,
+/// links followed, no trailing separator. Throws io::UsageError for an empty
+/// value or the root folder.
+std::filesystem::path output_target(const std::filesystem::path& given);
+
+/// The checks begin_output makes before it creates anything (the folder is
+/// absent, empty or an mrd result, and clear of the declared inputs), for a
+/// command to refuse a bad --out before any work. Throws io::UsageError.
+void check_output_folder(const std::filesystem::path& given);
+
 /// Starts a transaction on the output folder `target` and returns the
-/// staging folder to write into. Checks first, and throws io::UsageError
-/// naming `--out` when: `target` exists and is not a folder; `target` is a
-/// folder that holds files but no summary.json (not an `mrd` result: it is
-/// never replaced); the parent cannot be created or written. Removes stale
-/// staging folders of dead processes beside `target`.
+/// staging folder to write into, with the result marker
+/// (report::kResultMarker) already in it. Checks first, and throws
+/// io::UsageError naming `--out` when: `target` exists and is not a folder;
+/// `target` is a folder that holds files but no result marker (not made by
+/// `mrd`: it is never replaced); `target` is, contains or lies inside one of
+/// the command's declared inputs or another open output; the parent cannot be
+/// created or written. Removes stale staging folders (holding the marker, or
+/// empty) of dead processes beside `target`.
 std::filesystem::path begin_output(const std::filesystem::path& target);
 
 /// Swaps every open transaction's staging folder in place of its target and

@@ -6,10 +6,11 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <string>
 
+#include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
+#include "host_sim/report/path_ownership.hpp"
 
 namespace mrd::risk {
 namespace {
@@ -62,15 +63,28 @@ std::vector<std::optional<RunMetrics>> load_journal(const std::filesystem::path&
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec)) return runs;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-    if (!entry.is_regular_file() || !is_journal_name(entry.path())) continue;
-    std::ifstream f(entry.path(), std::ios::binary);
-    unsigned char b[kJournalRecordBytes];
-    while (f.read(reinterpret_cast<char*>(b), kJournalRecordBytes)) {
-      const auto r = decode_journal_record(b);
+    if (!is_journal_name(entry.path())) continue;
+    const std::string bytes = io::read_regular_file(entry.path(), (run_count + 1) * kJournalRecordBytes);
+    const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
+    for (std::size_t at = 0; at + kJournalRecordBytes <= bytes.size(); at += kJournalRecordBytes) {
+      const auto r = decode_journal_record(b + at);
       if (r && r->fingerprint == fingerprint && r->run < run_count) runs[r->run] = r->metrics;
     }
   }
   return runs;
+}
+
+void remove_journal(const std::filesystem::path& dir) noexcept {
+  if (!report::holds_marker(dir, report::kJournalMarker)) return;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code rm;
+    if (is_journal_name(it->path()) && it->is_regular_file(rm) && !it->is_symlink(rm)) {
+      std::filesystem::remove(it->path(), rm);
+    }
+  }
+  std::filesystem::remove(dir / report::kJournalMarker, ec);
+  std::filesystem::remove(dir, ec);  // only when nothing else is left in it
 }
 
 unsigned journal_file_count(const std::filesystem::path& dir) {
@@ -83,8 +97,7 @@ unsigned journal_file_count(const std::filesystem::path& dir) {
 
 JournalWriter::JournalWriter(const std::filesystem::path& dir, std::uint64_t fingerprint, unsigned attempt, int rank)
     : fingerprint_(fingerprint) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
+  report::claim_folder("--journal", dir, report::kJournalMarker);
   path_ = dir / ("part-" + std::to_string(attempt) + "-r" + std::to_string(rank) + ".journal");
   fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd_ < 0) throw io::UsageError(path_.string() + ": cannot open the study journal: " + std::strerror(errno));

@@ -31,9 +31,18 @@ inline constexpr std::size_t kJournalRecordBytes = 64;
 
 /// The runs recorded in the journals of `dir` for `fingerprint`, indexed by
 /// run (nullopt where none); runs ≥ run_count are ignored. An absent folder
-/// gives no runs.
+/// gives no runs. Each file is read through io::read_regular_file, at most
+/// (run_count + 1) records long (one attempt appends each run once, and a kill
+/// tears at most one record); a larger file or one that is not a regular file
+/// is an io::UsageError naming it.
 std::vector<std::optional<RunMetrics>> load_journal(const std::filesystem::path& dir, std::uint64_t fingerprint,
                                                     std::size_t run_count);
+
+/// Removes the journal folder `dir` once its study's outputs are in place:
+/// only when it holds the journal marker (report::kJournalMarker), and only
+/// its own files (`part-*.journal`, the marker); the folder goes when nothing
+/// else is left in it. Errors are ignored (the outputs are already written).
+void remove_journal(const std::filesystem::path& dir) noexcept;
 
 /// Number of `part-*.journal` files in `dir` (the next attempt's number).
 unsigned journal_file_count(const std::filesystem::path& dir);
@@ -41,8 +50,10 @@ unsigned journal_file_count(const std::filesystem::path& dir);
 /// One process's journal file, appended to run by run.
 class JournalWriter {
  public:
-  /// Creates `dir` if needed and opens `part-<attempt>-r<rank>.journal` for
-  /// appending. Throws io::UsageError when it cannot.
+  /// Creates `dir` if needed (with the journal marker; report::claim_folder
+  /// refuses a folder of other files) and opens
+  /// `part-<attempt>-r<rank>.journal` for appending. Throws io::UsageError
+  /// when it cannot.
   JournalWriter(const std::filesystem::path& dir, std::uint64_t fingerprint, unsigned attempt, int rank);
   ~JournalWriter();
   JournalWriter(const JournalWriter&) = delete;

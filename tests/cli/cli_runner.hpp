@@ -40,11 +40,14 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-/// `args` is appended to the binary path as shell words.
-inline RunResult run_mrd(const std::string& args, const std::filesystem::path& scratch) {
+/// `args` is appended to the binary path as shell words; the program runs in
+/// `cwd` when one is given (its output is kept in `scratch` either way).
+inline RunResult run_mrd(const std::string& args, const std::filesystem::path& scratch,
+                         const std::filesystem::path& cwd = {}) {
   const auto out = scratch / "stdout.txt";
   const auto err = scratch / "stderr.txt";
-  const std::string cmd = std::string(MRD_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cd = cwd.empty() ? std::string() : "cd '" + cwd.string() + "' && ";
+  const std::string cmd = cd + std::string(MRD_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

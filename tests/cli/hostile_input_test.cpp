@@ -209,7 +209,7 @@ TEST_F(HostileInput, ANewRunReplacesTheWholeFolder) {
   // sim wrote summary.json, timeseries.csv and plots; settle writes only summary.json.
   const auto r = run_mrd("settle --idle-years 0.5 --out " + prev_.string(), scratch_.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(entries(prev_), std::set<std::string>{"summary.json"});
+  EXPECT_EQ(entries(prev_), (std::set<std::string>{".mrd-result", "summary.json"}));
   EXPECT_TRUE(nlohmann::json::parse(slurp(prev_ / "summary.json")).contains("sq"));
 }
 
@@ -275,7 +275,7 @@ void expect_consistent_sweep(const fs::path& dir) {
   const auto j = nlohmann::json::parse(slurp(dir / "summary.json"));
   const std::size_t runs = j["runs"].get<std::size_t>();
   EXPECT_EQ(static_cast<std::size_t>(count_lines(slurp(dir / "sweep.csv"))), runs + 1);
-  std::set<std::string> expected{"summary.json", "sweep.csv"};
+  std::set<std::string> expected{".mrd-result", "summary.json", "sweep.csv"};
   for (const auto& p : j["plots"]) expected.insert(p.get<std::string>());
   EXPECT_EQ(entries(dir), expected);
 }
