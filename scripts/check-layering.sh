@@ -18,6 +18,11 @@
 #                    the two programs that run the workflow and the calibration
 #                    on its records (discrepancy_independent_study.cpp,
 #                    calibrate_coil_test.cpp).
+#   tests/independent_building/
+#                    only its own headers, the damper laws of
+#                    tests/independent_synth/damper_physics.hpp, the standard
+#                    library, toml++ and GoogleTest (the second integration
+#                    `mrd sim` is judged against).
 #
 # Usage: check-layering.sh [SOURCE_ROOT]   (default: the repository holding this script)
 # Prints one line per violation (file:line: what, and the rule) and exits 1 if
@@ -83,9 +88,12 @@ while IFS= read -r file; do
   check_tree "$file" 'tests/independent_synth/' '' 'Eigen/|unsupported/Eigen|nlohmann/|ceres/|matio|benchmark/|mrd/|firmware/|host_sim/|common/|tests/' \
     'tests/independent_synth: its own headers, the standard library and GoogleTest only'
 done < <(find tests/independent_synth \( -name '*.hpp' -o -name '*.cpp' \) 2>/dev/null | sort)
+check_tree tests/independent_building 'tests/independent_building/|tests/independent_synth/damper_physics\.hpp$' '' \
+  'Eigen/|unsupported/Eigen|nlohmann/|ceres/|matio|benchmark/|mrd/|firmware/|host_sim/|common/|tests/' \
+  'tests/independent_building: its own headers, tests/independent_synth/damper_physics.hpp, the standard library, toml++ and GoogleTest only'
 
 if ((violations)); then
   echo "layering: $violations violation(s)" >&2
   exit 1
 fi
-echo "layering: ok (common, firmware/core, firmware/app, firmware/platform, host_sim, tests/independent_synth)"
+echo "layering: ok (common, firmware/core, firmware/app, firmware/platform, host_sim, tests/independent_synth, tests/independent_building)"

@@ -18,6 +18,7 @@ mk firmware/app/e.cpp '#include "firmware/core/c.hpp"' '#include <vector>' '#inc
 mk firmware/app/firmware_main.cpp '#include "firmware/platform/linux/socketcan_bus.hpp"'
 mk firmware/platform/linux/f.cpp '#include <linux/can.h>' '#include "firmware/platform/linux/f.hpp"'
 mk host_sim/run/g.cpp '#include "firmware/app/e.hpp"' '#include <Eigen/Dense>'
+mk tests/independent_building/h.cpp '#include "tests/independent_synth/damper_physics.hpp"' '#include <toml++/toml.h>'
 "$check" "$tmp" >/dev/null || fail "a clean tree was refused"
 
 # One violation of each rule.
@@ -27,6 +28,7 @@ mk firmware/app/bad.cpp '#include "firmware/platform/linux/f.hpp"' '#include <Ei
 mk firmware/app/other_main.cpp '#include "firmware/platform/sim/memory_io.hpp"'
 mk firmware/platform/linux/bad.cpp '#include "firmware/app/e.hpp"'
 mk host_sim/run/bad.cpp '#include "tests/unit/x.hpp"'
+mk tests/independent_building/bad.cpp '#include "host_sim/structure/building_params.hpp"' '#include <nlohmann/json.hpp>'
 set +e
 out=$("$check" "$tmp" 2>&1)
 status=$?
@@ -43,7 +45,9 @@ for expect in \
   'firmware/app/other_main.cpp:1: includes "firmware/platform/sim/memory_io.hpp"' \
   'firmware/platform/linux/bad.cpp:1: includes "firmware/app/e.hpp"' \
   'host_sim/run/bad.cpp:1: includes "tests/unit/x.hpp"' \
-  'layering: 10 violation(s)'; do
+  'tests/independent_building/bad.cpp:1: includes "host_sim/structure/building_params.hpp"' \
+  'tests/independent_building/bad.cpp:2: includes <nlohmann/json.hpp>' \
+  'layering: 12 violation(s)'; do
   grep -qF "$expect" <<<"$out" || fail "missing in the report: $expect"$'\n'"$out"
 done
-echo "layering_test: the tree passes; 10 planted violations found, each named"
+echo "layering_test: the tree passes; 12 planted violations found, each named"
