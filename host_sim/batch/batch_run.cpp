@@ -97,8 +97,13 @@ SharedModel shared_model(const plant::PlantSpec& spec) {
   if (spec.kind != plant::PlantKind::kThesis) {
     throw std::invalid_argument("the batch runs the thesis plant only");
   }
+  const structure::BuildingParams& building = spec.building;
+  if (building.dofs() != kBlockDofs || !building.isolators.empty() || building.dampers.size() != 1 ||
+      building.dampers[0].element != 0 || building.dampers[0].count != 1) {
+    throw std::invalid_argument("the batch runs buildings of 6 DOFs without isolators and one damper on element 0");
+  }
   structure::DiscreteBuilding b;
-  b.init(spec.building, spec.step_s);
+  b.init(building, spec.step_s);
   if (!b.modal_stepping()) {
     throw std::invalid_argument("the batch needs the building's modal stepping form (an underdamped building)");
   }
@@ -109,7 +114,7 @@ SharedModel shared_model(const plant::PlantSpec& spec) {
     m.gamma[r][0] = b.stepping_gamma()(r, 0);
     m.gamma[r][1] = b.stepping_gamma()(r, 1);
     m.disp_row[r] = b.modal_basis()(structure::kBaseDof, r);
-    m.vel_row[r] = b.modal_basis()(structure::kDofs + structure::kBaseDof, r);
+    m.vel_row[r] = b.modal_basis()(b.dofs() + structure::kBaseDof, r);
     for (int i = 0; i < kBlockDofs; ++i) m.accel_rows[i][r] = b.accel_rows()(i, r);
   }
   m.inv_base_mass_per_kg = b.inv_base_mass_per_kg();

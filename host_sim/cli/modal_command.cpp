@@ -34,8 +34,8 @@ struct ModalOptions {
 void print_table(const structure::ModalResult& r) {
   std::printf("Modes of the base-isolated building without the MR damper (thesis §6.1, Fig. 6.2)\n\n");
   std::printf("  %4s  %10s  %10s  %8s  %14s\n", "mode", "f (Hz)", "T (s)", "zeta (%)", "undamped f (Hz)");
-  for (int k = 0; k < structure::kDofs; ++k) {
-    std::printf("  %4d  %10.4f  %10.4f  %8.3f  %14.4f\n", k + 1, r.frequencies_hz[k], r.periods_s[k],
+  for (std::size_t k = 0; k < r.frequencies_hz.size(); ++k) {
+    std::printf("  %4zu  %10.4f  %10.4f  %8.3f  %14.4f\n", k + 1, r.frequencies_hz[k], r.periods_s[k],
                 100.0 * r.damping_ratios[k], r.undamped_frequencies_hz[k]);
   }
 }

@@ -1,11 +1,12 @@
 #pragma once
-/// The simulated world the controller acts on: the 6-DOF base-isolated
-/// building (Table 6.1) and, between ground and base, the MR damper with
-/// idle-time effects and coil dynamics. Every closed loop steps it the same
-/// way: `mrd sim`, the sweeps and the study (run::run_closed_loop) and the
-/// DAQ + plant node on CAN (peers::PlantNode).
+/// The simulated world the controller acts on: the building (any shear
+/// building of structure/building_params.hpp; the thesis's 6-DOF base-isolated
+/// building by default) with its isolators and, in parallel with the chosen
+/// elements, the MR dampers with idle-time effects and coil dynamics. Every
+/// closed loop steps it the same way: `mrd sim`, the sweeps and the study
+/// (run::run_closed_loop) and the DAQ + plant node on CAN (peers::PlantNode).
 ///
-/// Tick n (step T, inputs held over the step, ZOH-exact structure):
+/// Tick n (step T, inputs held over the step, ZOH-exact linear structure):
 /// <pre>
 ///   sense(a_g[n]):    x_b[n], v_b[n], F[n] = damper(v_b[n], i[n], PR[n]),
 ///                     accelerations, i[n]; sensor stage → PlantSensors
@@ -16,6 +17,25 @@
 /// The coil dynamics are strictly proper, so F[n] does not depend on u[n]
 /// and there is no algebraic loop. The sensor and command stages are in
 /// host_sim/plant/stages.hpp.
+///
+/// Every damper gets the one controller's command; the controller senses the
+/// first damper (building_params.hpp's dampers[0]): x_b and v_b are its
+/// element's deformation and rate (the base relative to the ground for a
+/// damper on element 0), F its force. Each damper has its own participant
+/// ratio and coil state; `count` identical dampers act as one of count times
+/// the force.
+///
+/// Isolators: their linear parts are in the structure's K; their hysteretic
+/// forces (structure/isolators.hpp) change within a tick, so a building with
+/// isolators is stepped in `substeps` equal sub-steps (ZOH-exact at T/s each):
+/// at each, the hysteretic force is taken at the sub-step's start and held,
+/// and the Bouc–Wen variables follow the isolation layer's displacement
+/// increment. s is the smallest integer with T/s ≤ 0.2 ms and
+/// T/s · ω_0 ≤ 0.1, ω_0 = √(k_0/m_0) with k_0 the isolators' largest tangent
+/// stiffness (Q/D_y, μ_fast·W/D_y) and m_0 the base mass: the pre-yield
+/// oscillation the explicit hold must resolve. The dampers' forces are held
+/// over the whole tick (they change with the tick's command). Without
+/// isolators s = 1 and a tick is one exact step.
 ///
 /// Two plants (PlantKind):
 /// - thesis: ideal sensors and drive; the coil current follows the command
@@ -36,6 +56,7 @@
 /// and count the same coil figures (coil_figures.hpp).
 
 #include <cstdint>
+#include <vector>
 
 #include "host_sim/plant/coil_figures.hpp"
 #include "host_sim/plant/coil_thermal.hpp"
@@ -43,6 +64,7 @@
 #include "host_sim/plant/pwm_drive.hpp"
 #include "host_sim/plant/stages.hpp"
 #include "host_sim/structure/discrete_building.hpp"
+#include "host_sim/structure/isolators.hpp"
 #include "mrd/physics/mr_damper.hpp"
 #include "mrd/physics/settling.hpp"
 
@@ -83,18 +105,24 @@ physics::MrDamperParams hardware_damper_params(physics::MrDamperParams thesis) n
 
 /// Peaks over a run.
 struct PlantSummary {
-  double peak_base_displacement_m = 0.0;       ///< max |x_b|, relative to the ground
-  double peak_damper_force_n = 0.0;            ///< max |F|
-  double peak_base_velocity_m_s = 0.0;         ///< max |base velocity relative to the ground| (damper velocity)
-  double peak_superstructure_accel_m_s2 = 0.0; ///< max |absolute accel| over floors 1–5
-  double peak_base_accel_m_s2 = 0.0;           ///< max |absolute accel| of the base
+  double peak_base_displacement_m = 0.0;       ///< max |x_0|, relative to the ground
+  double peak_damper_force_n = 0.0;            ///< max |F| of the first damper (one damper)
+  double peak_base_velocity_m_s = 0.0;         ///< max |rate of the first damper's element| (damper velocity)
+  double peak_superstructure_accel_m_s2 = 0.0; ///< max |absolute accel| over the superstructure (DOFs 1..N−1; fixed base: all)
+  double peak_base_accel_m_s2 = 0.0;           ///< max |absolute accel| of DOF 0
   double peak_current_a = 0.0;                 ///< max |coil current|
+  double peak_isolator_force_n = 0.0;          ///< max |Σ isolator forces, counts included| (0 without isolators)
+  double peak_story_drift_m = 0.0;             ///< max |element deformation| over the stories (elements 1..N−1; fixed base: all)
+  double peak_damper_stroke_m = 0.0;           ///< max |deformation of the first damper's element|
   double final_participant_ratio = 0.0;        ///< PR after the last step (Eq. 5.9)
   double sq = 0.0;                             ///< settling quotient at the start (Eq. 5.5)
   double duration_s = 0.0;                     ///< ticks × step
   std::uint64_t ticks = 0;                     ///< completed ticks (advance() calls)
   CoilFigures coil{};                          ///< coil current, command changes and heating
 };
+
+/// Structural sub-steps per tick of `step_s` for `building` (see above).
+int structural_substeps(const structure::BuildingParams& building, double step_s);
 
 class Plant {
  public:
@@ -114,27 +142,47 @@ class Plant {
   /// The state sense() took at t_n.
   const PlantState& state() const noexcept { return state_; }
   /// Absolute roof acceleration at the state the last advance() reached, m/s².
-  double roof_accel_m_s2() const noexcept { return accel_(structure::kDofs - 1); }
-  /// Largest |absolute acceleration| over floors 1–5 at that state, m/s².
+  double roof_accel_m_s2() const noexcept { return accel_.back(); }
+  /// Largest |absolute acceleration| over the superstructure at that state, m/s².
   double peak_floor_accel_m_s2() const noexcept { return floor_peak_m_s2_; }
+  /// Isolators' whole force at that state, N (0 without isolators).
+  double isolator_force_n() const noexcept { return isolator_force_n_; }
+  /// Deformation of element `e` at that state, m.
+  double element_deformation_m(int e) const noexcept { return building_.element_deformation_m(e); }
+  /// First story element (1 on an isolated base, 0 on a fixed one).
+  int first_story() const noexcept { return first_story_; }
 
   /// Peaks so far, including the state reached by the last advance().
   PlantSummary summary() const noexcept;
 
   double step_s() const noexcept { return spec_.step_s; }
+  /// Structural sub-steps per tick (1 without isolators).
+  int substeps() const noexcept { return substeps_; }
   /// Coil temperature above ambient at the state the last advance() reached, K.
   double coil_temperature_rise_k() const noexcept { return thermal_.rise_k(); }
-  /// Current the damper's field follows (the coil current on the thesis plant), A.
-  double field_current_a() const noexcept { return damper_.current_a(); }
+  /// Current the first damper's field follows (the coil current on the thesis plant), A.
+  double field_current_a() const noexcept { return dampers_.front().current_a(); }
   /// The building at the state the last advance() reached (floor displacements).
   const structure::DiscreteBuilding& building() const noexcept { return building_; }
 
  private:
+  void add_peaks_after_advance() noexcept;
+
   PlantSpec spec_{};
   structure::DiscreteBuilding building_{};
-  physics::MrDamper damper_{};
-  structure::Vector6 accel_{};
+  structure::IsolatorBank isolators_{};
+  /// One damper model per placement (spec.building.dampers), the first sensed.
+  std::vector<physics::MrDamper> dampers_;
+  std::vector<double> damper_force_n_;   ///< force of one damper of each placement over the tick, N
+  std::vector<double> element_force_n_;  ///< per building_.force_elements(), N
+  std::vector<int> damper_slot_;         ///< placement → index into element_force_n_
+  std::vector<char> damper_first_on_slot_;  ///< placement is the first on its element
+  int isolator_slot_ = -1;               ///< element 0's index into element_force_n_, or −1
+  int substeps_ = 1;
+  int first_story_ = 1;
+  std::vector<double> accel_;
   double floor_peak_m_s2_ = 0.0;
+  double isolator_force_n_ = 0.0;
   PlantState state_{};
   PlantSummary s_{};
   CoilThermal thermal_{};

@@ -1,91 +1,79 @@
 #pragma once
-/// The 5-story base-isolated building of thesis §6.1 as a 6-DOF lumped-mass
-/// shear building (Table 6.1, Fig. 6.2), and its continuous state-space form.
+/// The building's linear part as matrices, and its continuous state-space
+/// form. What a building is (masses, elements, isolators, dampers) is in
+/// building_params.hpp; the thesis building (§6.1, Table 6.1, Fig. 6.2) is its
+/// default.
 ///
-/// Degrees of freedom: 0 = base (isolation layer), 1..5 = floors 1..5.
-/// x_i is the displacement of mass i relative to the ground, positive in the
-/// direction of positive ground motion. With the MR damper between the ground
-/// and the base:
+/// With the linear parts of the isolators (k_p, W/R) folded into K and their
+/// hysteretic parts (Q·z, μ·W·z) and the dampers as element forces:
 ///
 /// <pre>
-///   M ẍ + C ẋ + K x = −M·1·a_g − e_0·F_d
+///   M ẍ + C ẋ + K x = −M·1·a_g − Σ_e (e_e − e_{e−1}) F_e
 /// </pre>
 ///
-/// a_g is the ground acceleration (m/s²), e_0 = [1 0 0 0 0 0]ᵀ, and F_d the
-/// damper force (N), positive when it resists a positive base velocity
-/// relative to the ground (so a passive viscous damper would be F_d = c·ẋ_0).
-/// Fig. 6.2 is this equation without the damper term.
+/// F_e is the force of element e's devices (N), positive when it resists a
+/// positive deformation rate u̇_e (so a passive viscous damper would be
+/// F_e = c·u̇_e), e_{−1} = 0. Fig. 6.2 is this equation without the damper
+/// term.
 
 #include <Eigen/Core>
-#include <array>
+#include <vector>
+
+#include "host_sim/structure/building_params.hpp"
 
 namespace mrd::structure {
 
-/// Number of degrees of freedom (base + 5 floors).
-inline constexpr int kDofs = 6;
-/// Number of states z = [x; ẋ].
-inline constexpr int kStates = 2 * kDofs;
-/// Number of inputs u = [a_g; F_d].
-inline constexpr int kInputs = 2;
-/// Index of the base (isolation layer) DOF.
+/// Index of the base (isolation layer) DOF, and the element between it and the ground.
 inline constexpr int kBaseDof = 0;
 
-using Matrix6 = Eigen::Matrix<double, kDofs, kDofs>;
-using Vector6 = Eigen::Matrix<double, kDofs, 1>;
-using StateMatrix = Eigen::Matrix<double, kStates, kStates>;
-using InputMatrix = Eigen::Matrix<double, kStates, kInputs>;
-using State = Eigen::Matrix<double, kStates, 1>;
-using Input = Eigen::Matrix<double, kInputs, 1>;
+using Matrix = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
 
-/// Lumped masses, story dampers and story springs of the building, SI.
-///
-/// Element i (i = 1..5) of `story_*` connects floor i to the mass below it
-/// (floor i−1, or the base for i = 1); element 0 connects the base to the
-/// ground (the isolation layer). Defaults are Table 6.1 and Fig. 6.2:
-/// - masses from Fig. 6.2 (Table 6.1 rounds the floors to 212.3 t);
-/// - damping from Table 6.1, except floor 1 which Fig. 6.2 gives to one more
-///   digit (C(0,1) = −1.0444e6 kg/s; the table says 1,044 kN·s/m);
-/// - stiffness from Table 6.1, except the base which Fig. 6.2 gives to one
-///   more digit (K(0,0) = 408,071.3 kN/m = 3,287.3 + 404,784; the table says
-///   3,287 kN/m).
-struct BuildingParams {
-  /// Lumped masses, kg: base, floors 1..5 (Fig. 6.2).
-  std::array<double, kDofs> mass_kg{244800.0, 212292.0, 212292.0, 212292.0, 212292.0, 212292.0};
-  /// Story damping coefficients, N·s/m: isolation layer, stories 1..5 (Table 6.1, Fig. 6.2).
-  std::array<double, kDofs> story_damping_n_s_m{209.8e3, 1044.4e3, 904.1e3, 888.5e3, 779.4e3, 592.4e3};
-  /// Story stiffnesses, N/m: isolation layer, stories 1..5 (Table 6.1, Fig. 6.2).
-  std::array<double, kDofs> story_stiffness_n_m{3287.3e3, 404784.0e3, 349116.0e3,
-                                                343452.0e3, 299448.0e3, 228708.0e3};
-};
-
-/// Throws std::invalid_argument unless every mass and stiffness is finite and
-/// positive and every damping coefficient finite and non-negative.
+/// Throws std::invalid_argument unless the building is one the equations
+/// describe: 1..kMaxDofs masses, finite and positive; element stiffnesses
+/// finite, positive (element 0 may be 0 when an isolator restores); damping
+/// finite and non-negative, arrays of one length; a Rayleigh form with a ratio
+/// in (0, 1) and two distinct modes in 1..N; isolators only on an isolated
+/// base, with physical values; dampers on elements 0..N−1, count ≥ 1.
 void validate(const BuildingParams& p);
 
 /// Diagonal mass matrix M, kg (Fig. 6.2).
-Matrix6 mass_matrix(const BuildingParams& p);
+Matrix mass_matrix(const BuildingParams& p);
 
-/// Tridiagonal shear-building damping matrix C, N·s/m (Fig. 6.2):
-/// C(i,i) = c_i + c_{i+1} (c_6 = 0), C(i,i+1) = C(i+1,i) = −c_{i+1}.
-Matrix6 damping_matrix(const BuildingParams& p);
+/// Shear-chain stiffness matrix K, N/m (Fig. 6.2): element stiffnesses plus
+/// the isolators' linear parts (count·k_p for a lead-rubber bearing,
+/// count·W/R for a friction pendulum) on element 0.
+/// K(i,i) = k_i + k_{i+1} (k_N = 0), K(i,i+1) = K(i+1,i) = −k_{i+1}.
+Matrix stiffness_matrix(const BuildingParams& p);
 
-/// Tridiagonal shear-building stiffness matrix K, N/m (Fig. 6.2), same
-/// pattern as damping_matrix().
-Matrix6 stiffness_matrix(const BuildingParams& p);
+/// Damping matrix C, N·s/m: the element dashpots in the pattern of
+/// stiffness_matrix(), or Rayleigh C = a0·M + a1·K with the ratio ζ exact at
+/// the undamped modes ω_a, ω_b of (M, K):
+/// a0 = 2ζ·ω_a·ω_b/(ω_a + ω_b), a1 = 2ζ/(ω_a + ω_b).
+Matrix damping_matrix(const BuildingParams& p);
 
 /// Sum of the lumped masses, kg.
 double total_mass_kg(const BuildingParams& p);
 
+/// Load on one friction-pendulum bearing of `b`, N: weight_n, or the
+/// building's weight g·Σm over the bearings of that group.
+double bearing_weight_n(const BuildingParams& p, const FrictionPendulumBearing& b);
+
+/// The elements that carry an input force, ascending: every damper's element,
+/// and element 0 when there are isolators. Column 1 + k of B is element
+/// force_elements()[k].
+std::vector<int> force_elements(const BuildingParams& p);
+
 /// Continuous state-space model ż = A z + B u with z = [x; ẋ] (m, m/s) and
-/// u = [a_g (m/s²); F_d (N)]:
+/// u = [a_g (m/s²); F_e (N) for each force element]:
 /// <pre>
-///   A = [  0       I    ]      B = [  0       0        ]
-///       [ −M⁻¹K  −M⁻¹C  ]          [ −1   −M⁻¹·e_0     ]
+///   A = [  0       I    ]      B = [  0       0                 ]
+///       [ −M⁻¹K  −M⁻¹C  ]          [ −1   −M⁻¹·(e_e − e_{e−1})  ]
 /// </pre>
 /// (the a_g column is −1 in every acceleration row since M⁻¹·M·1 = 1).
 struct ContinuousModel {
-  StateMatrix a;
-  InputMatrix b;
+  Matrix a;
+  Matrix b;
 };
 
 /// Builds A and B from the parameters (validated first).

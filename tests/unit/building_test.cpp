@@ -7,9 +7,12 @@
 #include <stdexcept>
 
 #include "host_sim/structure/building.hpp"
+#include "thesis_building_sizes.hpp"
 
 namespace mrd::structure {
 namespace {
+
+using namespace thesis_sizes;
 
 constexpr double kKiloNewton = 1000.0;
 

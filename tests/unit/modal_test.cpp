@@ -5,10 +5,13 @@
 #include <cmath>
 
 #include "host_sim/structure/building.hpp"
+#include "thesis_building_sizes.hpp"
 #include "host_sim/structure/modal.hpp"
 
 namespace mrd::structure {
 namespace {
+
+using namespace thesis_sizes;
 
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
