@@ -352,6 +352,7 @@ class Batch {
     s.sq = lane.sq;
     s.duration_s = static_cast<double>(s.ticks) * spec_.step_s;
     s.peak_base_displacement_m = std::max(b.peak_disp_m[l], std::fabs(dot_row12(model_.disp_row, q)));
+    s.peak_damper_stroke_m = s.peak_base_displacement_m;  // the batch's one damper is on element 0
     s.peak_damper_force_n = b.peak_force_n[l];
     s.peak_base_velocity_m_s = b.peak_vel_m_s[l];
     s.peak_superstructure_accel_m_s2 = b.peak_floor_accel_m_s2[l];

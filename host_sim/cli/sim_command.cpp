@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <string>
 
+#include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
 #include "mrd/units.hpp"
@@ -65,6 +66,7 @@ struct SimOptions {
   std::string plant = "thesis";
   std::uint64_t sensor_seed = 1;
   double offset_mm = 3.0;
+  std::string building;
   std::string out_dir;
 };
 
@@ -97,6 +99,7 @@ run::SimSpec sim_spec(const SimOptions& o) {
   spec.step_s = o.step_s;
   spec.seed = o.seed;
   spec.keep_record = !o.out_dir.empty();
+  spec.building = load_building(o.building);
   return spec;
 }
 
@@ -136,6 +139,7 @@ void add_options(CLI::App& app, SimOptions& o) {
   add_step_s_option(app, o.step_s, "Simulation and control step, s");
   app.add_option("--seed", o.seed, "Seed of the synthetic motion (without --record)")->capture_default_str();
   app.add_option("--plant", o.plant, "thesis | hardware")->capture_default_str();
+  add_building_option(app, o.building);
   app.add_option("--sensor-seed", o.sensor_seed, "Seed of the hardware plant's sensor noise")->capture_default_str();
   app.add_option("--offset-mm", o.offset_mm, "Hardware plant: damper parked this far off its stroke centre, mm")
       ->capture_default_str();

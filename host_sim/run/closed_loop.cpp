@@ -5,13 +5,21 @@
 namespace mrd::run {
 namespace {
 
-void start_record(ClosedLoopRecord& record, std::size_t n) {
+void start_record(ClosedLoopRecord& record, std::size_t n, const plant::Plant& plant) {
+  for (auto* v : {&record.time_s, &record.ground_accel_m_s2, &record.base_disp_m, &record.base_vel_m_s,
+                  &record.damper_force_n, &record.desired_force_n, &record.command_a, &record.current_a, &record.pr,
+                  &record.roof_accel_m_s2, &record.peak_floor_accel_m_s2, &record.isolator_force_n}) {
+    v->clear();
+  }
   for (auto* v : {&record.time_s, &record.ground_accel_m_s2, &record.base_disp_m, &record.base_vel_m_s,
                   &record.damper_force_n, &record.desired_force_n, &record.command_a, &record.current_a, &record.pr,
                   &record.roof_accel_m_s2, &record.peak_floor_accel_m_s2}) {
-    v->clear();
     v->reserve(n);
   }
+  record.story_elements.clear();
+  for (int e = plant.first_story(); e < plant.building().dofs(); ++e) record.story_elements.push_back(e);
+  record.story_drift_m.assign(record.story_elements.size(), {});
+  for (auto& v : record.story_drift_m) v.reserve(n);
 }
 
 }  // namespace
@@ -38,7 +46,11 @@ plant::PlantSummary run_closed_loop(const plant::PlantSpec& spec, const std::vec
   controller.reset();
 
   const std::size_t n = ground_accel_m_s2.size();
-  if (record) start_record(*record, n);
+  const bool isolated = !spec.building.isolators.empty();
+  if (record) {
+    start_record(*record, n, plant);
+    if (isolated) record->isolator_force_n.reserve(n);
+  }
 
   for (std::size_t k = 0; k < n; ++k) {
     const control::ControllerOutput out = closed_loop_tick(plant, controller, ground_accel_m_s2[k], k);
@@ -56,6 +68,10 @@ plant::PlantSummary run_closed_loop(const plant::PlantSpec& spec, const std::vec
       record->pr.push_back(s.participant_ratio);
       record->roof_accel_m_s2.push_back(plant.roof_accel_m_s2());
       record->peak_floor_accel_m_s2.push_back(plant.peak_floor_accel_m_s2());
+      if (isolated) record->isolator_force_n.push_back(plant.isolator_force_n());
+      for (std::size_t st = 0; st < record->story_elements.size(); ++st) {
+        record->story_drift_m[st].push_back(plant.element_deformation_m(record->story_elements[st]));
+      }
     }
   }
   return plant.summary();

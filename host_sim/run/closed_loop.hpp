@@ -22,6 +22,12 @@ class Controller;
 struct ClosedLoopRecord {
   std::vector<double> time_s, ground_accel_m_s2, base_disp_m, base_vel_m_s, damper_force_n, desired_force_n,
       command_a, current_a, pr, roof_accel_m_s2, peak_floor_accel_m_s2;
+  /// Isolators' whole force at t_{n+1}, N (empty without isolators).
+  std::vector<double> isolator_force_n;
+  /// Story elements (1..N−1, fixed base 0..N−1) and their deformations at
+  /// t_{n+1}, m: story_drift_m[s][n] is element story_elements[s]'s.
+  std::vector<int> story_elements;
+  std::vector<std::vector<double>> story_drift_m;
 };
 
 /// The drive a controller output asks for: u[n] as the coil stage sees it.

@@ -6,6 +6,7 @@
 
 #include "mrd/units.hpp"
 #include "host_sim/report/plot.hpp"
+#include "host_sim/io/text.hpp"
 #include "host_sim/report/summary_json.hpp"
 #include "host_sim/report/time_series.hpp"
 
@@ -34,14 +35,28 @@ void note(std::vector<std::string>& problems, const report::PlotResult& r, const
 
 std::vector<std::string> write_closed_loop_outputs(const std::filesystem::path& dir, const std::string& stem,
                                                    const std::string& title, const ClosedLoopRecord& rec) {
-  report::TimeSeries ts({"time_s", "ground_accel_m_s2", "base_disp_m", "base_vel_m_s", "damper_force_n",
-                         "desired_force_n", "command_a", "current_a", "participant_ratio", "roof_accel_m_s2",
-                         "peak_floor_accel_m_s2"});
-  ts.reserve(rec.time_s.size());
-  for (std::size_t k = 0; k < rec.time_s.size(); ++k) {
-    ts.add_row({rec.time_s[k], rec.ground_accel_m_s2[k], rec.base_disp_m[k], rec.base_vel_m_s[k],
-                rec.damper_force_n[k], rec.desired_force_n[k], rec.command_a[k], rec.current_a[k], rec.pr[k],
-                rec.roof_accel_m_s2[k], rec.peak_floor_accel_m_s2[k]});
+  std::vector<std::string> columns{"time_s", "ground_accel_m_s2", "base_disp_m", "base_vel_m_s", "damper_force_n",
+                                   "desired_force_n", "command_a", "current_a", "participant_ratio",
+                                   "roof_accel_m_s2", "peak_floor_accel_m_s2"};
+  const std::size_t ticks = rec.time_s.size();
+  const bool isolators = rec.isolator_force_n.size() == ticks && ticks > 0;
+  if (isolators) columns.push_back("isolator_force_n");
+  std::vector<const std::vector<double>*> drifts;
+  for (std::size_t st = 0; st < rec.story_elements.size(); ++st) {
+    if (rec.story_drift_m[st].size() != ticks) continue;
+    columns.push_back("story_" + std::to_string(rec.story_elements[st]) + "_drift_m");
+    drifts.push_back(&rec.story_drift_m[st]);
+  }
+  report::TimeSeries ts(columns);
+  ts.reserve(ticks);
+  std::vector<double> row;
+  for (std::size_t k = 0; k < ticks; ++k) {
+    row = {rec.time_s[k], rec.ground_accel_m_s2[k], rec.base_disp_m[k], rec.base_vel_m_s[k],
+           rec.damper_force_n[k], rec.desired_force_n[k], rec.command_a[k], rec.current_a[k], rec.pr[k],
+           rec.roof_accel_m_s2[k], rec.peak_floor_accel_m_s2[k]};
+    if (isolators) row.push_back(rec.isolator_force_n[k]);
+    for (const auto* d : drifts) row.push_back((*d)[k]);
+    ts.add_row(row);
   }
   report::write_csv(ts, dir / (stem + ".csv"));
 
@@ -107,7 +122,18 @@ nlohmann::json closed_loop_summary_json(const plant::PlantSummary& s) {
   };
 }
 
-std::vector<std::string> sim_warnings(const SimRun& run) { return validity_warnings(validity_peaks(run.summary)); }
+std::vector<std::string> sim_warnings(const SimRun& run) {
+  std::vector<std::string> w = validity_warnings(validity_peaks(run.summary));
+  structure::IsolatorBank bank;
+  bank.init(run.spec.building);
+  const double capacity_m = bank.displacement_capacity_m();
+  if (capacity_m > 0.0 && run.summary.peak_base_displacement_m > capacity_m) {
+    w.push_back("peak isolator displacement " + io::format_number("%.4g", run.summary.peak_base_displacement_m) +
+                " m exceeds the bearings' displacement capacity " + io::format_number("%.4g", capacity_m) +
+                " m (building file)");
+  }
+  return w;
+}
 
 nlohmann::json sim_summary_json(const SimRun& run) {
   nlohmann::json j = closed_loop_summary_json(run.summary);
@@ -127,6 +153,12 @@ nlohmann::json sim_summary_json(const SimRun& run) {
   j["command_changes_per_s"] = c.command_changes_per_s;
   j["peak_coil_temperature_rise_k"] = c.peak_coil_temperature_rise_k;
   j["peak_damper_velocity_m_s"] = run.summary.peak_base_velocity_m_s;
+  j["peak_isolator_force_kn"] = units::n_to_kn(run.summary.peak_isolator_force_n);
+  j["peak_story_drift_m"] = run.summary.peak_story_drift_m;
+  j["peak_damper_stroke_m"] = run.summary.peak_damper_stroke_m;
+  j["building"] = run.spec.building.name;
+  j["dofs"] = run.spec.building.dofs();
+  j["structural_substeps"] = plant::structural_substeps(run.spec.building, run.spec.step_s);
   j["warnings"] = sim_warnings(run);
   return j;
 }

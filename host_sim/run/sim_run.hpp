@@ -29,6 +29,7 @@ struct SimSpec {
   plant::PlantKind plant = plant::PlantKind::kThesis;
   std::uint64_t sensor_seed = 1;   ///< of the hardware plant's sensor noise
   double stroke_offset_m = 0.003;  ///< where the hardware plant's damper is parked off centre, m
+  structure::BuildingParams building{};  ///< the thesis building unless a building file is given
 };
 
 struct SimRun {

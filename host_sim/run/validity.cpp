@@ -42,7 +42,7 @@ std::string sentence(const Limit& l, double peak) {
 }  // namespace
 
 ValidityPeaks validity_peaks(const plant::PlantSummary& s) {
-  return {s.peak_base_displacement_m, s.peak_base_velocity_m_s, s.peak_current_a, s.peak_damper_force_n};
+  return {s.peak_damper_stroke_m, s.peak_base_velocity_m_s, s.peak_current_a, s.peak_damper_force_n};
 }
 
 std::vector<std::string> validity_warnings(const ValidityPeaks& p) {
