@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <string>
 
+#include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
 #include "mrd/control/io.hpp"
@@ -16,11 +17,18 @@ constexpr CommandHelp kStudyHelp{
 (Table 6.3) in every control mode this build has, fully mixed against 2.5 years idle
 (Fig. 6.9-6.11), plus the idle-time sweep of Fig. 6.12-6.20 and the chapter-5 checks it rests on.
 Writes DIR/report.md (Markdown with the tables and plots), DIR/summary.json (per record and mode:
-peak_base_displacement_m, peak_damper_force_kn, peak_superstructure_accel_m_s2 and sq, fully mixed
-and idle), one comparison PNG per record and mode, and DIR/sweep/.)"};
+peak_base_displacement_m, peak_damper_force_kn, peak_superstructure_accel_m_s2, sq,
+peak_isolator_force_kn (0 without isolators) and peak_story_drift_m, fully mixed and idle; building,
+dofs), one comparison PNG per record and mode, and DIR/sweep/ (mrd sweep's files).
+--building FILE runs the study on another building (README "Your building"; default the thesis
+building, buildings/thesis-6dof.toml, whose report is the same bytes with or without the file).
+For any other building the report names it, gives its first modes, and its table adds the peak
+story drift (and the isolators' peak force when it has isolators); sweep/sweep.csv appends
+peak_isolator_force_kn and peak_story_drift_m.)"};
 
 struct StudyCliOptions {
   run::StudyOptions study;
+  std::string building;
   bool no_sweep = false;
   std::string out_dir = "out/study";
 };
@@ -43,6 +51,7 @@ void add_options(CLI::App& app, StudyCliOptions& o) {
   add_idle_years_option(app, o.study.idle_years, "Idle time compared with fully mixed, years");
   app.add_flag("--no-sweep", o.no_sweep, "Skip the idle-time sweep");
   add_threads_option(app, o.study.threads, "Worker threads for the sweep (0: all cores)");
+  add_building_option(app, o.building);
   add_out_option(app, o.out_dir, "Output folder")->capture_default_str();
 }
 
@@ -51,6 +60,7 @@ void execute(const StudyCliOptions& o) {
   check_idle_years(o.study.idle_years);
   run::StudyOptions study = o.study;
   study.with_sweep = !o.no_sweep;
+  study.building = load_building(o.building);
   const auto out = open_out_dir(o.out_dir);
   const run::StudyResult r = run::run_study(study);
   const auto problems = run::write_study_outputs(out, r);

@@ -24,6 +24,7 @@ struct StudyOptions {
   double step_s = 1.0e-3;
   bool with_sweep = true;
   unsigned threads = 0;
+  structure::BuildingParams building{};  ///< the thesis building unless a building file is given
 };
 
 /// One record in one control mode, fully mixed and after the idle time.

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -8,6 +9,7 @@
 #include "host_sim/run/run_outputs.hpp"
 #include "host_sim/run/study.hpp"
 #include "host_sim/run/sweep_report.hpp"
+#include "host_sim/run/thesis_building.hpp"
 #include "host_sim/run/validity.hpp"
 
 namespace mrd::run {
@@ -28,22 +30,41 @@ std::string comparison_png(const StudyRow& row) {
   return row.motion + "_" + control::mode_name(row.mode) + ".png";
 }
 
+bool thesis_building(const StudyResult& r) { return is_thesis_building(r.options.building); }
+
 void write_title(std::ostream& md, const StudyResult& r) {
-  md << "# Chapter-6 study: idle time and the seismic performance of a base-isolated building\n\n";
+  if (thesis_building(r)) {
+    md << "# Chapter-6 study: idle time and the seismic performance of a base-isolated building\n\n";
+  } else {
+    const structure::BuildingParams& b = r.options.building;
+    md << "# Chapter-6 study on " << b.name << ": idle time and the seismic performance of the building\n\n"
+       << "Building: " << b.name << " (building file), " << b.dofs() << " degrees of freedom, "
+       << (b.base == structure::BaseKind::kFixed ? "fixed base" : "isolated base") << ", " << b.isolators.size()
+       << " isolator group(s), " << b.dampers.size() << " damper placement(s). The damper records, the sine "
+       << "tests and the settling time are the thesis damper's.\n\n";
+  }
   if (r.synthetic_motions) {
     md << "> The four records of Table 6.2 were not found (no shared data folder): this report uses four "
           "synthetic Kanai-Tajimi motions instead. Its numbers are not the thesis's.\n\n";
   }
 }
 
-/// §6.1: the first three modes.
+/// §6.1: the first three modes (fewer for a building with fewer DOFs).
 void write_structure(std::ostream& md, const StudyResult& r) {
-  md << "## Structure (Table 6.1, Fig. 6.2)\n\n| mode | frequency | damping ratio |\n|---:|---:|---:|\n";
-  for (std::size_t i = 0; i < 3; ++i) {
+  const bool thesis = thesis_building(r);
+  md << (thesis ? "## Structure (Table 6.1, Fig. 6.2)" : "## Structure: " + r.options.building.name)
+     << "\n\n| mode | frequency | damping ratio |\n|---:|---:|---:|\n";
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, r.modal.frequencies_hz.size()); ++i) {
     md << "| " << i + 1 << " | " << format_number("%.4f Hz", r.modal.frequencies_hz[i]) << " | "
        << format_number("%.2f %%", 100.0 * r.modal.damping_ratios[i]) << " |\n";
   }
-  md << "\nThesis: 0.25 Hz; 4.97 %, 3.17 %, 5.07 %.\n\n";
+  if (thesis) {
+    md << "\nThesis: 0.25 Hz; 4.97 %, 3.17 %, 5.07 %.\n\n";
+  } else {
+    md << "\nModes of the building without the MR dampers";
+    if (!r.modal.isolator_stiffness.empty()) md << ", the " << r.modal.isolator_stiffness;
+    md << ".\n\n";
+  }
 }
 
 /// §5.3: settling time and the sine tests of Table 5.1.
@@ -66,10 +87,15 @@ void write_idle_model(std::ostream& md, const StudyResult& r) {
 /// §6.4, Fig. 6.9–6.11: the table of peaks and the plots drawn.
 void write_earthquakes(std::ostream& md, const StudyResult& r, const std::vector<std::string>& figures) {
   const StudyOptions& o = r.options;
+  // Another building than the thesis's adds its story drift and, isolated
+  // on bearings, their summed force.
+  const bool drift_column = !thesis_building(r);
+  const bool isolator_column = drift_column && !o.building.isolators.empty();
   md << "## Earthquakes at " << o.pga_g << " g: fully mixed against " << o.idle_years
      << " years idle (Fig. 6.9-6.11)\n\n"
-     << "| record | control | peak base displacement [mm] | peak damper force [kN] | peak superstructure accel [m/s²] |\n"
-     << "|---|---|---:|---:|---:|\n";
+     << "| record | control | peak base displacement [mm] | peak damper force [kN] | peak superstructure accel [m/s²] |"
+     << (isolator_column ? " peak isolator force [kN] |" : "") << (drift_column ? " peak story drift [mm] |" : "")
+     << "\n|---|---|---:|---:|---:|" << (isolator_column ? "---:|" : "") << (drift_column ? "---:|" : "") << "\n";
   for (const auto& row : r.rows) {
     const auto& a = row.fully_mixed;
     const auto& b = row.idle;
@@ -82,7 +108,20 @@ void write_earthquakes(std::ostream& md, const StudyResult& r, const std::vector
        << " | "
        << change("%.3f", a.peak_superstructure_accel_m_s2, b.peak_superstructure_accel_m_s2,
                  a.peak_superstructure_accel_m_s2, b.peak_superstructure_accel_m_s2)
-       << " |\n";
+       << " |";
+    if (isolator_column) {
+      md << " "
+         << change("%.1f", a.peak_isolator_force_n / 1e3, b.peak_isolator_force_n / 1e3, a.peak_isolator_force_n,
+                   b.peak_isolator_force_n)
+         << " |";
+    }
+    if (drift_column) {
+      md << " "
+         << change("%.2f", a.peak_story_drift_m * 1e3, b.peak_story_drift_m * 1e3, a.peak_story_drift_m,
+                   b.peak_story_drift_m)
+         << " |";
+    }
+    md << "\n";
   }
   md << "\n(fully mixed → " << o.idle_years << " years idle)\n\n";
   for (const auto& f : figures) md << "![" << f << "](" << f << ")\n\n";
@@ -100,16 +139,30 @@ void write_sweep_section(std::ostream& md, const StudyResult& r, const std::vect
 void write_model(std::ostream& md, const StudyResult& r) {
   md << "## Model\n\nDamper: Bingham plastic with exponential current laws and transition function (Eq. 4.1-4.4, "
         "Table 4.1), coil dynamics Eq. 4.5 at unity DC gain, idle time through the participant ratio "
-        "(Eq. 5.5-5.12, Table 5.6) with the mixing integral calibrated to Table 5.2. Structure: 6-DOF shear building "
-        "of Table 6.1, exact zero-order hold at "
-     << r.options.step_s * 1e3 << " ms. Passive-on is " << fw::kPassiveOnCurrent_a << " A.\n";
+        "(Eq. 5.5-5.12, Table 5.6) with the mixing integral calibrated to Table 5.2. ";
+  const structure::BuildingParams& b = r.options.building;
+  if (thesis_building(r)) {
+    md << "Structure: 6-DOF shear building of Table 6.1, exact zero-order hold at " << r.options.step_s * 1e3
+       << " ms.";
+  } else {
+    md << "Structure: " << b.name << ", " << b.dofs() << "-DOF shear building of its building file, exact zero-order "
+       << "hold at " << r.options.step_s * 1e3 << " ms";
+    if (!b.isolators.empty()) {
+      md << " in " << plant::structural_substeps(b, r.options.step_s)
+         << " sub-steps per step, the isolators' hysteretic force held over each";
+    }
+    md << ".";
+  }
+  md << " Passive-on is " << fw::kPassiveOnCurrent_a << " A.\n";
 }
 
 nlohmann::json peaks_json(const plant::PlantSummary& s) {
   return nlohmann::json{{"peak_base_displacement_m", s.peak_base_displacement_m},
                         {"peak_damper_force_kn", s.peak_damper_force_n / 1e3},
                         {"peak_superstructure_accel_m_s2", s.peak_superstructure_accel_m_s2},
-                        {"sq", s.sq}};
+                        {"sq", s.sq},
+                        {"peak_isolator_force_kn", s.peak_isolator_force_n / 1e3},
+                        {"peak_story_drift_m", s.peak_story_drift_m}};
 }
 
 }  // namespace
@@ -146,7 +199,9 @@ nlohmann::json study_summary_json(const StudyResult& r) {
                         {"runs", runs},
                         {"sweep", sweep},
                         {"warnings", study_warnings(r)},
-                        {"report", "report.md"}};
+                        {"report", "report.md"},
+                        {"building", r.options.building.name},
+                        {"dofs", r.options.building.dofs()}};
 }
 
 /// One comparison plot per row; the names of those drawn go to `figures`.

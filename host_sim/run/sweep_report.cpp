@@ -1,5 +1,6 @@
 #include "host_sim/run/sweep_report.hpp"
 
+#include "host_sim/run/thesis_building.hpp"
 #include "host_sim/run/validity.hpp"
 
 #include <cstdio>
@@ -42,17 +43,26 @@ int thesis_figure(control::ControlMode mode, int metric) {
 }  // namespace
 
 std::string sweep_csv(const SweepSpec& spec, const std::vector<SweepRow>& rows) {
+  // The thesis building keeps the thesis's ten columns; another building
+  // appends its isolators' and stories' peaks.
+  const bool building_columns = !is_thesis_building(spec.base.building);
   std::ostringstream os;
   os << "record,control,idle_years,sq,peak_base_displacement_m,peak_damper_force_kn,"
-        "peak_superstructure_accel_m_s2,peak_base_accel_m_s2,peak_current_a,final_participant_ratio\n";
+        "peak_superstructure_accel_m_s2,peak_base_accel_m_s2,peak_current_a,final_participant_ratio";
+  os << (building_columns ? ",peak_isolator_force_kn,peak_story_drift_m\n" : "\n");
   char buf[512];
   for (const auto& r : rows) {
     const auto& s = r.summary;
-    std::snprintf(buf, sizeof buf, "%s,%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+    std::snprintf(buf, sizeof buf, "%s,%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g",
                   spec.motions[r.motion_index].name.c_str(), control::mode_name(r.mode), r.idle_years, s.sq,
                   s.peak_base_displacement_m, s.peak_damper_force_n / 1e3, s.peak_superstructure_accel_m_s2,
                   s.peak_base_accel_m_s2, s.peak_current_a, s.final_participant_ratio);
     os << buf;
+    if (building_columns) {
+      std::snprintf(buf, sizeof buf, ",%.9g,%.9g", s.peak_isolator_force_n / 1e3, s.peak_story_drift_m);
+      os << buf;
+    }
+    os << '\n';
   }
   return os.str();
 }
@@ -61,12 +71,14 @@ std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, c
                                              const std::vector<SweepRow>& rows, std::vector<std::string>* pngs) {
   report::write_file_atomically(dir / "sweep.csv", sweep_csv(spec, rows));
   std::vector<std::string> problems;
+  const bool thesis = is_thesis_building(spec.base.building);
   for (auto mode : spec.modes) {
     for (int mi = 0; mi < 3; ++mi) {
       const Metric& metric = kMetrics[mi];
       report::PlotSpec p;
-      p.title = std::string(metric.title) + ", " + control::mode_name(mode) + " (cf. thesis Fig. 6." +
-                std::to_string(thesis_figure(mode, mi)) + ")";
+      p.title = std::string(metric.title) + ", " + control::mode_name(mode) +
+                (thesis ? " (cf. thesis Fig. 6." + std::to_string(thesis_figure(mode, mi)) + ")"
+                        : " (" + spec.base.building.name + ")");
       p.x_label = "idle time [years]";
       p.y_label = metric.axis;
       for (std::size_t m = 0; m < spec.motions.size(); ++m) {
@@ -116,7 +128,8 @@ nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<Sweep
                         {"simulated_s", simulated_s},     {"real_time_factor", simulated_s / wall_s},
                         {"motions", motions},            {"controls", modes},
                         {"idle_years", spec.idle_years}, {"csv", "sweep.csv"},
-                        {"plots", pngs},                {"warnings", sweep_warnings(rows)}};
+                        {"plots", pngs},                {"warnings", sweep_warnings(rows)},
+                        {"building", spec.base.building.name}, {"dofs", spec.base.building.dofs()}};
 }
 
 std::vector<std::string> write_sweep_report(const std::filesystem::path& dir, const SweepSpec& spec,

@@ -18,17 +18,20 @@ namespace mrd::run {
 std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, const SweepSpec& spec,
                                              const std::vector<SweepRow>& rows, std::vector<std::string>* pngs);
 
-/// The sweep as CSV text (header + one row per run).
 /// Where runs of the sweep leave the model's validity (validity_warnings), as sentences.
 std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows);
 
+/// The sweep as CSV text (header + one row per run): the thesis's ten
+/// columns and, for another building than the thesis's (is_thesis_building),
+/// peak_isolator_force_kn and peak_story_drift_m after them.
 std::string sweep_csv(const SweepSpec& spec, const std::vector<SweepRow>& rows);
 
 /// Simulated time summed over the runs, s.
 [[nodiscard]] double simulated_seconds(const std::vector<SweepRow>& rows);
 
 /// The fields documented in `mrd sweep --help`: runs, wall time,
-/// simulated seconds and their ratio, motions, controls, idle times, files.
+/// simulated seconds and their ratio, motions, controls, idle times, files,
+/// the building's name and DOFs.
 [[nodiscard]] nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<SweepRow>& rows,
                                                 double wall_s, const std::vector<std::string>& pngs);
 
