@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
@@ -38,6 +39,13 @@ Limit states (exceeded when the peak reaches the threshold):
   stroke          peak base displacement >= 0.2921 m, the damper's stroke (thesis 3.1)
   isolation_gap   peak base displacement >= --gap-m (default 0.20 m, an assumption)
   floor_accel     peak absolute floor acceleration, floors 1-5, >= --floor-accel-g (default 0.3 g)
+  story_drift     peak story drift (max |x_i - x_{i-1}| over the stories) >= --drift-m (default
+                  0.02 m, an assumption: a building file gives no story heights, so the threshold is
+                  a drift, not a drift ratio; 0.02 m is 0.5 % of a 4 m story)
+Building: --building FILE (README "Your building"; default the thesis building of Table 6.1,
+buildings/thesis-6dof.toml, whose files are the same bytes with or without it). For another
+building, "base displacement" is DOF 0 relative to the ground and "floors" its superstructure
+(every DOF of a fixed-base building).
 Parallel: threads (--threads, default the cores over the ranks on the node) and, under mpirun or
 srun, MPI ranks: the runs are numbered (control, idle, PGA, record; record fastest), cut in chunks
 of 8 and chunk c goes to rank c mod N; rank 0 gathers and writes. runs.csv is the same bytes for
@@ -51,7 +59,8 @@ DIR/fragility.csv (control, limit_state, threshold (m or m/s2), idle_years, stat
 none_exceeded | all_exceeded), median_pga_g, beta, their 5 and 95 % bootstrap percentiles, runs,
 exceedances), DIR/fragility_curves.csv (each curve and band at 41 PGAs), one plot per control mode
 and limit state (fragility_<control>_<limit state>.png, a curve per idle time), DIR/summary.json
-(runs, runs_computed, runs_resumed, records, pga_g, idle_years, controls, limit_states, curves,
+(runs, runs_computed, runs_resumed, records, pga_g, idle_years, controls, building, dofs,
+limit_states, curves,
 ranks, threads_per_rank, wall_s, runs_per_core_hour (wall time x ranks x threads), cpu_s_rank0,
 runs_per_cpu_hour (rank 0's runs over its CPU time)).)"};
 
@@ -70,6 +79,8 @@ struct FragilityOptions {
   unsigned bootstrap = 200;
   double gap_m = risk::kDefaultIsolationGap_m;
   double floor_accel_g = risk::kDefaultFloorAccel_g;
+  double drift_m = risk::kDefaultStoryDrift_m;
+  std::string building;
   double step_s = 1.0e-3;
   unsigned threads = 0;
   std::string journal;
@@ -94,12 +105,14 @@ risk::FragilityPlan plan_options(const FragilityOptions& o) {
   require_at_most("--duration-s", o.duration_s, 600.0, "600 s");
   require_positive("--gap-m", o.gap_m, "an isolation gap");
   require_positive("--floor-accel-g", o.floor_accel_g, "a floor acceleration");
+  require_positive("--drift-m", o.drift_m, "a story drift");
   require_step_s(o.step_s, 0.02, "0.02 s");
   risk::FragilityPlan plan;
   plan.pga_g = sorted_unique("--pga-g", o.pga_g);
   plan.idle_years = sorted_unique("--idle-years", o.idle_years);
   plan.seed = o.seed;
   plan.base.step_s = o.step_s;
+  plan.base.building = load_building(o.building);
   if (o.controls.empty()) {
     plan.modes = run::available_modes();
   } else {
@@ -203,6 +216,11 @@ void add_options(CLI::App& app, FragilityOptions& o) {
   app.add_option("--gap-m", o.gap_m, "Isolation gap of the isolation_gap limit state, m")->capture_default_str();
   app.add_option("--floor-accel-g", o.floor_accel_g, "Threshold of the floor_accel limit state, g")
       ->capture_default_str();
+  app.add_option("--drift-m", o.drift_m,
+                 "Threshold of the story_drift limit state, m (an absolute drift: the building file has no story "
+                 "heights; 0.02 m is an assumption)")
+      ->capture_default_str();
+  add_building_option(app, o.building);
   add_step_s_option(app, o.step_s, "Simulation step, s");
   add_threads_option(app, o.threads, "Worker threads per rank (0: the node's cores over its ranks)");
   app.add_option("--journal", o.journal, "Resume journal folder (default: DIR.journal beside --out)");
@@ -260,7 +278,7 @@ void execute(const FragilityOptions& o) {
   }
   if (!root) return;
 
-  const auto limit_states = risk::default_limit_states(o.gap_m, o.floor_accel_g);
+  const auto limit_states = risk::default_limit_states(o.gap_m, o.floor_accel_g, o.drift_m);
   const auto curves = risk::fit_fragilities(plan, result.runs, limit_states, {o.bootstrap, o.seed, 41});
   risk::FragilitySession session;
   session.computed = result.computed;

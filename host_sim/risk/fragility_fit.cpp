@@ -7,12 +7,13 @@
 
 namespace mrd::risk {
 
-std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g) {
+std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g, double story_drift_m) {
   return {
       {"stroke", Metric::kBaseDisplacement, kDamperStroke_m, "peak base displacement reaches the damper stroke"},
       {"isolation_gap", Metric::kBaseDisplacement, isolation_gap_m, "peak base displacement reaches the isolation gap"},
       {"floor_accel", Metric::kFloorAccel, floor_accel_g * units::kStandardGravity_m_s2,
        "peak absolute floor acceleration (floors 1-5) reaches the threshold"},
+      {"story_drift", Metric::kStoryDrift, story_drift_m, "peak story drift (any story) reaches the threshold"},
   };
 }
 

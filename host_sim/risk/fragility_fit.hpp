@@ -28,10 +28,14 @@ inline constexpr double kDamperStroke_m = 0.2921;
 inline constexpr double kDefaultIsolationGap_m = 0.20;
 /// Floor acceleration threshold assumed by default, g (acceleration-sensitive contents).
 inline constexpr double kDefaultFloorAccel_g = 0.3;
+/// Story drift threshold assumed by default, m: an absolute drift, since a
+/// building file gives no story heights (0.02 m is 0.5 % of a 4 m story).
+inline constexpr double kDefaultStoryDrift_m = 0.02;
 
-/// stroke, isolation_gap and floor_accel with the given gap (m) and floor
-/// acceleration (g).
-std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g);
+/// stroke, isolation_gap, floor_accel and story_drift with the given gap (m),
+/// floor acceleration (g) and story drift (m).
+std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g,
+                                             double story_drift_m = kDefaultStoryDrift_m);
 
 double metric_value(const RunMetrics& m, Metric metric) noexcept;
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <variant>
 
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/controller.hpp"
@@ -27,6 +28,47 @@ class Fnv1a {
  private:
   std::uint64_t h_ = 0xcbf29ce484222325ULL;
 };
+
+void numbers(Fnv1a& h, const std::vector<double>& v) {
+  h.count(v.size());
+  for (double x : v) h.number(x);
+}
+
+/// Everything of the building that decides a run's result (not its name).
+void hash_building(Fnv1a& h, const structure::BuildingParams& b) {
+  h.count(static_cast<std::uint64_t>(b.base));
+  numbers(h, b.mass_kg);
+  numbers(h, b.story_stiffness_n_m);
+  numbers(h, b.story_damping_n_s_m);
+  h.count(b.rayleigh.has_value());
+  if (b.rayleigh) {
+    h.number(b.rayleigh->ratio);
+    h.count(static_cast<std::uint64_t>(b.rayleigh->mode_a));
+    h.count(static_cast<std::uint64_t>(b.rayleigh->mode_b));
+  }
+  h.count(b.isolators.size());
+  for (const auto& iso : b.isolators) {
+    h.count(iso.index());
+    if (const auto* lr = std::get_if<structure::LeadRubberBearing>(&iso)) {
+      h.count(lr->count);
+      for (double x : {lr->characteristic_strength_n, lr->post_yield_stiffness_n_m, lr->yield_displacement_m,
+                       lr->exponent, lr->displacement_capacity_m}) {
+        h.number(x);
+      }
+    } else if (const auto* fp = std::get_if<structure::FrictionPendulumBearing>(&iso)) {
+      h.count(fp->count);
+      for (double x : {fp->radius_m, fp->friction_slow, fp->friction_fast, fp->rate_s_per_m, fp->yield_displacement_m,
+                       fp->exponent, fp->weight_n, fp->displacement_capacity_m}) {
+        h.number(x);
+      }
+    }
+  }
+  h.count(b.dampers.size());
+  for (const auto& d : b.dampers) {
+    h.count(d.element);
+    h.count(d.count);
+  }
+}
 
 /// One closed-loop run: run::closed_loop_tick with the peak story drift
 /// taken after each advance.
@@ -82,6 +124,7 @@ std::uint64_t FragilityPlan::fingerprint() const {
   for (auto m : modes) h.count(static_cast<std::uint64_t>(m));
   h.number(base.step_s);
   h.count(static_cast<std::uint64_t>(base.kind));
+  hash_building(h, base.building);
   h.count(seed);
   return h.value();
 }

@@ -23,8 +23,10 @@ struct StudyRecord {
   std::vector<double> accel_1g_m_s2;
 };
 
-/// Peaks of one run (SI). Story drift: largest |x_i − x_{i−1}| over the five
-/// stories (floor 1 relative to the base, floor i to floor i − 1).
+/// Peaks of one run (SI). Story drift: largest |x_i − x_{i−1}| over the
+/// stories (plant::PlantSummary::peak_story_drift_m: elements 1..N−1 of an
+/// isolated building, floor 1 relative to the base; every element of a fixed
+/// base one).
 struct RunMetrics {
   double peak_base_displacement_m = 0.0;
   double peak_damper_force_n = 0.0;
@@ -52,8 +54,8 @@ struct FragilityPlan {
   RunKey key(std::size_t run) const noexcept;
   std::size_t index(const RunKey& k) const noexcept;
   /// FNV-1a hash of everything that decides the runs' results (the records'
-  /// samples, levels, idle times, modes, step, plant kind, seed): a journal
-  /// kept for another study is not reused.
+  /// samples, levels, idle times, modes, step, plant kind, the building's
+  /// values, seed): a journal kept for another study is not reused.
   std::uint64_t fingerprint() const;
 };
 

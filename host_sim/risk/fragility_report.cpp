@@ -105,6 +105,8 @@ nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<Li
           {"idle_years", plan.idle_years},
           {"controls", controls},
           {"step_s", plan.base.step_s},
+          {"building", plan.base.building.name},
+          {"dofs", plan.base.building.dofs()},
           {"seed", plan.seed},
           {"bootstrap_resamples", session.bootstrap},
           {"limit_states", states},
