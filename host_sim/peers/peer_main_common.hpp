@@ -55,9 +55,10 @@ inline void print_plant_summary(const char* who, const plant::PlantSummary& s) {
   std::printf(
       "%s: summary ticks=%llu duration_s=%.17g peak_base_displacement_m=%.17g peak_damper_force_n=%.17g "
       "peak_superstructure_accel_m_s2=%.17g peak_base_accel_m_s2=%.17g peak_current_a=%.17g "
-      "final_participant_ratio=%.17g sq=%.17g\n",
+      "final_participant_ratio=%.17g sq=%.17g peak_isolator_force_n=%.17g peak_story_drift_m=%.17g\n",
       who, static_cast<unsigned long long>(s.ticks), s.duration_s, s.peak_base_displacement_m, s.peak_damper_force_n,
-      s.peak_superstructure_accel_m_s2, s.peak_base_accel_m_s2, s.peak_current_a, s.final_participant_ratio, s.sq);
+      s.peak_superstructure_accel_m_s2, s.peak_base_accel_m_s2, s.peak_current_a, s.final_participant_ratio, s.sq,
+      s.peak_isolator_force_n, s.peak_story_drift_m);
 }
 
 }  // namespace mrd::peers

@@ -1,5 +1,5 @@
-/// `mrd-plant-sim`: the DAQ node and the plant (6-DOF building + MR damper)
-/// on a CAN interface. Lockstep: one tick per coil drive from the drive
+/// `mrd-plant-sim`: the DAQ node and the plant (the building, the thesis's
+/// 6-DOF one or a building file's, + MR damper) on a CAN interface. Lockstep: one tick per coil drive from the drive
 /// simulator, deterministic and equal to `mrd sim`. Free-running: 1 tick per
 /// period on CLOCK_MONOTONIC.
 
@@ -15,12 +15,13 @@
 #include "firmware/platform/linux/socketcan_bus.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/io/usage_error.hpp"
+#include "host_sim/structure/building_file.hpp"
 #include "mrd/units.hpp"
 
 int main(int argc, char** argv) {
   using namespace mrd;
   CLI::App app{"mrd-plant-sim: DAQ node + simulated building and MR damper on a CAN interface.", "mrd-plant-sim"};
-  std::string board_file, can_if, record;
+  std::string board_file, can_if, record, building_file;
   double pga_g = 0.1127, duration_s = 0.0, idle_years = 0.0, wait_s = 10.0, start_delay_s = 0.0;
   bool lockstep = false;
   app.add_option("--board", board_file, "Board file for node ids, period and interface (default: protocol defaults)");
@@ -34,6 +35,8 @@ int main(int argc, char** argv) {
   app.add_option("--idle-years", idle_years, "Idle time before the motion, years")
       ->capture_default_str()
       ->check(app::finite_in(0.0, 1000.0, "years"));
+  app.add_option("--building", building_file,
+                 "Building file (TOML; README \"Your building\"; default: the thesis building of Table 6.1)");
   app.add_flag("--lockstep", lockstep, "Wait for the drive's coil drive of every tick (deterministic)");
   app.add_option("--wait-s", wait_s, "Lockstep: give up when a tick's coil drive takes longer, s")
       ->capture_default_str()
@@ -53,6 +56,7 @@ int main(int argc, char** argv) {
       throw io::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     spec.step_s = board.period_s();
     spec.idle_time_s = units::years_to_s(idle_years);
+    if (!building_file.empty()) spec.building = structure::read_building_file(building_file);
     ag = excitation::load_scaled_motion(record, pga_g, spec.step_s, duration_s).accel_m_s2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrd-plant-sim: error: %s\n", e.what());
@@ -65,8 +69,9 @@ int main(int argc, char** argv) {
     posix::SocketCanBus bus(board.can_interface, filters);
     peers::PlantNode node(bus, board.nodes, spec);
     posix::PosixClock clock;
-    std::printf("mrd-plant-sim: %zu ticks of %.4g s on %s, %s\n", ag.size(), spec.step_s, board.can_interface.c_str(),
-                lockstep ? "lockstep" : "free-running");
+    std::printf("mrd-plant-sim: %zu ticks of %.4g s on %s, %s, building %s (%d DOFs)\n", ag.size(), spec.step_s,
+                board.can_interface.c_str(), lockstep ? "lockstep" : "free-running", spec.building.name.c_str(),
+                spec.building.dofs());
     clock.sleep_until_ns(clock.now_ns() + static_cast<std::int64_t>(start_delay_s * 1e9));
     const std::int64_t period_ns = static_cast<std::int64_t>(board.period_us) * 1000;
     std::int64_t deadline = clock.now_ns();
