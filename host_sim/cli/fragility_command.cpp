@@ -196,7 +196,7 @@ void add_options(CLI::App& app, FragilityOptions& o) {
       ->capture_default_str();
   app.add_option("--control", o.controls, "Control mode(s), comma-separated (default: all this build has)")
       ->delimiter(',');
-  app.add_option("--seed", o.seed, "Study seed: stochastic motions and bootstrap")->capture_default_str();
+  add_seed_option(app, o.seed, "Study seed: stochastic motions and bootstrap");
   app.add_option("--bootstrap", o.bootstrap, "Bootstrap resamples per curve (0: no bands)")
       ->check(CLI::Range(0u, 100000u))
       ->capture_default_str();

@@ -70,7 +70,7 @@ void add_options(CLI::App& app, RiskOptions& o) {
   app.add_option("--hazard", o.hazard, "Hazard curve CSV (default: the illustrative site)");
   app.add_option("--control", o.control, "Control mode of the curves (default: the first in the file)");
   app.add_option("--years", o.world.years, "Service life, years (> 0, <= 1000)")->capture_default_str();
-  app.add_option("--seed", o.world.seed, "Seed of mrd schedule's world")->capture_default_str();
+  add_seed_option(app, o.world.seed, "Seed of mrd schedule's world");
   app.add_option("--threshold", o.world.threshold, "Capacity fraction the policies keep")->capture_default_str();
   app.add_option("--interval-days", o.world.interval_days, "Fixed policy's interval, days (default: searched)");
   app.add_option("--earthquakes-per-year", o.world.earthquakes_per_year, "Earthquakes that mix the fluid, 1/year")

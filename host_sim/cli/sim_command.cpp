@@ -61,7 +61,7 @@ struct SimOptions {
   double duration_s = 0.0;
   bool duration_given = false;  ///< --duration-s was given (without it: the record's length)
   double step_s = 1.0e-3;
-  unsigned seed = 1;
+  std::uint64_t seed = 1;
   std::string plant = "thesis";
   std::uint64_t sensor_seed = 1;
   double offset_mm = 3.0;
@@ -134,9 +134,9 @@ void add_options(CLI::App& app, SimOptions& o) {
                  "Simulated time, s, > 0 (default: the record's length; 40 s synthetic)")
       ->each([&o](const std::string&) { o.duration_given = true; });
   add_step_s_option(app, o.step_s, "Simulation and control step, s");
-  app.add_option("--seed", o.seed, "Seed of the synthetic motion (without --record)")->capture_default_str();
+  add_seed_option(app, o.seed, "Seed of the synthetic motion (without --record)");
   app.add_option("--plant", o.plant, "thesis | hardware")->capture_default_str();
-  app.add_option("--sensor-seed", o.sensor_seed, "Seed of the hardware plant's sensor noise")->capture_default_str();
+  add_seed_option(app, o.sensor_seed, "Seed of the hardware plant's sensor noise", "--sensor-seed");
   app.add_option("--offset-mm", o.offset_mm, "Hardware plant: damper parked this far off its stroke centre, mm")
       ->capture_default_str();
   add_out_option(app, o.out_dir, "Folder for summary.json, timeseries.csv and plots");
