@@ -14,10 +14,10 @@ libs=()
 defines=()
 case $name in
   codec)         sources=(fuzz/codec_fuzz.cpp common/protocol/src/codec.cpp) ;;
-  ground_motion) sources=(fuzz/ground_motion_fuzz.cpp host_sim/excitation/ground_motion.cpp host_sim/io/text.cpp) ;;
-  measured_csv)  sources=(fuzz/measured_csv_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp)
+  ground_motion) sources=(fuzz/ground_motion_fuzz.cpp host_sim/excitation/ground_motion.cpp host_sim/io/text.cpp firmware/platform/linux/regular_file.cpp) ;;
+  measured_csv)  sources=(fuzz/measured_csv_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp firmware/platform/linux/regular_file.cpp)
                  libs=(-lmatio -lz) ;;
-  mat)           sources=(fuzz/mat_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp)
+  mat)           sources=(fuzz/mat_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp firmware/platform/linux/regular_file.cpp)
                  libs=(-lmatio -lz) ;;
   # toml++'s internal assertions off, as in the release build (GCC compiles its
   # TOML_ASSERT_ASSUME to nothing); its unreachable points stay checked by UBSan.
