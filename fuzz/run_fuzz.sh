@@ -4,7 +4,7 @@
 # Usage: run_fuzz.sh NAME SOURCE_DIR WORK_DIR SECONDS
 #   NAME: codec | ground_motion | measured_csv | mat | board_toml | state_record
 # Exit status: 0 no finding; 1 a finding, a build failure, or clang/libFuzzer
-# missing (they are in scripts/deps/core.list, so a run without them is a
+# missing (they are in scripts/deps/test.list, so a run without them is a
 # broken set-up, not a reason to skip).
 set -euo pipefail
 name=$1 src=$2 work=$3 secs=$4
@@ -14,10 +14,10 @@ libs=()
 defines=()
 case $name in
   codec)         sources=(fuzz/codec_fuzz.cpp common/protocol/src/codec.cpp) ;;
-  ground_motion) sources=(fuzz/ground_motion_fuzz.cpp host_sim/excitation/ground_motion.cpp host_sim/io/text.cpp) ;;
-  measured_csv)  sources=(fuzz/measured_csv_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp)
+  ground_motion) sources=(fuzz/ground_motion_fuzz.cpp host_sim/excitation/ground_motion.cpp host_sim/io/text.cpp firmware/platform/linux/regular_file.cpp) ;;
+  measured_csv)  sources=(fuzz/measured_csv_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp firmware/platform/linux/regular_file.cpp)
                  libs=(-lmatio -lz) ;;
-  mat)           sources=(fuzz/mat_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp)
+  mat)           sources=(fuzz/mat_fuzz.cpp host_sim/discrepancy/measured_data.cpp host_sim/io/text.cpp firmware/platform/linux/regular_file.cpp)
                  libs=(-lmatio -lz) ;;
   # toml++'s internal assertions off, as in the release build (GCC compiles its
   # TOML_ASSERT_ASSUME to nothing); its unreachable points stay checked by UBSan.
@@ -28,7 +28,7 @@ case $name in
 esac
 
 command -v "$cxx" >/dev/null || {
-  echo "fuzz: FAIL: $cxx not installed (clang and libclang-rt-14-dev are in scripts/deps/core.list; run scripts/deps.sh)"
+  echo "fuzz: FAIL: $cxx not installed (clang and libclang-rt-14-dev are in scripts/deps/test.list; run scripts/deps.sh)"
   exit 1
 }
 mkdir -p "$work/corpus"
@@ -48,7 +48,7 @@ if ((stale)); then
   if ! "$cxx" -std=c++20 -O1 -gline-tables-only -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
       "${defines[@]}" -I"$src" -I"$src/common/include" "${paths[@]}" "${libs[@]}" -o "$bin" 2>"$work/build.log"; then
     if grep -q -i "fuzzer" "$work/build.log" && grep -q -i -E "cannot find|not found|No such file" "$work/build.log"; then
-      echo "fuzz: FAIL: libFuzzer runtime missing (libclang-rt-14-dev, scripts/deps/core.list)"
+      echo "fuzz: FAIL: libFuzzer runtime missing (libclang-rt-14-dev, scripts/deps/test.list)"
     fi
     cat "$work/build.log"; exit 1
   fi

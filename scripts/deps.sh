@@ -1,13 +1,27 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages the build and tests need (as root), only
-# those that are missing, so a machine that has them needs no network.
+# Installs the Debian 12 packages a job needs (as root), only those that are
+# missing, so a machine that has them needs no network:
+#   deps.sh main   building and running the mrd program (scripts/main.sh):
+#                  the lists core, discrepancy, idle and risk
+#   deps.sh all    every list (scripts/test.sh; the default): also the test
+#                  suite's (test), the boards' (board) and the firmware's (firmware)
 # The package lists live in scripts/deps/*.list (one name a line, # comments);
 # a list may name a foreign architecture package such as libgpiod-dev:arm64,
 # which adds that architecture first.
 set -euo pipefail
 cd "$(dirname "$0")"
 
-mapfile -t packages < <(cat deps/*.list | sed -e 's/#.*//' -e 's/[[:space:]]//g' | grep -v '^$' | sort -u)
+main_lists=(deps/core.list deps/discrepancy.list deps/idle.list deps/risk.list)
+case ${1:-all} in
+  main) lists=("${main_lists[@]}") ;;
+  all) lists=(deps/*.list) ;;
+  *)
+    echo "deps: expected main or all, got '$1'" >&2
+    exit 2
+    ;;
+esac
+
+mapfile -t packages < <(cat "${lists[@]}" | sed -e 's/#.*//' -e 's/[[:space:]]//g' | grep -v '^$' | sort -u)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, builds the host release and
-# the AddressSanitizer + UndefinedBehaviorSanitizer builds, runs every test.
+# The whole test suite: installs what is missing for every job (scripts/deps.sh
+# all: the test tools and the boards' and firmware's packages too), builds the
+# host release and the AddressSanitizer + UndefinedBehaviorSanitizer builds,
+# runs every test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-./scripts/deps.sh
+./scripts/deps.sh all
 
 jobs=$(nproc)
 status=0

@@ -1,6 +1,5 @@
 #include "firmware/app/board_config.hpp"
 
-#include <fstream>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -183,10 +182,18 @@ void read_realtime(const toml::table& root, const std::string& origin, BoardConf
   rt.no_unknown_keys();
 }
 
-void read_state(const toml::table& root, const std::string& origin, BoardConfig& c) {
+void read_state(const toml::table& root, const std::string& origin, BoardConfig& c, StatePathCheck check_path) {
   Table st(root, "state", origin, false);
-  if (st.string("path", c.state_path) && (c.state_path.empty() || c.state_path.front() != '/' || c.state_path.back() == '/'))
-    fail(origin, st.where("path"), "state.path", "expected an absolute file path, got '" + c.state_path + "'");
+  if (st.string("path", c.state_path)) {
+    if (c.state_path.find('\0') != std::string::npos)
+      fail(origin, st.where("path"), "state.path", "expected a file path without a NUL character");
+    if (c.state_path.empty() || c.state_path.front() != '/' || c.state_path.back() == '/')
+      fail(origin, st.where("path"), "state.path", "expected an absolute file path, got '" + c.state_path + "'");
+    if (check_path) {
+      if (const std::string problem = check_path(c.state_path); !problem.empty())
+        fail(origin, st.where("path"), "state.path", c.state_path + ": " + problem);
+    }
+  }
   st.number("save_every_s", c.save_every_s, 0.001, 86400.0, "s");
   st.no_unknown_keys();
 }
@@ -311,7 +318,7 @@ void check_toml_input(const std::string& text, const std::string& origin) {
 
 }  // namespace
 
-BoardConfig parse_board_config(const std::string& text, const std::string& origin) {
+BoardConfig parse_board_config(const std::string& text, const std::string& origin, StatePathCheck check_state_path) {
   check_toml_input(text, origin);
   toml::table root;
   try {
@@ -331,28 +338,9 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
   read_can(root, origin, c);
   read_gpio(root, origin, c);
   read_realtime(root, origin, c);
-  read_state(root, origin, c);
+  read_state(root, origin, c, check_state_path);
   read_mixing(root, origin, c);
   return c;
-}
-
-BoardConfig load_board_config(const std::filesystem::path& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw BoardConfigError(path.string() + ":0: cannot open the board file");
-  if (!std::filesystem::is_regular_file(status)) {
-    throw BoardConfigError(path.string() + ":0: not a regular file (a folder, pipe or device)");
-  }
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec || size > kMaxBoardFileBytes) {
-    throw BoardConfigError(path.string() + ":0: larger than the limit of " + std::to_string(kMaxBoardFileBytes) +
-                           " bytes for a board file");
-  }
-  std::ifstream in(path);
-  if (!in) throw BoardConfigError(path.string() + ":0: cannot open the board file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_board_config(ss.str(), path.string());
 }
 
 }  // namespace mrd::app

@@ -6,8 +6,8 @@
 /// ([mixing]). Read once at start-up; every
 /// error names the file, the line and the field.
 
+#include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -66,14 +66,24 @@ struct BoardConfig {
   MixingTaskConfig mixing_task_config() const noexcept;
 };
 
-/// Parses TOML text; `origin` names the file in error messages.
-BoardConfig parse_board_config(const std::string& text, const std::string& origin);
+/// What is wrong with an existing path as the state file, in the words of
+/// the reader policy ("is a pipe (FIFO), expected a regular file"), or empty
+/// when it is a regular file or does not exist yet. The programs pass the
+/// platform's check (posix::non_regular_problem, firmware/platform/linux/
+/// regular_file.hpp).
+using StatePathCheck = std::string (*)(const std::string& path);
 
-/// Largest board file read, bytes.
-inline constexpr std::uintmax_t kMaxBoardFileBytes = 1 << 20;
+/// Parses TOML text; `origin` names the file in error messages. [state] path
+/// must be an absolute file path without a NUL character; with
+/// `check_state_path`, one that names a folder, a FIFO or a device is refused
+/// too (without, only the text is checked: parsing alone touches no file).
+BoardConfig parse_board_config(const std::string& text, const std::string& origin,
+                               StatePathCheck check_state_path = nullptr);
 
-/// Reads and parses `path`: a regular file (not a folder, pipe or device) of
-/// at most kMaxBoardFileBytes.
-BoardConfig load_board_config(const std::filesystem::path& path);
+/// Largest board file read, bytes. The programs read the board file under
+/// the reader policy (posix::read_regular_file: a regular file, opened
+/// without blocking, at most this long) and hand its text to
+/// parse_board_config() with posix::non_regular_problem.
+inline constexpr std::size_t kMaxBoardFileBytes = std::size_t{1} << 20;
 
 }  // namespace mrd::app

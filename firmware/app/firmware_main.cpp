@@ -38,6 +38,7 @@
 #include "firmware/platform/linux/background_state_store.hpp"
 #include "firmware/platform/linux/file_state_store.hpp"
 #include "firmware/platform/linux/posix_clock.hpp"
+#include "firmware/platform/linux/regular_file.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
 #include "mrd/units.hpp"
 #ifdef MRD_HAVE_GPIOD
@@ -162,7 +163,19 @@ void boot_mixing(Mixing& mixing, mrd::hal::StateStore& store, const mrd::hal::Wa
   std::fflush(stdout);
 }
 
-/// --print-state: the record in the state file, without CAN or GPIO.
+/// After the boot line: why the reader refused the state file, when it did
+/// (the boot line says io-error; the worst case is then assumed).
+void report_unread_state(const mrd::posix::FileStateStore& file) {
+  const mrd::posix::FileCheck& c = file.last_load();
+  if (c.ok() || c.problem == mrd::posix::FileProblem::kMissing) return;
+  std::printf("mrd-firmware: boot: state %s: %s%s\n", file.path().c_str(),
+              mrd::posix::problem_text(c, mrd::hal::kStateRecordSize).c_str(),
+              mrd::posix::is_non_regular(c.problem) ? " (not read, and never replaced by a save)" : "");
+  std::fflush(stdout);
+}
+
+/// --print-state: the record in the state file, without CAN or GPIO. A
+/// path that is not a regular file is a usage error (exit 2).
 int print_state(const std::string& path) {
   mrd::posix::FileStateStore file(path);
   mrd::hal::StateRecord record{};
@@ -171,8 +184,15 @@ int print_state(const std::string& path) {
     std::printf("mrd-firmware: state %s: missing\n", path.c_str());
     return 0;
   }
+  if (mrd::posix::is_non_regular(file.last_load().problem)) {
+    std::fprintf(stderr, "mrd-firmware: error: state %s: %s\n", path.c_str(),
+                 mrd::posix::problem_text(file.last_load(), mrd::hal::kStateRecordSize).c_str());
+    return kExitUsage;
+  }
   if (st != mrd::hal::StoreStatus::kOk) {
-    std::printf("mrd-firmware: state %s: corrupt (%s)\n", path.c_str(), mrd::hal::store_status_name(st));
+    const std::string why = mrd::posix::problem_text(file.last_load(), mrd::hal::kStateRecordSize);
+    std::printf("mrd-firmware: state %s: corrupt (%s%s%s)\n", path.c_str(), mrd::hal::store_status_name(st),
+                why.empty() ? "" : ": ", why.c_str());
     return kExitBadState;
   }
   mrd::fw::PersistedIdleState s;
@@ -226,6 +246,7 @@ int run(const mrd::app::BoardConfig& board, const Options& o) {
     if (o.log_saves) listener = log_save;
     store = std::make_unique<mrd::posix::BackgroundStateStore>(file_store, listener);
     boot_mixing(*mixing, *store, rtc, board.state_path);
+    report_unread_state(file_store);
   }
 
   mrd::posix::PosixClock clock;
@@ -259,11 +280,22 @@ int run(const mrd::app::BoardConfig& board, const Options& o) {
   return 0;
 }
 
+/// The board file, read under the reader policy (a regular file of at most
+/// app::kMaxBoardFileBytes, opened without blocking) and parsed, its state
+/// path checked to be a regular file or absent; throws app::BoardConfigError.
+mrd::app::BoardConfig load_board(const std::string& path) {
+  std::string text;
+  if (const auto c = mrd::posix::read_regular_file(path.c_str(), mrd::app::kMaxBoardFileBytes, text); !c.ok()) {
+    throw mrd::app::BoardConfigError(path + ": " + mrd::posix::problem_text(c, mrd::app::kMaxBoardFileBytes));
+  }
+  return mrd::app::parse_board_config(text, path, mrd::posix::non_regular_problem);
+}
+
 /// The board file with the command line's overrides; nullopt after printing why not.
 std::optional<mrd::app::BoardConfig> board_of(const Options& o) {
   mrd::app::BoardConfig board;
   try {
-    board = mrd::app::load_board_config(o.board_file);
+    board = load_board(o.board_file);
   } catch (const mrd::app::BoardConfigError& e) {
     std::fprintf(stderr, "mrd-firmware: error: %s\n", e.what());
     return std::nullopt;
@@ -282,6 +314,10 @@ std::optional<mrd::app::BoardConfig> board_of(const Options& o) {
     if (o.state_path.front() != '/' || o.state_path.back() == '/') {
       std::fprintf(stderr, "mrd-firmware: error: --state: expected an absolute file path, got '%s'\n",
                    o.state_path.c_str());
+      return std::nullopt;
+    }
+    if (const std::string problem = mrd::posix::non_regular_problem(o.state_path); !problem.empty()) {
+      std::fprintf(stderr, "mrd-firmware: error: --state: %s: %s\n", o.state_path.c_str(), problem.c_str());
       return std::nullopt;
     }
     board.state_path = o.state_path;
@@ -318,6 +354,7 @@ int main(int argc, char** argv) {
   app.add_flag("--print-state", o.print_state, "Print the state file's record and exit (no CAN, no GPIO)");
   try {
     app.parse(argc, argv);
+    mrd::app::refuse_empty_values(app);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::fprintf(stderr, "mrd-firmware: error: %s\n", e.what());

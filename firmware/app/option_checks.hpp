@@ -58,6 +58,19 @@ inline CLI::Validator positive_up_to(double hi, const std::string& unit) {
       "", "positive");
 }
 
+/// Refuses an empty value given to any option that takes one (`--state ''`,
+/// `--can=`): an empty value is an error naming the option, never "the
+/// default". Call right after app.parse(); throws CLI::ValidationError
+/// ("--state: expected a value, got an empty one").
+inline void refuse_empty_values(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->get_items_expected_min() == 0) continue;  // a flag: takes no value
+    for (const std::string& value : option->results()) {
+      if (value.empty()) throw CLI::ValidationError(option->get_name(), "expected a value, got an empty one");
+    }
+  }
+}
+
 /// Longest time any of these programs waits or runs, s (int64 nanoseconds hold 292 years).
 inline constexpr double kMaxProgramTime_s = 1.0e7;
 

@@ -1,3 +1,5 @@
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <map>
 #include <span>
@@ -10,6 +12,7 @@
 #include "host_sim/discrepancy/calibrate.hpp"
 #include "host_sim/discrepancy/calibrate_report.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/plausibility.hpp"
 #include "host_sim/io/usage_error.hpp"
 
 namespace mrd::cli {
@@ -57,8 +60,12 @@ identifiable from such records: thesis values.
 Standard errors: sigma^2 (J^T J)^-1 at the optimum, inflated by n/n_eff (effective sample count
 of the residual).
 
-Input (--measured, --check, --test): CSV or .mat records as for `mrd discrepancy`.
-Files: damper.toml; summary.json (chosen_law, choice_reason, records, currents_a, notes, fits:
+Input (--measured, --check, --test): CSV or .mat records as for `mrd discrepancy`. A record takes
+one role, once: the same file (by identity: a link or another path to it is the same file) given
+twice is refused. Records whose values are probably in another unit (a displacement half range
+above 1 m, a velocity above 10 m/s, a current above 20 A) or of another damper (peak forces more
+than 10 times beyond what their currents and velocities allow one damper) are warned about.
+Files: damper.toml; summary.json (chosen_law, choice_reason, records, currents_a, notes, warnings, fits:
 law, parameters {value, sigma, fitted, at_bound}, record_gaps, expected_gap, samples,
 rss_normalized, n_eff, bic; held_out: gap per law of the --check records; test: the same for
 the --test records, and test_gap_rms: the chosen form's RMS gap over them; floors: measured,
@@ -130,6 +137,34 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   return opt;
 }
 
+/// Refuses one file given in two roles, or twice in one: `--measured`,
+/// `--check` and `--test` records are the fitted, choosing and judged sets,
+/// and a record in two of them would judge a choice by what made it. Files
+/// are compared by identity (device and inode), so that `a.csv`, `./a.csv`,
+/// `d/../a.csv` and a link to it are one; a file that cannot be examined is
+/// left to the reader, which names it.
+void check_roles_exclusive(const CalibrateCliOptions& o) {
+  struct Given {
+    const char* option;
+    const std::string* path;
+  };
+  std::vector<Given> given;
+  for (const auto& [option, paths] : {std::pair{"--measured", &o.measured}, std::pair{"--check", &o.check},
+                                      std::pair{"--test", &o.test}})
+    for (const std::string& p : *paths) given.push_back({option, &p});
+  std::map<std::pair<dev_t, ino_t>, const Given*> seen;
+  for (const Given& g : given) {
+    struct stat st {};
+    if (::stat(g.path->c_str(), &st) != 0) continue;
+    const auto [at, fresh] = seen.emplace(std::pair{st.st_dev, st.st_ino}, &g);
+    if (fresh) continue;
+    const Given& first = *at->second;
+    throw io::UsageError(std::string(first.option) + " '" + *first.path + "' and " + g.option + " '" + *g.path +
+                         "' are one file: a record takes one role, once (--measured fits it, --check chooses with "
+                         "it, --test judges it)");
+  }
+}
+
 struct Outcome {
   discrepancy::CalibrationResult result;
   discrepancy::HeldOut held_out;
@@ -173,12 +208,28 @@ void print_summary(const Outcome& out) {
                 100.0 * discrepancy::rms_over_records(out.test.gaps[r.chosen]));
 }
 
+/// The plausibility warnings about every record of the calibration, in the
+/// order given (plausibility.hpp).
+std::vector<std::string> record_warnings(std::span<const discrepancy::MeasuredData> records,
+                                         std::span<const discrepancy::MeasuredData> checks,
+                                         std::span<const discrepancy::MeasuredData> tests,
+                                         const discrepancy::CalibrateOptions& opt) {
+  std::vector<discrepancy::RecordReach> reach;
+  for (const auto set : {records, checks, tests})
+    for (const discrepancy::MeasuredData& d : set)
+      reach.push_back(discrepancy::record_reach(d, opt.smoothing_half_window_s));
+  return discrepancy::plausibility_warnings(reach);
+}
+
 void execute(const CalibrateCliOptions& o) {
   const discrepancy::CalibrateOptions opt = calibrate_options(o);
+  check_roles_exclusive(o);
   std::vector<discrepancy::MeasuredData> records, checks, tests;
   for (const auto& p : o.measured) records.push_back(discrepancy::read_measured(p));
   for (const auto& p : o.check) checks.push_back(discrepancy::read_measured(p));
   for (const auto& p : o.test) tests.push_back(discrepancy::read_measured(p));
+  const std::vector<std::string> warnings = record_warnings(records, checks, tests, opt);
+  print_warnings("calibrate", warnings);
   compute_print_write(
       "calibrate", o.out_dir,
       [&] {
@@ -191,7 +242,7 @@ void execute(const CalibrateCliOptions& o) {
       print_summary,
       [&](const std::filesystem::path& dir, const Outcome& out) {
         return discrepancy::write_calibration_outputs(dir, records, out.result, out.held_out, opt, !o.no_plots,
-                                                        out.test, out.floors);
+                                                        out.test, out.floors, warnings);
       });
 }
 

@@ -1,11 +1,14 @@
 #include <cstdio>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/discrepancy/baseline_file.hpp"
 #include "host_sim/discrepancy/discrepancy_report.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/plausibility.hpp"
 #include "host_sim/discrepancy/workflow.hpp"
 #include "host_sim/io/usage_error.hpp"
 
@@ -52,11 +55,16 @@ current: the model's field then lags it by Eq. 4.5's slow branch alone, the fast
 and coil) being what was measured; other columns ending in a unit are kept), uniform or
 non-uniform time. Or a MATLAB .mat file with vectors named like the columns.
 Force sign of Eq. 4.1 (positive when the damper resists positive velocity).
+A record whose values are probably in another unit (a displacement half range above 1 m, a
+velocity above 10 m/s, a current above 20 A) is warned about (stderr and summary.json).
+--baseline: a damper.toml whose every number lies in its physical range (the error names the
+file, line, field and the range).
 
 Fields of DIR/summary.json:
   verdict            none | explained | unexplained | baseline_mismatch
   velocity, coil_current   measured, or derived (velocity) / commanded (coil current)
   findings           sentences behind the verdict (numbers, where, what it looks like, rejections)
+  warnings           values of the record probably in another unit (see above)
   baseline           name, expected_gap, mismatch, mismatch_reasons, force_ratio (least-squares
                      measured/baseline) with min_force_ratio and max_force_ratio, record ranges,
                      outside_coverage (an amplitude or frequency beyond those calibrated on, or a
@@ -156,8 +164,16 @@ void add_options(CLI::App& app, DiscrepancyCliOptions& o) {
 void execute(const DiscrepancyCliOptions& o) {
   const discrepancy::DiscrepancyOptions opt = discrepancy_options(o);
   const discrepancy::MeasuredData data = discrepancy::read_measured(o.measured);
+  const std::vector<std::string> warnings =
+      discrepancy::plausibility_warnings(std::span(&data, 1), opt.smoothing_half_window_s);
+  print_warnings("discrepancy", warnings);
   compute_print_write(
-      "discrepancy", o.out_dir, [&] { return discrepancy::run_discrepancy(data, opt); },
+      "discrepancy", o.out_dir,
+      [&] {
+        discrepancy::DiscrepancyResult r = discrepancy::run_discrepancy(data, opt);
+        r.warnings = warnings;
+        return r;
+      },
       [&](const discrepancy::DiscrepancyResult& r) { print_summary(data, r); },
       [&](const std::filesystem::path& dir, const discrepancy::DiscrepancyResult& r) {
         return discrepancy::write_discrepancy_outputs(dir, data, r, opt, !o.no_plots);

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -12,13 +14,18 @@
 #include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/excitation/record_folder.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
+#include "host_sim/report/output_transaction.hpp"
+#include "host_sim/report/path_ownership.hpp"
 #include "host_sim/risk/cluster.hpp"
 #include "host_sim/risk/fragility_fit.hpp"
 #include "host_sim/risk/fragility_report.hpp"
+#include "host_sim/risk/run_journal.hpp"
 #include "host_sim/risk/stochastic_motion.hpp"
+#include "host_sim/risk/study_estimate.hpp"
 #include "host_sim/risk/study_runner.hpp"
 #include "host_sim/run/controller.hpp"
 
@@ -31,10 +38,11 @@ constexpr CommandHelp kFragilityHelp{
     R"(Runs every record x PGA level x idle time x control mode in closed loop and fits, for each
 control mode, idle time and limit state, a lognormal fragility P(LS | PGA) = Phi(ln(PGA/theta)/beta)
 by maximum likelihood over the PGA levels (Baker 2015, binomial likelihood), with 5-95 % bootstrap
-bands over the records. Records: --records DIR (every .csv and .at2 in it, by name), --record FILE,
-or --synthetic N stochastic motions with an evolving spectrum (Rezaeian & Der Kiureghian 2008
-model, seeded by --seed and the record's number; host_sim/risk/stochastic_motion.hpp). Each record
-is scaled to each PGA.
+bands over the records. Records: --records DIR (every .csv and .at2 in it, any case, by name;
+names starting with '.' are skipped, and a .csv or .at2 name that is not a regular file, such as a
+folder, FIFO or device, is an error), --record FILE, or --synthetic N stochastic motions with an
+evolving spectrum (Rezaeian & Der Kiureghian 2008 model, seeded by --seed and the record's number;
+host_sim/risk/stochastic_motion.hpp). Each record is scaled to each PGA.
 Limit states (exceeded when the peak reaches the threshold):
   stroke          peak base displacement >= 0.2921 m, the damper's stroke (thesis 3.1)
   isolation_gap   peak base displacement >= --gap-m (default 0.20 m, an assumption)
@@ -51,16 +59,30 @@ srun, MPI ranks: the runs are numbered (control, idle, PGA, record; record faste
 of 8 and chunk c goes to rank c mod N; rank 0 gathers and writes. runs.csv is the same bytes for
 any number of ranks and threads. Progress and the time left on stderr (rank 0).
 Resume: completed runs are appended to journal files in --journal (default DIR.journal beside
---out); a killed study run again with the same options skips them. The journal is removed once
-the outputs are in place.
+--out); a killed study run again with the same options skips them. The journal is a folder
+of mrd's own (it holds .mrd-journal; an existing folder of other files is refused, and so is one
+that is, holds or lies inside --out or an input); its own files are removed once the outputs are
+in place.
+Cost: before it starts, the command prints the runs, the estimated wall time (the closed-loop steps
+of every run over the steps per second a short pilot reaches on this machine for each control mode,
+shared by the workers, plus the time to make the stochastic records), the disk it will write (upper
+bounds: runs.csv per run, the journal at 64 bytes a run, the curves, the plots, summary.json) beside
+the free space of --out's file system, and the memory per process. --estimate prints that and stops
+(exit 0, nothing written). A study whose disk exceeds the free space of the file system of --out (or
+of the journal's, when elsewhere), or whose processes would hold more memory than the machine has,
+is refused (exit 2) before any work.
+Beyond the model: runs whose peak stroke exceeds the damper's +-0.2921 m or whose peak damper force
+exceeds its 200 kN are counted; one warning per kind on stderr, with the count and the worst peak,
+also in summary.json warnings (the runs do not record the damper's velocity or coil current).
 Files: DIR/runs.csv (run, record, control, idle_years, pga_g, peak_base_displacement_m,
 peak_damper_force_kn, peak_floor_accel_m_s2, peak_base_accel_m_s2, peak_story_drift_m),
 DIR/fragility.csv (control, limit_state, threshold (m or m/s2), idle_years, status (fitted |
 none_exceeded | all_exceeded), median_pga_g, beta, their 5 and 95 % bootstrap percentiles, runs,
-exceedances), DIR/fragility_curves.csv (each curve and band at 41 PGAs), one plot per control mode
-and limit state (fragility_<control>_<limit state>.png, a curve per idle time), DIR/summary.json
-(runs, runs_computed, runs_resumed, records, pga_g, idle_years, controls, building, dofs,
-limit_states, curves,
+exceedances, pga_g_min and pga_g_max: the PGA levels fitted over), DIR/fragility_curves.csv (each
+curve and band at 41 PGAs), one plot per control mode and limit state
+(fragility_<control>_<limit state>.png, a curve per idle time), DIR/summary.json (runs,
+runs_computed, runs_resumed, records, pga_g, idle_years, controls, building, dofs, limit_states,
+curves, warnings,
 ranks, threads_per_rank, wall_s, runs_per_core_hour (wall time x ranks x threads), cpu_s_rank0,
 runs_per_cpu_hour (rank 0's runs over its CPU time)).)"};
 
@@ -85,6 +107,7 @@ struct FragilityOptions {
   unsigned threads = 0;
   std::string journal;
   std::string out_dir = "out/fragility";
+  bool estimate = false;
 };
 
 std::vector<double> sorted_unique(const std::string& option, std::vector<double> v) {
@@ -125,35 +148,33 @@ risk::FragilityPlan plan_options(const FragilityOptions& o) {
 std::vector<std::filesystem::path> record_files(const FragilityOptions& o) {
   std::vector<std::filesystem::path> files;
   for (const auto& r : o.records) files.emplace_back(r);
-  if (!o.records_dir.empty()) {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(o.records_dir, ec)) {
-      throw io::UsageError("--records: '" + o.records_dir + "' is not a folder");
-    }
-    for (const auto& e : std::filesystem::directory_iterator(o.records_dir, ec)) {
-      const std::string ext = io::to_lower(e.path().extension().string());
-      if (e.is_regular_file() && (ext == ".csv" || ext == ".at2")) files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    if (files.empty()) throw io::UsageError("--records: no .csv or .at2 record in '" + o.records_dir + "'");
-  }
+  if (!o.records_dir.empty()) files = excitation::record_files_in_folder("--records", o.records_dir);
   return files;
 }
 
-/// The records at the runs' step: the files given, or the stochastic motions
-/// (each depends only on its seed: rank r of N makes records r, r + N, ... on
-/// its threads and the ranks share them).
-void load_records(const FragilityOptions& o, risk::FragilityPlan& plan, const risk::Cluster& cluster,
-                  unsigned threads) {
-  const auto files = record_files(o);
+/// The records files given, at the runs' step.
+void load_record_files(const std::vector<std::filesystem::path>& files, risk::FragilityPlan& plan) {
   for (const auto& f : files) {
     const auto m = excitation::load_scaled_motion(f, 1.0, plan.base.step_s);
     plan.records.push_back({m.name, m.source, m.accel_m_s2});
   }
-  if (!files.empty()) return;
-  const unsigned n = o.synthetic ? o.synthetic : 20;
+}
+
+unsigned synthetic_count(const FragilityOptions& o) { return o.synthetic ? o.synthetic : 20; }
+
+risk::StochasticMotionRanges synthetic_ranges(const FragilityOptions& o) {
   risk::StochasticMotionRanges ranges;
   ranges.duration_s = o.duration_s;
+  return ranges;
+}
+
+/// The stochastic motions at the runs' step (each depends only on its seed:
+/// rank r of N makes records r, r + N, ... on its threads and the ranks share
+/// them).
+void make_synthetic_records(const FragilityOptions& o, risk::FragilityPlan& plan, const risk::Cluster& cluster,
+                            unsigned threads) {
+  const unsigned n = synthetic_count(o);
+  const risk::StochasticMotionRanges ranges = synthetic_ranges(o);
   const auto ranks = static_cast<unsigned>(cluster.size());
   std::vector<std::vector<double>> accel(n);
   std::atomic<unsigned> next{static_cast<unsigned>(cluster.rank())};
@@ -209,7 +230,7 @@ void add_options(CLI::App& app, FragilityOptions& o) {
       ->capture_default_str();
   app.add_option("--control", o.controls, "Control mode(s), comma-separated (default: all this build has)")
       ->delimiter(',');
-  app.add_option("--seed", o.seed, "Study seed: stochastic motions and bootstrap")->capture_default_str();
+  add_seed_option(app, o.seed, "Study seed: stochastic motions and bootstrap");
   app.add_option("--bootstrap", o.bootstrap, "Bootstrap resamples per curve (0: no bands)")
       ->check(CLI::Range(0u, 100000u))
       ->capture_default_str();
@@ -224,17 +245,160 @@ void add_options(CLI::App& app, FragilityOptions& o) {
   add_step_s_option(app, o.step_s, "Simulation step, s");
   add_threads_option(app, o.threads, "Worker threads per rank (0: the node's cores over its ranks)");
   app.add_option("--journal", o.journal, "Resume journal folder (default: DIR.journal beside --out)");
+  app.add_flag("--estimate", o.estimate, "Print the study's runs, estimated wall time, disk and memory, and stop");
   add_out_option(app, o.out_dir, "Output folder")->capture_default_str();
+}
+
+/// The resume journal's folder, resolved: --journal, or DIR.journal beside
+/// the resolved --out DIR (so `--out D/` gives D.journal, never D/.journal).
+std::filesystem::path journal_folder(const FragilityOptions& o) {
+  if (!o.journal.empty()) return report::resolve_path("--journal", o.journal);
+  std::filesystem::path j = report::output_target(o.out_dir);
+  j += ".journal";
+  return j;
+}
+
+/// A journal is used, and removed after the run, only when it is absent,
+/// empty or a journal (report::kJournalMarker), and lies clear of --out and
+/// of every input.
+void check_journal_folder(const FragilityOptions& o, const std::filesystem::path& journal) {
+  const std::string shown = o.journal.empty() ? journal.string() : o.journal;
+  report::check_owned_or_new("--journal", shown, journal, report::kJournalMarker);
+  report::check_clear_of_output("--journal", shown, journal, "--out", o.out_dir, report::output_target(o.out_dir));
+  report::check_clear_of_inputs("--journal", shown, journal);
+}
+
+/// Refuses a study whose disk exceeds the free space of the file system it
+/// writes to: the outputs (and the journal, when it lies on the same one) on
+/// --out's, the journal on its own.
+void check_disk_space(const FragilityOptions& o, const risk::DiskEstimate& disk,
+                      const std::optional<risk::FileSystemSpace>& out_fs, const std::filesystem::path& journal) {
+  const auto journal_fs = risk::file_system_space(journal);
+  const bool shared = out_fs && journal_fs && out_fs->device == journal_fs->device;
+  const auto refuse = [](const char* option, const std::string& path, std::uintmax_t need, std::uintmax_t free) {
+    throw io::UsageError(std::string(option) + ": the study would write about " + risk::format_bytes(need) +
+                         " to the file system of '" + path + "', which has " + risk::format_bytes(free) +
+                         " free; give fewer runs or another folder (--estimate shows the cost)");
+  };
+  const std::uintmax_t out_need = disk.outputs() + (shared ? disk.journal : 0);
+  if (out_fs && out_need > out_fs->free_bytes) refuse("--out", o.out_dir, out_need, out_fs->free_bytes);
+  if (!shared && journal_fs && disk.journal > journal_fs->free_bytes) {
+    refuse("--journal", journal.string(), disk.journal, journal_fs->free_bytes);
+  }
+}
+
+/// Physical memory of this machine, bytes (0 when unknown).
+std::uintmax_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<std::uintmax_t>(pages) * static_cast<std::uintmax_t>(page) : 0;
+}
+
+/// Says on rank 0, before any work, what the study will cost: its runs, the
+/// wall time from a pilot on this machine, its disk and memory; then refuses
+/// (io::UsageError, on every rank) a study whose disk exceeds the free space
+/// of its file system or whose processes on this node would hold more memory
+/// than the machine has. Returns true when --estimate asks to stop there.
+bool announce_cost(const FragilityOptions& o, const risk::FragilityPlan& plan, bool synthetic,
+                   const std::vector<risk::LimitState>& limit_states, const std::filesystem::path& journal,
+                   const risk::Cluster& cluster, unsigned threads) {
+  std::exception_ptr refusal;
+  if (cluster.rank() == 0) {
+    const risk::StudyShape shape =
+        synthetic ? risk::synthetic_study_shape(plan, limit_states, synthetic_ranges(o), synthetic_count(o))
+                  : risk::study_shape(plan, limit_states);
+    const std::size_t runs = shape.run_count();
+    std::printf(
+        "fragility: %zu records x %zu PGA levels x %zu idle times x %zu control modes = %zu runs on %d rank(s) x %u "
+        "thread(s)\n",
+        shape.record_names.size(), plan.pga_g.size(), plan.idle_years.size(), plan.modes.size(), runs, cluster.size(),
+        threads);
+    std::fflush(stdout);
+    std::vector<double> steps_per_s;
+    for (auto mode : plan.modes) {
+      steps_per_s.push_back(risk::pilot_steps_per_s(plan.base, mode, plan.pga_g[plan.pga_g.size() / 2],
+                                                    plan.idle_years.front()));
+    }
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned workers = risk::study_workers(runs, cluster.size(), threads, cores);
+    double generation_s = 0.0;
+    if (synthetic) {
+      const double makers = std::min<double>(synthetic_count(o), static_cast<double>(cluster.size()) *
+                                                                     std::min(threads, cores));
+      generation_s = risk::pilot_generation_s(synthetic_ranges(o), plan.base.step_s) *
+                     std::ceil(synthetic_count(o) / std::max(1.0, makers));
+    }
+    const double wall_s = risk::estimate_wall_s(shape, steps_per_s, workers, generation_s);
+    double slowest = steps_per_s.front();
+    for (double r : steps_per_s) slowest = std::min(slowest, r);
+    std::printf(
+        "fragility: estimate: %.3g closed-loop steps of %.3g s, at %.3g steps/s or more per worker (a pilot on this "
+        "machine) on %u worker(s)%s: about %s of wall time\n",
+        shape.steps(), plan.base.step_s, slowest, workers,
+        synthetic ? (", after making the records in about " + risk::format_duration(generation_s)).c_str() : "",
+        risk::format_duration(wall_s).c_str());
+    const risk::DiskEstimate disk = risk::estimate_disk(shape);
+    const auto out_fs = risk::file_system_space(o.out_dir);
+    const std::uintmax_t memory = risk::estimate_memory(shape);
+    std::printf(
+        "fragility: estimate: at most %s on disk: runs.csv %s (%s per run), journal %s (%zu B per run, removed at "
+        "the end), curves %s, plots %s, summary.json %s; %s free on the file system of --out; memory %s per "
+        "process\n",
+        risk::format_bytes(disk.total()).c_str(), risk::format_bytes(disk.runs_csv).c_str(),
+        risk::format_bytes(runs ? disk.runs_csv / runs : 0).c_str(), risk::format_bytes(disk.journal).c_str(),
+        risk::kJournalRecordBytes, risk::format_bytes(disk.curves).c_str(), risk::format_bytes(disk.plots).c_str(),
+        risk::format_bytes(disk.summary).c_str(),
+        out_fs ? risk::format_bytes(out_fs->free_bytes).c_str() : "unknown", risk::format_bytes(memory).c_str());
+    std::fflush(stdout);
+    if (!o.estimate) {
+      try {
+        check_disk_space(o, disk, out_fs, journal);
+        const std::uintmax_t ram = physical_memory_bytes();
+        const auto local = static_cast<std::uintmax_t>(std::max(1, cluster.local_size()));
+        if (ram > 0 && memory * local > ram) {
+          throw io::UsageError("the study's records and results would take about " +
+                               risk::format_bytes(memory * local) + " of memory on this machine, which has " +
+                               risk::format_bytes(ram) +
+                               "; give fewer or shorter records, fewer runs or a longer --step-s");
+        }
+      } catch (...) {
+        refusal = std::current_exception();
+      }
+    }
+  }
+  if (o.estimate) return true;
+  if (cluster.any(refusal != nullptr)) {
+    if (refusal) std::rethrow_exception(refusal);
+    throw io::UsageError("rank 0 refused the study");
+  }
+  return false;
 }
 
 void execute(const FragilityOptions& o) {
   risk::Cluster cluster;
   risk::FragilityPlan plan = plan_options(o);
   const bool root = cluster.rank() == 0;
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads =
+      o.threads ? o.threads : std::max(1u, hw / static_cast<unsigned>(std::max(1, cluster.local_size())));
+  const double records = static_cast<double>(o.records.empty() ? synthetic_count(o) : o.records.size());
+  if (o.records_dir.empty() &&
+      records * static_cast<double>(plan.pga_g.size() * plan.idle_years.size() * plan.modes.size()) > kMaxRuns) {
+    throw io::UsageError("the study would have more than 1e8 runs; give fewer records, levels, idle times or modes");
+  }
+  const auto files = record_files(o);
+  const bool synthetic = files.empty();
+  load_record_files(files, plan);
+  if (static_cast<double>(plan.run_count()) > kMaxRuns) {
+    throw io::UsageError("the study has " + std::to_string(plan.run_count()) + " runs; at most 1e8 are allowed");
+  }
+  const auto limit_states = risk::default_limit_states(o.gap_m, o.floor_accel_g, o.drift_m);
+  if (announce_cost(o, plan, synthetic, limit_states, journal_folder(o), cluster, threads)) return;
   std::filesystem::path out;
   std::exception_ptr open_error;
+  const std::filesystem::path journal = journal_folder(o);
   if (root) {
     try {
+      check_journal_folder(o, journal);
       out = open_out_dir(o.out_dir);
     } catch (...) {
       open_error = std::current_exception();
@@ -244,28 +408,11 @@ void execute(const FragilityOptions& o) {
     if (open_error) std::rethrow_exception(open_error);
     throw io::UsageError("--out: rank 0 could not use the output folder");
   }
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   risk::StudyRunOptions ro;
-  ro.threads = o.threads ? o.threads : std::max(1u, hw / static_cast<unsigned>(std::max(1, cluster.local_size())));
-  const double records = static_cast<double>(o.records.empty() ? (o.synthetic ? o.synthetic : 20) : o.records.size());
-  if (o.records_dir.empty() &&
-      records * static_cast<double>(plan.pga_g.size() * plan.idle_years.size() * plan.modes.size()) > kMaxRuns) {
-    throw io::UsageError("the study would have more than 1e8 runs; give fewer records, levels, idle times or modes");
-  }
-  load_records(o, plan, cluster, ro.threads);
-  if (static_cast<double>(plan.run_count()) > kMaxRuns) {
-    throw io::UsageError("the study has " + std::to_string(plan.run_count()) + " runs; at most 1e8 are allowed");
-  }
-  ro.journal_dir = o.journal.empty() ? std::filesystem::path(o.out_dir + ".journal") : std::filesystem::path(o.journal);
-  if (root) {
-    std::printf(
-        "fragility: %zu records x %zu PGA levels x %zu idle times x %zu control modes = %zu runs on %d rank(s) x %u "
-        "thread(s)\n",
-        plan.records.size(), plan.pga_g.size(), plan.idle_years.size(), plan.modes.size(), plan.run_count(),
-        cluster.size(), ro.threads);
-    std::fflush(stdout);
-    ro.progress = ProgressPrinter(cluster.size(), plan.run_count());
-  }
+  ro.threads = threads;
+  if (synthetic) make_synthetic_records(o, plan, cluster, ro.threads);
+  ro.journal_dir = journal;
+  if (root) ro.progress = ProgressPrinter(cluster.size(), plan.run_count());
   risk::StudyRunResult result;
   try {
     result = risk::run_study(plan, cluster, ro);
@@ -278,7 +425,6 @@ void execute(const FragilityOptions& o) {
   }
   if (!root) return;
 
-  const auto limit_states = risk::default_limit_states(o.gap_m, o.floor_accel_g, o.drift_m);
   const auto curves = risk::fit_fragilities(plan, result.runs, limit_states, {o.bootstrap, o.seed, 41});
   risk::FragilitySession session;
   session.computed = result.computed;
@@ -289,12 +435,13 @@ void execute(const FragilityOptions& o) {
   session.ranks = cluster.size();
   session.threads_per_rank = ro.threads;
   session.bootstrap = o.bootstrap;
-  session.synthetic = record_files(o).empty();
+  session.synthetic = synthetic;
+  session.warnings = risk::fragility_warnings(result.runs);
   const auto problems = risk::write_fragility_outputs(out, plan, result.runs, limit_states, curves, session);
   commit_out_dir();
   warn_plots_not_written("fragility", problems);
-  std::error_code ec;
-  std::filesystem::remove_all(ro.journal_dir, ec);
+  print_warnings("fragility", session.warnings);
+  risk::remove_journal(ro.journal_dir);
   const double core_h = result.wall_s * cluster.size() * ro.threads / 3600.0;
   std::printf(
       "fragility: %zu runs computed, %zu resumed, in %.2f s on %d rank(s) x %u thread(s): %.0f runs per "

@@ -1,5 +1,7 @@
 #include "host_sim/cli/options.hpp"
 
+#include <charconv>
+
 #include "host_sim/cli/command.hpp"
 
 namespace mrd::cli {
@@ -42,6 +44,28 @@ void add_step_s_option(CLI::App& app, double& step_s, const std::string& help) {
 
 void add_threads_option(CLI::App& app, unsigned& threads, const std::string& help) {
   app.add_option("--threads", threads, help)->capture_default_str()->check(CLI::Range(0u, kMaxThreads));
+}
+
+std::optional<std::uint64_t> parse_seed(std::string_view text) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
+  std::uint64_t seed = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seed, 10);
+  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;  // above kMaxSeed
+  return seed;
+}
+
+CLI::Option* add_seed_option(CLI::App& app, std::uint64_t& seed, const std::string& help, const std::string& name) {
+  const CLI::Validator decimal_seed(
+      [](std::string& text) -> std::string {
+        if (parse_seed(text)) return {};
+        return "expected a decimal whole number from 0 to " + std::to_string(kMaxSeed) + ", got '" + text + "'";
+      },
+      "", "seed");
+  const auto assign = [&seed](const std::string& text) { seed = parse_seed(text).value(); };
+  return app.add_option_function<std::string>(name, assign, help)
+      ->type_name("UINT64")
+      ->default_str(std::to_string(seed))
+      ->check(decimal_seed);
 }
 
 CLI::Option* add_out_option(CLI::App& app, std::string& out_dir, const std::string& help) {

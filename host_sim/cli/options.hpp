@@ -5,8 +5,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <initializer_list>
+#include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace mrd::cli {
 
@@ -54,6 +58,21 @@ void add_step_s_option(CLI::App& app, double& step_s, const std::string& help);
 
 /// --threads N, default shown: worker threads, 0 for all cores, at most kMaxThreads.
 void add_threads_option(CLI::App& app, unsigned& threads, const std::string& help);
+
+/// Largest seed: 2^64 - 1, the widest seed of the random generators.
+inline constexpr std::uint64_t kMaxSeed = std::numeric_limits<std::uint64_t>::max();
+
+/// The seed `text` writes: decimal digits only (no sign, fraction, exponent,
+/// hex prefix or space; leading zeros are decimal) from 0 to kMaxSeed.
+/// nullopt for anything else, the empty text included.
+[[nodiscard]] std::optional<std::uint64_t> parse_seed(std::string_view text);
+
+/// `name` SEED, default shown: a seed read by parse_seed. Anything else is
+/// refused before the command runs (exit 2) with "<name>: expected a decimal
+/// whole number from 0 to 18446744073709551615, got '<text>'"; nothing is
+/// wrapped or rounded.
+CLI::Option* add_seed_option(CLI::App& app, std::uint64_t& seed, const std::string& help,
+                             const std::string& name = "--seed");
 
 /// --out DIR: the folder of the outputs.
 CLI::Option* add_out_option(CLI::App& app, std::string& out_dir, const std::string& help);

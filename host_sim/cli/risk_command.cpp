@@ -28,12 +28,21 @@ Hazard (--hazard FILE): CSV with the header pga_g,annual_frequency, then one row
 increasing, annual frequency of exceedance decreasing, both > 0); '#' lines and blank lines are
 skipped. Default: an illustrative site, lambda(PGA) = k0 PGA^-2.5 with 0.3 g at 10 % in 50 years
 (k0 = 1.039e-4 g^2.5 per year), 0.01 to 5 g; not a real site.
+Extrapolation: a fragility curve is fitted over the study's PGA levels (fragility.csv's pga_g_min,
+pga_g_max); where the hazard curve reaches beyond them, lambda_LS uses the curves extrapolated.
+A warning (stderr, summary.json warnings, report.md) names each limit state whose annual exceedance
+at an idle time takes more than 10 % from PGAs outside the fitted levels, and each limit state whose
+ratios to always-fully-mixed rest mainly (more than 50 % of the policy's or the reference's annual
+exceedance) on them; a fragility.csv without those columns is named too.
 Fields of DIR/summary.json: control, hazard, limit_states, idle_years, annual_exceedance_at_idle
-(limit state -> lambda_LS at each idle time), days_beyond_study_fraction, reference, schedule (the
-world's options), policies[] (none, fixed-interval, estimator, always-fully-mixed): name,
-cycles_per_year (null for the reference), annual_exceedance (limit state -> 1/year),
-relative_to_fully_mixed, mean_equivalent_idle_years, idle_time_fraction[] (from_years, to_years,
-fraction of the days). Files: DIR/risk.csv, DIR/report.md (the table), DIR/risk.png.)"};
+(limit state -> lambda_LS at each idle time), days_beyond_study_fraction, fitted_pga_g (min, max;
+null when not known), extrapolated_fraction_at_idle (limit state -> part of lambda_LS from outside
+the fitted levels at each idle time), warnings[], reference, schedule (the world's options),
+policies[] (none, fixed-interval, estimator, always-fully-mixed): name, cycles_per_year (null for
+the reference), annual_exceedance (limit state -> 1/year), relative_to_fully_mixed,
+extrapolated_fraction (limit state -> part from outside the fitted levels),
+mean_equivalent_idle_years, idle_time_fraction[] (from_years, to_years, fraction of the days).
+Files: DIR/risk.csv, DIR/report.md (the table), DIR/risk.png.)"};
 
 struct RiskOptions {
   std::string fragility;
@@ -57,12 +66,7 @@ void print_summary(const risk::RiskResult& r) {
     for (const auto& n : r.limit_states) std::printf(" %16.4e", p.annual_exceedance.at(n));
     std::printf("\n");
   }
-  if (r.days_beyond_study_fraction > 0.0) {
-    std::fprintf(stderr,
-                 "mrd risk: warning: %.1f %% of the days are idler than the study's longest idle time (%.4g years); "
-                 "their curves are held at it\n",
-                 100.0 * r.days_beyond_study_fraction, r.idle_years.back());
-  }
+  print_warnings("risk", r.warnings);
 }
 
 void add_options(CLI::App& app, RiskOptions& o) {
@@ -70,7 +74,7 @@ void add_options(CLI::App& app, RiskOptions& o) {
   app.add_option("--hazard", o.hazard, "Hazard curve CSV (default: the illustrative site)");
   app.add_option("--control", o.control, "Control mode of the curves (default: the first in the file)");
   app.add_option("--years", o.world.years, "Service life, years (> 0, <= 1000)")->capture_default_str();
-  app.add_option("--seed", o.world.seed, "Seed of mrd schedule's world")->capture_default_str();
+  add_seed_option(app, o.world.seed, "Seed of mrd schedule's world");
   app.add_option("--threshold", o.world.threshold, "Capacity fraction the policies keep")->capture_default_str();
   app.add_option("--interval-days", o.world.interval_days, "Fixed policy's interval, days (default: searched)");
   app.add_option("--earthquakes-per-year", o.world.earthquakes_per_year, "Earthquakes that mix the fluid, 1/year")

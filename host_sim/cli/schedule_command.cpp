@@ -19,8 +19,9 @@ idle time settles the fluid (Eq. 5.1-5.5), motion mixes it (Eq. 5.6-5.9, with th
 estimator's state model for repeated episodes), earthquakes arrive at random (Poisson) and meet
 the fluid as it is. Policies:
   none            never mix
-  fixed-interval  a mixing cycle every --interval-days (default: the longest interval that keeps
-                  the capacity at or above --threshold at every moment, found by bisection)
+  fixed-interval  a mixing cycle every --interval-days (at least 1 hour; without the option: the
+                  longest interval that keeps the capacity at or above --threshold at every
+                  moment, found by bisection; 0 is refused, not a search)
   estimator       the firmware's idle-time estimator and mixing scheduler decide, from the
                   measured damper displacement, when to mix (forecast --lead-hours ahead)
 Without an actuator (--actuator no) every cycle is a maintenance visit: the fixed policy visits
@@ -116,15 +117,9 @@ void add_options(CLI::App& app, ScheduleCliOptions& o) {
   app.add_option("--years", o.world.years, "Simulated service life, years (> 0, <= 1000)")->capture_default_str();
   app.add_option("--threshold", o.world.threshold, "Capacity fraction to keep, > 0 and <= 0.99")->capture_default_str();
   app.add_option("--interval-days", o.world.interval_days,
-                  "Fixed policy's interval, days (default: the longest that keeps the threshold)");
-  app.add_option("--seed", o.world.seed, "Seed of the random world (earthquakes, ambient motion), >= 0")
-      ->check(CLI::Validator(
-          [](std::string& s) {
-            const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
-            return digits ? std::string() : "expected a whole number >= 0, got '" + s + "'";
-          },
-          "UINT"))
-      ->capture_default_str();
+                  "Fixed policy's interval, days, at least 1 hour (0.0417); leave it out for the longest that "
+                  "keeps the threshold");
+  add_seed_option(app, o.world.seed, "Seed of the random world (earthquakes, ambient motion)");
   app.add_option("--earthquakes-per-year", o.world.earthquakes_per_year, "Mean earthquake rate (Poisson), 1/year")
       ->capture_default_str();
   app.add_option("--actuator", o.world.actuator, "Mixing actuator fitted: yes | no")->capture_default_str();

@@ -39,6 +39,9 @@ Fields of DIR/summary.json:
   sq, final_participant_ratio     settling quotient at the start (Eq. 5.5), PR at the end (Eq. 5.9)
   record, pga_m_s2, scale_factor, control, numeric, idle_years, duration_s, step_s: the run's inputs
   plant                           thesis | hardware
+  sensor_seed                     --sensor-seed of the hardware plant's sensor noise (null for thesis)
+  parking_offset_m                --offset-mm in m: where the hardware plant's damper was parked off
+                                  its stroke centre (null for thesis: ideal sensors, damper centred)
   peak_coil_current_a             max |coil current| over the ticks, A
   rms_coil_current_a              RMS coil current over the ticks, A
   time_above_rated_s              time with |coil current| above the rated 2.5 A, s
@@ -62,7 +65,7 @@ struct SimOptions {
   double duration_s = 0.0;
   bool duration_given = false;  ///< --duration-s was given (without it: the record's length)
   double step_s = 1.0e-3;
-  unsigned seed = 1;
+  std::uint64_t seed = 1;
   std::string plant = "thesis";
   std::uint64_t sensor_seed = 1;
   double offset_mm = 3.0;
@@ -117,6 +120,10 @@ void print_summary(const run::SimRun& r) {
   std::printf("  peak coil current            %10.3f A\n", s.peak_current_a);
   const plant::CoilFigures& c = s.coil;
   std::printf("  plant                        %10s\n", plant::plant_kind_name(r.spec.plant));
+  if (r.spec.plant == plant::PlantKind::kHardware) {
+    std::printf("  sensor seed                  %10llu\n", static_cast<unsigned long long>(r.spec.sensor_seed));
+    std::printf("  parking offset               %10.4f mm\n", r.spec.stroke_offset_m * 1e3);
+  }
   std::printf("  rms coil current             %10.4f A\n", c.rms_coil_current_a);
   std::printf("  time above rated 2.5 A       %10.3f s\n", c.time_above_rated_s);
   std::printf("  command changes              %10.2f per s\n", c.command_changes_per_s);
@@ -137,10 +144,10 @@ void add_options(CLI::App& app, SimOptions& o) {
                  "Simulated time, s, > 0 (default: the record's length; 40 s synthetic)")
       ->each([&o](const std::string&) { o.duration_given = true; });
   add_step_s_option(app, o.step_s, "Simulation and control step, s");
-  app.add_option("--seed", o.seed, "Seed of the synthetic motion (without --record)")->capture_default_str();
+  add_seed_option(app, o.seed, "Seed of the synthetic motion (without --record)");
   app.add_option("--plant", o.plant, "thesis | hardware")->capture_default_str();
   add_building_option(app, o.building);
-  app.add_option("--sensor-seed", o.sensor_seed, "Seed of the hardware plant's sensor noise")->capture_default_str();
+  add_seed_option(app, o.sensor_seed, "Seed of the hardware plant's sensor noise", "--sensor-seed");
   app.add_option("--offset-mm", o.offset_mm, "Hardware plant: damper parked this far off its stroke centre, mm")
       ->capture_default_str();
   add_out_option(app, o.out_dir, "Folder for summary.json, timeseries.csv and plots");

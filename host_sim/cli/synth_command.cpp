@@ -125,7 +125,7 @@ void add_options(CLI::App& app, SynthCliOptions& o) {
   app.add_option("--rate-hz", o.rate_hz, "Sampling rate, Hz")->capture_default_str();
   app.add_option("--jitter", o.jitter, "Sampling-time jitter as a fraction of the step (non-uniform time)")
       ->capture_default_str();
-  app.add_option("--seed", o.seed, "Seed of every random draw")->capture_default_str();
+  add_seed_option(app, o.seed, "Seed of every random draw");
   app.add_flag("--velocity-column", o.velocity_column, "Also write a measured velocity column");
   app.add_option("--format", o.format, "csv | mat")->capture_default_str();
   add_out_option(app, o.out_dir, "Folder for measured.csv/.mat and summary.json")->required();

@@ -4,10 +4,11 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <cstdint>
 #include <set>
-#include <sstream>
 
+#include "host_sim/discrepancy/physical_ranges.hpp"
+#include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
 #include "host_sim/report/output_dir.hpp"
 
@@ -53,19 +54,38 @@ std::string fitted_list(const CurrentLawFitted& f) {
   return s + "]";
 }
 
+/// "key = sigma": a standard error within the range of its quantity's
+/// standard errors (sigma_range); a larger one (a parameter the records do
+/// not identify, or an infinite one) is written as that range's top with a
+/// comment that says so, so that the file reads back.
+std::string sigma_line(const std::string& key, double sigma, const PhysicalRange& quantity) {
+  const double top = sigma_range(quantity).max;
+  if (sigma <= top) return key + " = " + num(sigma) + "\n";
+  return key + " = " + num(top) + "  # the fit's standard error, " + num(sigma) +
+         ", exceeds the quantity's range: not identified\n";
+}
+
 void law_table(std::string& t, const char* name, const char* comment, const CurrentLaw& v, const CurrentLaw& s,
-               const CurrentLawFitted& f) {
+               const CurrentLawFitted& f, const PhysicalRange& value_range) {
   t += std::string("\n[") + name + "]  # " + comment + "\n";
   t += "at_zero = " + num(v.at_zero) + "\n";
-  t += "at_zero_sigma = " + num(s.at_zero) + "\n";
+  t += sigma_line("at_zero_sigma", s.at_zero, value_range);
   t += "limit = " + num(v.limit) + "\n";
-  t += "limit_sigma = " + num(s.limit) + "\n";
+  t += sigma_line("limit_sigma", s.limit, value_range);
   t += "rate_per_a = " + num(v.rate_per_a) + "\n";
-  t += "rate_per_a_sigma = " + num(s.rate_per_a) + "\n";
+  t += sigma_line("rate_per_a_sigma", s.rate_per_a, kCurrentRateRange);
   t += "fitted = " + fitted_list(f) + "  # the others are held (sigma 0)\n";
 }
 
 // ---- reading ---------------------------------------------------------------
+
+/// "a force in [0.001, 1e+09] N": what a number of range `r` must be.
+std::string range_text(const PhysicalRange& r) {
+  std::string t = std::string(r.what) + " in [" + io::format_number("%.6g", r.min) + ", " +
+                  io::format_number("%.6g", r.max) + "]";
+  if (*r.unit != '\0') t += std::string(" ") + r.unit;
+  return t;
+}
 
 [[noreturn]] void fail(const std::string& origin, const toml::source_region& where, const std::string& field,
                        const std::string& problem) {
@@ -78,20 +98,14 @@ class Table {
  public:
   Table(const toml::table& t, std::string name, const std::string& origin) : t_(t), name_(std::move(name)), origin_(origin) {}
 
-  /// A finite number ≥ `min` (integers accepted).
-  double number(const char* key, double min = 0.0) {
+  /// A finite number inside the physical range `r` (integers accepted).
+  double in(const char* key, const PhysicalRange& r) {
     const toml::node& n = need(key);
     const std::optional<double> v = n.is_number() ? n.value<double>() : std::nullopt;
     if (!v) fail(origin_, n.source(), field(key), "expected a number");
     if (!std::isfinite(*v)) fail(origin_, n.source(), field(key), "expected a finite number");
-    if (*v < min) fail(origin_, n.source(), field(key), "expected a number >= " + num(min) + ", got " + num(*v));
+    if (!r.contains(*v)) fail(origin_, n.source(), field(key), "expected " + range_text(r) + ", got " + num(*v));
     return *v;
-  }
-  /// A number > 0.
-  double positive(const char* key) {
-    const double v = number(key, 0.0);
-    if (!(v > 0.0)) fail(origin_, t_.get(key)->source(), field(key), "expected a number > 0");
-    return v;
   }
   bool boolean(const char* key) {
     const toml::node& n = need(key);
@@ -114,10 +128,12 @@ class Table {
     }
     return out;
   }
-  std::size_t count(const char* key) {
+  /// An integer in [0, max].
+  std::size_t count(const char* key, std::size_t max) {
     const toml::node& n = need(key);
     const auto v = n.value<std::int64_t>();
-    if (!n.is_integer() || !v || *v < 0) fail(origin_, n.source(), field(key), "expected an integer >= 0");
+    if (!n.is_integer() || !v || *v < 0 || static_cast<std::uint64_t>(*v) > max)
+      fail(origin_, n.source(), field(key), "expected an integer in [0, " + std::to_string(max) + "]");
     return static_cast<std::size_t>(*v);
   }
   [[nodiscard]] bool has(const char* key) const { return t_.get(key) != nullptr; }
@@ -169,14 +185,14 @@ bool transition_named(Table& t, const std::string& origin, const std::string& fi
 }
 
 void read_law(const toml::table& root, const char* name, const std::string& origin, CurrentLaw& v, CurrentLaw& s,
-              CurrentLawFitted& f) {
+              CurrentLawFitted& f, const PhysicalRange& value_range) {
   Table t(table_of(root, name, origin), name, origin);
-  v.at_zero = t.positive("at_zero");
-  s.at_zero = t.number("at_zero_sigma");
-  v.limit = t.positive("limit");
-  s.limit = t.number("limit_sigma");
-  v.rate_per_a = t.number("rate_per_a");
-  s.rate_per_a = t.number("rate_per_a_sigma");
+  v.at_zero = t.in("at_zero", value_range);
+  s.at_zero = t.in("at_zero_sigma", sigma_range(value_range));
+  v.limit = t.in("limit", value_range);
+  s.limit = t.in("limit_sigma", sigma_range(value_range));
+  v.rate_per_a = t.in("rate_per_a", kCurrentRateRange);
+  s.rate_per_a = t.in("rate_per_a_sigma", sigma_range(kCurrentRateRange));
   f = {false, false, false};
   for (const std::string& p : t.strings("fitted")) {
     if (p == "at_zero") {
@@ -223,47 +239,47 @@ std::string baseline_toml(const BaselineFile& f) {
   for (std::size_t i = 0; i < f.source_records.size(); ++i) t += (i ? ", " : "") + quoted(f.source_records[i]);
   t += "]\n";
   law_table(t, "yield_n", "Y(I) = limit + (at_zero - limit) exp(-rate_per_a |I|), N (Eq. 4.2)", b.yield_n,
-            f.sigma.yield_n, f.yield_fitted);
+            f.sigma.yield_n, f.yield_fitted, kYieldForceRange);
   law_table(t, "viscous_ns_m", "C(I), the same law, N s/m (Eq. 4.3)", b.viscous_ns_m, f.sigma.viscous_ns_m,
-            f.viscous_fitted);
+            f.viscous_fitted, kViscousRange);
   if (b.law == BaseLaw::bingham) {
     t += std::string("\n[bingham]  # transition function, ") + (b.has_tanh_transition() ? "tanh" : "Eq. 4.4") + "\n";
     t += "v_tf_m_s = " + num(b.v_tf_m_s) + "\n";
-    t += "v_tf_m_s_sigma = " + num(f.sigma.v_tf_m_s) + "\n";
+    t += sigma_line("v_tf_m_s_sigma", f.sigma.v_tf_m_s, kVelocityBandRange);
     if (b.has_tanh_transition()) t += "transition = \"tanh\"  # F = Y tanh(v / v_tf_m_s) + C v\n";
     if (b.has_transition_time()) {
       t += "transition_time_s = " + num(b.transition_time_s) + "  # the band is v_tf_m_s + transition_time_s |a|\n";
-      t += "transition_time_s_sigma = " + num(f.sigma.transition_time_s) + "\n";
+      t += sigma_line("transition_time_s_sigma", f.sigma.transition_time_s, kTransitionTimeRange);
     }
   } else {
     t += "\n[bouc_wen]  # F = Y z + C v + k0 x, z' = (v/x_y)(1 - |z|^2 (1/2 + 1/2 sgn(v z)))\n";
     t += "yield_disp_m = " + num(b.yield_disp_m) + "\n";
-    t += "yield_disp_m_sigma = " + num(f.sigma.yield_disp_m) + "\n";
+    t += sigma_line("yield_disp_m_sigma", f.sigma.yield_disp_m, kYieldDispRange);
     t += "stiffness_n_m = " + num(b.stiffness_n_m) + "\n";
-    t += "stiffness_n_m_sigma = " + num(f.sigma.stiffness_n_m) + "\n";
+    t += sigma_line("stiffness_n_m_sigma", f.sigma.stiffness_n_m, kStiffnessRange);
   }
   if (b.has_lost_motion()) {
     t += "\n[lost_motion]  # F = F_law ((1 - share) + share e) + (1 - e) Y(I) tanh(v / band_m_s), e: play of width "
          "m_per_n Y(I) at reversals\n";
     t += "m_per_n = " + num(b.lost_motion_m_per_n) + "\n";
-    t += "m_per_n_sigma = " + num(f.sigma.lost_motion_m_per_n) + "\n";
+    t += sigma_line("m_per_n_sigma", f.sigma.lost_motion_m_per_n, kPlayRange);
     t += "share = " + num(b.lost_motion_share) + "\n";
-    t += "share_sigma = " + num(f.sigma.lost_motion_share) + "\n";
+    t += sigma_line("share_sigma", f.sigma.lost_motion_share, kShareRange);
     if (b.has_viscous_lost_motion()) {
       t += "band_m_s = " + num(b.lost_motion_band_m_s) + "  # the force inside the play\n";
-      t += "band_m_s_sigma = " + num(f.sigma.lost_motion_band_m_s) + "\n";
+      t += sigma_line("band_m_s_sigma", f.sigma.lost_motion_band_m_s, kVelocityBandRange);
     }
   }
   t += "\n[channels]  # the force channel's lag behind the motion channels\n";
   t += "force_delay_s = " + num(b.force_delay_s) + "\n";
-  t += "force_delay_s_sigma = " + num(f.sigma.force_delay_s) + "\n";
+  t += sigma_line("force_delay_s_sigma", f.sigma.force_delay_s, kForceDelayRange);
   t += "\n[coil]  # Eq. 4.5";
   t += b.coil_identified ? ", fitted to the records whose current changes\n"
                          : ": assumed (thesis values), not identified from the records\n";
   t += "tau_slow_s = " + num(b.coil.tau_slow_s) + "\n";
-  if (b.coil_identified) t += "tau_slow_s_sigma = " + num(f.sigma.coil_tau_slow_s) + "\n";
+  if (b.coil_identified) t += sigma_line("tau_slow_s_sigma", f.sigma.coil_tau_slow_s, kCoilTimeConstantRange);
   t += "tau_fast_s = " + num(b.coil.tau_fast_s) + "\n";
-  if (b.coil_identified) t += "tau_fast_s_sigma = " + num(f.sigma.coil_tau_fast_s) + "\n";
+  if (b.coil_identified) t += sigma_line("tau_fast_s_sigma", f.sigma.coil_tau_fast_s, kCoilTimeConstantRange);
   t += "weight_slow = " + num(b.coil.weight_slow) + "\n";
   t += "weight_fast = " + num(b.coil.weight_fast) + "\n";
   t += std::string("identified = ") + (b.coil_identified ? "true" : "false") + "\n";
@@ -331,8 +347,8 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     f.source_records = m.strings("source_records");
     m.no_unknown_keys();
   }
-  read_law(root, "yield_n", origin, b.yield_n, f.sigma.yield_n, f.yield_fitted);
-  read_law(root, "viscous_ns_m", origin, b.viscous_ns_m, f.sigma.viscous_ns_m, f.viscous_fitted);
+  read_law(root, "yield_n", origin, b.yield_n, f.sigma.yield_n, f.yield_fitted, kYieldForceRange);
+  read_law(root, "viscous_ns_m", origin, b.viscous_ns_m, f.sigma.viscous_ns_m, f.viscous_fitted, kViscousRange);
   const char* own = b.law == BaseLaw::bingham ? "bingham" : "bouc_wen";
   const char* other = b.law == BaseLaw::bingham ? "bouc_wen" : "bingham";
   if (const toml::node* n = root.get(other))
@@ -340,53 +356,49 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
   {
     Table t(table_of(root, own, origin), own, origin);
     if (b.law == BaseLaw::bingham) {
-      b.v_tf_m_s = t.positive("v_tf_m_s");
-      f.sigma.v_tf_m_s = t.number("v_tf_m_s_sigma");
+      b.v_tf_m_s = t.in("v_tf_m_s", kVelocityBandRange);
+      f.sigma.v_tf_m_s = t.in("v_tf_m_s_sigma", sigma_range(kVelocityBandRange));
       if (t.has("transition")) b.tanh_transition = transition_named(t, origin, "bingham.transition");
       if (t.has("transition_time_s")) {
-        b.transition_time_s = t.positive("transition_time_s");
-        f.sigma.transition_time_s = t.number("transition_time_s_sigma");
-        if (b.transition_time_s > 0.1)
-          fail(origin, t.where("transition_time_s"), "bingham.transition_time_s", "expected a time in (0, 0.1] s");
+        b.transition_time_s = t.in("transition_time_s", kTransitionTimeRange);
+        f.sigma.transition_time_s = t.in("transition_time_s_sigma", sigma_range(kTransitionTimeRange));
       }
     } else {
-      b.yield_disp_m = t.positive("yield_disp_m");
-      f.sigma.yield_disp_m = t.number("yield_disp_m_sigma");
-      b.stiffness_n_m = t.number("stiffness_n_m");
-      f.sigma.stiffness_n_m = t.number("stiffness_n_m_sigma");
+      b.yield_disp_m = t.in("yield_disp_m", kYieldDispRange);
+      f.sigma.yield_disp_m = t.in("yield_disp_m_sigma", sigma_range(kYieldDispRange));
+      b.stiffness_n_m = t.in("stiffness_n_m", kStiffnessRange);
+      f.sigma.stiffness_n_m = t.in("stiffness_n_m_sigma", sigma_range(kStiffnessRange));
     }
     t.no_unknown_keys();
   }
   if (root.get("lost_motion") != nullptr) {
     Table t(table_of(root, "lost_motion", origin), "lost_motion", origin);
-    b.lost_motion_m_per_n = t.positive("m_per_n");
-    f.sigma.lost_motion_m_per_n = t.number("m_per_n_sigma");
-    b.lost_motion_share = t.positive("share");
-    f.sigma.lost_motion_share = t.number("share_sigma");
-    if (b.lost_motion_share > 1.0) fail(origin, t.where("share"), "lost_motion.share", "expected a share in (0, 1]");
+    b.lost_motion_m_per_n = t.in("m_per_n", kPlayRange);
+    f.sigma.lost_motion_m_per_n = t.in("m_per_n_sigma", sigma_range(kPlayRange));
+    b.lost_motion_share = t.in("share", kShareRange);
+    f.sigma.lost_motion_share = t.in("share_sigma", sigma_range(kShareRange));
     if (t.has("band_m_s")) {
-      b.lost_motion_band_m_s = t.positive("band_m_s");
-      f.sigma.lost_motion_band_m_s = t.number("band_m_s_sigma");
+      b.lost_motion_band_m_s = t.in("band_m_s", kVelocityBandRange);
+      f.sigma.lost_motion_band_m_s = t.in("band_m_s_sigma", sigma_range(kVelocityBandRange));
     }
     t.no_unknown_keys();
   }
   {
     Table ch(table_of(root, "channels", origin), "channels", origin);
-    b.force_delay_s = ch.number("force_delay_s");
-    f.sigma.force_delay_s = ch.number("force_delay_s_sigma");
-    if (b.force_delay_s < 0.0 || b.force_delay_s > 0.1)
-      fail(origin, ch.where("force_delay_s"), "channels.force_delay_s", "expected a lag in [0, 0.1] s");
+    b.force_delay_s = ch.in("force_delay_s", kForceDelayRange);
+    f.sigma.force_delay_s = ch.in("force_delay_s_sigma", sigma_range(kForceDelayRange));
     ch.no_unknown_keys();
   }
   {
     Table c(table_of(root, "coil", origin), "coil", origin);
-    b.coil.tau_slow_s = c.positive("tau_slow_s");
-    b.coil.tau_fast_s = c.positive("tau_fast_s");
-    b.coil.weight_slow = c.number("weight_slow");
-    b.coil.weight_fast = c.number("weight_fast");
+    b.coil.tau_slow_s = c.in("tau_slow_s", kCoilTimeConstantRange);
+    b.coil.tau_fast_s = c.in("tau_fast_s", kCoilTimeConstantRange);
+    b.coil.weight_slow = c.in("weight_slow", kCoilWeightRange);
+    b.coil.weight_fast = c.in("weight_fast", kCoilWeightRange);
     b.coil_identified = c.boolean("identified");
-    if (c.has("tau_slow_s_sigma")) f.sigma.coil_tau_slow_s = c.number("tau_slow_s_sigma");
-    if (c.has("tau_fast_s_sigma")) f.sigma.coil_tau_fast_s = c.number("tau_fast_s_sigma");
+    const PhysicalRange tau_sigma = sigma_range(kCoilTimeConstantRange);
+    if (c.has("tau_slow_s_sigma")) f.sigma.coil_tau_slow_s = c.in("tau_slow_s_sigma", tau_sigma);
+    if (c.has("tau_fast_s_sigma")) f.sigma.coil_tau_fast_s = c.in("tau_fast_s_sigma", tau_sigma);
     if (std::fabs(b.coil.weight_slow + b.coil.weight_fast - 1.0) > 1e-9)
       fail(origin, c.where("weight_fast"), "coil.weight_fast", "expected weight_slow + weight_fast = 1 (unity DC gain)");
     c.no_unknown_keys();
@@ -394,32 +406,32 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
   {
     Table p(table_of(root, "participant_ratio", origin), "participant_ratio", origin);
     auto& q = b.pr;
-    q.a_initial = p.number("a_initial");
-    q.b_initial = p.number("b_initial");
-    q.c_initial = p.number("c_initial");
-    q.a_final = p.number("a_final");
-    q.b_final = p.number("b_final");
-    q.c_final = p.number("c_final");
-    q.a_rise = p.number("a_rise");
-    q.b_rise = p.number("b_rise");
-    q.c_rise = p.number("c_rise");
-    q.flow_area_m2 = p.positive("flow_area_m2");
-    q.volume_unit_m3 = p.positive("volume_unit_m3");
+    q.a_initial = p.in("a_initial", kParticipantRatioRange);
+    q.b_initial = p.in("b_initial", kParticipantRatioRange);
+    q.c_initial = p.in("c_initial", kSettlingRateRange);
+    q.a_final = p.in("a_final", kParticipantRatioRange);
+    q.b_final = p.in("b_final", kParticipantRatioRange);
+    q.c_final = p.in("c_final", kSettlingRateRange);
+    q.a_rise = p.in("a_rise", kMixingRateRange);
+    q.b_rise = p.in("b_rise", kMixingRateRange);
+    q.c_rise = p.in("c_rise", kSettlingRateRange);
+    q.flow_area_m2 = p.in("flow_area_m2", kFlowAreaRange);
+    q.volume_unit_m3 = p.in("volume_unit_m3", kVolumeUnitRange);
     f.pr_identified = p.boolean("identified");
     p.no_unknown_keys();
   }
   {
     Table v(table_of(root, "validity", origin), "validity", origin);
     auto& r = b.range;
-    r.current_min_a = v.number("current_min_a");
-    r.current_max_a = v.number("current_max_a");
-    r.velocity_max_m_s = v.positive("velocity_max_m_s");
-    r.force_peak_n = v.positive("force_peak_n");
-    r.amplitude_min_m = v.number("amplitude_min_m");
-    r.amplitude_max_m = v.number("amplitude_max_m");
-    r.frequency_min_hz = v.number("frequency_min_hz");
-    r.frequency_max_hz = v.number("frequency_max_hz");
-    b.expected_gap = v.number("expected_gap");
+    r.current_min_a = v.in("current_min_a", kRecordCurrentRange);
+    r.current_max_a = v.in("current_max_a", kRecordCurrentRange);
+    r.velocity_max_m_s = v.in("velocity_max_m_s", kRecordVelocityRange);
+    r.force_peak_n = v.in("force_peak_n", kRecordForceRange);
+    r.amplitude_min_m = v.in("amplitude_min_m", kRecordAmplitudeRange);
+    r.amplitude_max_m = v.in("amplitude_max_m", kRecordAmplitudeRange);
+    r.frequency_min_hz = v.in("frequency_min_hz", kRecordFrequencyRange);
+    r.frequency_max_hz = v.in("frequency_max_hz", kRecordFrequencyRange);
+    b.expected_gap = v.in("expected_gap", kGapRange);
     const auto order = [&](double lo, double hi, const char* key, const char* what) {
       if (lo > hi) fail(origin, v.where(key), v.field(key), std::string("expected at least ") + what + " (" + num(lo) + ")");
     };
@@ -441,8 +453,8 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       if (t.has("transition_time")) r.transition_time = t.boolean("transition_time");
       if (t.has("lost_motion")) r.lost_motion = t.boolean("lost_motion");
       if (t.has("viscous_lost_motion")) r.viscous_lost_motion = t.boolean("viscous_lost_motion");
-      r.gap = t.number("gap");
-      r.samples = t.count("samples");
+      r.gap = t.in("gap", kGapRange);
+      r.samples = t.count("samples", kMaxRecordSamples);
       t.no_unknown_keys();
       f.fits.push_back(std::move(r));
     }
@@ -451,11 +463,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
 }
 
 BaselineFile read_baseline_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw io::UsageError(path.string() + ": cannot read the baseline file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_baseline_toml(ss.str(), path.string());
+  return parse_baseline_toml(io::read_regular_file(path, kMaxBaselineFileBytes), io::file_label(path));
 }
 
 void write_baseline_file(const BaselineFile& f, const std::filesystem::path& path) {

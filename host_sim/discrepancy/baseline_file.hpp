@@ -63,14 +63,26 @@ struct BaselineFile {
 /// TOML text of `f` (numbers written so that they read back exactly).
 [[nodiscard]] std::string baseline_toml(const BaselineFile& f);
 
+/// Largest damper.toml read, bytes. A file is a few kB; its [[fit]] tables
+/// take about 120 bytes per record and form, so ten thousand records of ten
+/// forms fit in 12 MB.
+inline constexpr std::size_t kMaxBaselineFileBytes = std::size_t{16} << 20;
+
 /// Parses TOML text. Errors read `origin:LINE: field: what was expected` and
 /// are thrown as io::UsageError: a syntax error, a missing or unknown table
-/// or key, a wrong type, an unknown law, a non-finite number, a negative
-/// value where the quantity is physical, a range whose minimum exceeds its
-/// maximum.
+/// or key, a wrong type, an unknown law, a non-finite number, a number
+/// outside its physical range (physical_ranges.hpp; the message states the
+/// range), coil weights that do not sum to 1, a range whose minimum exceeds
+/// its maximum.
+///
+/// baseline_toml writes a standard error larger than its range's top as that
+/// top (with a comment): such a parameter is not identified, and the file
+/// reads back.
 [[nodiscard]] BaselineFile parse_baseline_toml(const std::string& text, const std::string& origin);
 
-/// Reads a damper.toml file (io::UsageError when it cannot be read or is invalid).
+/// Reads a damper.toml file through io::read_regular_file (a regular file of
+/// at most kMaxBaselineFileBytes, opened without blocking). io::UsageError
+/// when it cannot be read or is invalid.
 [[nodiscard]] BaselineFile read_baseline_file(const std::filesystem::path& path);
 
 /// Writes baseline_toml(f) to `path` atomically.

@@ -13,6 +13,7 @@
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/discrepancy/physical_ranges.hpp"
 #include "host_sim/discrepancy/solver_options.hpp"
 #include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
@@ -42,6 +43,19 @@ constexpr std::array<double, kSlots> kLower{1e-3,  1e-3, 0.02, 1e-3, 1e-3, 0.02,
                                             1e-2,  1e-5, 1e-12, 1e-3, 1e-6, 1e-5, 1e-4, 1e-4};
 constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1,
                                             1e9, 0.1, 1e-5, 1.0,  0.1,  10.0, 10.0, 10.0};
+
+/// Whether slot `s` is searched inside the physical range `r` that damper.toml
+/// holds it to (physical_ranges.hpp).
+constexpr bool searched_within(Slot s, const PhysicalRange& r) { return r.min <= kLower[s] && kUpper[s] <= r.max; }
+// Every value a calibration can write reads back from its damper.toml.
+static_assert(searched_within(kYa, kYieldForceRange) && searched_within(kYb, kYieldForceRange) &&
+              searched_within(kYc, kCurrentRateRange) && searched_within(kCa, kViscousRange) &&
+              searched_within(kCb, kViscousRange) && searched_within(kCc, kCurrentRateRange) &&
+              searched_within(kVtf, kVelocityBandRange) && searched_within(kXy, kYieldDispRange) &&
+              searched_within(kK0, kStiffnessRange) && searched_within(kDelay, kForceDelayRange) &&
+              searched_within(kPlay, kPlayRange) && searched_within(kShare, kShareRange) &&
+              searched_within(kTau, kTransitionTimeRange) && searched_within(kBand, kVelocityBandRange) &&
+              searched_within(kCoilSlow, kCoilTimeConstantRange) && searched_within(kCoilFast, kCoilTimeConstantRange));
 
 double& slot_ref(Baseline& b, Slot s) {
   switch (s) {

@@ -167,7 +167,8 @@ RecordFloors record_floors(const CalibrationResult& r, std::span<const MeasuredD
           record_floor_gaps(form, test, options)};
 }
 
-json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOut& test, const RecordFloors& floors) {
+json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOut& test, const RecordFloors& floors,
+                      const std::vector<std::string>& warnings) {
   json fits = json::array();
   for (const LawFit& f : r.fits) fits.push_back(fit_json(f, r));
   const auto per_record = [&](const HeldOut& set) {
@@ -187,6 +188,7 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
           {"records", r.sources},
           {"currents_a", r.currents_a},
           {"notes", r.notes},
+          {"warnings", warnings},
           {"fits", fits},
           {"held_out", held},
           {"test", test_json},
@@ -210,7 +212,8 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
 std::vector<std::string> write_calibration_outputs(const std::filesystem::path& dir,
                                                    std::span<const MeasuredData> records, const CalibrationResult& r,
                                                    const HeldOut& held_out, const CalibrateOptions& options,
-                                                   bool plots, const HeldOut& test, const RecordFloors& floors) {
+                                                   bool plots, const HeldOut& test, const RecordFloors& floors,
+                                                   const std::vector<std::string>& warnings) {
   std::vector<std::string> problems;
   write_baseline_file(baseline_file_of(r), dir / "damper.toml");
   if (plots) {
@@ -218,7 +221,7 @@ std::vector<std::string> write_calibration_outputs(const std::filesystem::path& 
       plot_record(dir / ("loops_" + std::to_string(i + 1) + ".png"), records[i], r, options, problems);
   }
   report::write_file_atomically(dir / "report.md", markdown(r, held_out, test, floors, plots));
-  report::write_summary_json(dir, calibration_json(r, held_out, test, floors));
+  report::write_summary_json(dir, calibration_json(r, held_out, test, floors, warnings));
   return problems;
 }
 

@@ -41,10 +41,12 @@ struct RecordFloors {
 /// Every form's parameters (value, sigma, fitted, at_bound), rss, n_eff,
 /// BIC, per-record gaps, the gaps on the check records (`held_out`) and on
 /// the test records (`test`: records no choice saw, with the chosen form's
-/// RMS gap over them), the choice and why, the notes, and the chosen form's
-/// floors when computed (`floors`: null when not).
+/// RMS gap over them), the choice and why, the notes, the chosen form's
+/// floors when computed (`floors`: null when not), and the plausibility
+/// warnings about the records (`warnings`, plausibility.hpp).
 [[nodiscard]] nlohmann::json calibration_json(const CalibrationResult& r, const HeldOut& held_out,
-                                              const HeldOut& test = {}, const RecordFloors& floors = {});
+                                              const HeldOut& test = {}, const RecordFloors& floors = {},
+                                              const std::vector<std::string>& warnings = {});
 
 /// Writes damper.toml, summary.json, report.md and (with `plots`) one
 /// loops_<n>.png per record into `dir` (which must exist). Returns the
@@ -53,6 +55,7 @@ std::vector<std::string> write_calibration_outputs(const std::filesystem::path& 
                                                    std::span<const MeasuredData> records, const CalibrationResult& r,
                                                    const HeldOut& held_out, const CalibrateOptions& options,
                                                    bool plots = true, const HeldOut& test = {},
-                                                   const RecordFloors& floors = {});
+                                                   const RecordFloors& floors = {},
+                                                   const std::vector<std::string>& warnings = {});
 
 }  // namespace mrd::discrepancy

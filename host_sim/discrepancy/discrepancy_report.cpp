@@ -290,6 +290,7 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
   j["coil_current"] = data.current_a.empty() ? "commanded" : "measured";
   j["verdict"] = verdict_name(r.verdict);
   j["findings"] = r.findings;
+  j["warnings"] = r.warnings;
   j["baseline"] = json{{"name", r.baseline_name},
                        {"expected_gap", r.expected_gap},
                        {"mismatch", r.baseline_check.mismatch},

@@ -510,6 +510,7 @@ MeasuredData read_mat(const fs::path& path) {
                                                  : "variable number " + std::to_string(cut->index + 1);
     throw UsageError(label + ": " + which + " " + cut->reason);
   }
+  // reader policy: checked by io::read_regular_file above (the same path, read whole within the limit).
   MatFile mat(Mat_Open(label.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw UsageError(label + ": not a readable MATLAB .mat file");
   std::vector<std::string> names;

@@ -170,6 +170,9 @@ struct DiscrepancyResult {
   std::size_t fit_stride = 1;
   std::size_t fit_samples = 0;
   bool velocity_derived = false;
+  /// Plausibility warnings about the record (plausibility.hpp), set by the
+  /// caller that printed them; summary.json's `warnings`.
+  std::vector<std::string> warnings;
   // Traces at the record's samples, for reports and plots.
   std::vector<double> disp_m, vel_m_s, coil_current_a, baseline_force_n, updated_force_n;
 

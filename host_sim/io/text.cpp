@@ -1,15 +1,10 @@
 #include "host_sim/io/text.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <cctype>
-#include <cstdint>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 
+#include "firmware/platform/linux/regular_file.hpp"
 #include "host_sim/io/usage_error.hpp"
 
 namespace mrd::io {
@@ -84,67 +79,28 @@ std::string_view strip_bom(std::string_view text) noexcept {
 
 std::string file_label(const std::filesystem::path& path) { return path.string(); }
 
+std::string errno_text(int err) { return std::strerror(err); }
+
 namespace {
 
-std::string size_text(std::size_t bytes) {
-  if (bytes >= (std::size_t{1} << 20)) return std::to_string(bytes >> 20) + " MiB";
-  return std::to_string(bytes) + " bytes";
-}
-
-/// Refuses what is not a regular file of at most `max_bytes`.
-void check_status(const std::string& file, const struct stat& st, std::size_t max_bytes) {
-  if (S_ISDIR(st.st_mode)) throw UsageError(file + ": is a folder, expected a regular file");
-  if (S_ISFIFO(st.st_mode)) throw UsageError(file + ": is a pipe (FIFO), expected a regular file");
-  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) throw UsageError(file + ": is a device, expected a regular file");
-  if (!S_ISREG(st.st_mode)) throw UsageError(file + ": is not a regular file");
-  if (static_cast<std::uintmax_t>(st.st_size) > max_bytes) {
-    throw UsageError(file + ": " + std::to_string(st.st_size) + " bytes, larger than the limit of " +
-                     size_text(max_bytes));
-  }
+/// "<file>: <problem>" as a usage error.
+[[noreturn]] void refuse_file(const std::filesystem::path& path, const posix::FileCheck& check,
+                              std::size_t max_bytes) {
+  throw UsageError(file_label(path) + ": " + posix::problem_text(check, max_bytes));
 }
 
 }  // namespace
 
-std::string errno_text(int err) { return std::strerror(err); }
-
 void check_regular_file(const std::filesystem::path& path, std::size_t max_bytes) {
-  const std::string file = file_label(path);
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) {
-    const int err = errno;
-    if (err == ENOENT) throw UsageError(file + ": file not found");
-    throw UsageError(file + ": cannot read: " + std::strerror(err));
+  if (const posix::FileCheck c = posix::check_regular_file(path.c_str(), max_bytes); !c.ok()) {
+    refuse_file(path, c, max_bytes);
   }
-  check_status(file, st, max_bytes);
 }
 
 std::string read_regular_file(const std::filesystem::path& path, std::size_t max_bytes) {
-  const std::string file = file_label(path);
-  check_regular_file(path, max_bytes);
-  // O_NONBLOCK: a file swapped for a FIFO after the check still cannot block the open.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
-  if (fd < 0) throw UsageError(file + ": cannot open: " + std::strerror(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) throw UsageError(file + ": cannot read: " + std::strerror(errno));
-  check_status(file, st, max_bytes);
   std::string data;
-  data.reserve(static_cast<std::size_t>(st.st_size));
-  char buf[1 << 16];
-  for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw UsageError(file + ": read error: " + std::strerror(errno));
-    }
-    if (n == 0) break;
-    data.append(buf, static_cast<std::size_t>(n));
-    if (data.size() > max_bytes) {
-      throw UsageError(file + ": larger than the limit of " + size_text(max_bytes));
-    }
+  if (const posix::FileCheck c = posix::read_regular_file(path.c_str(), max_bytes, data); !c.ok()) {
+    refuse_file(path, c, max_bytes);
   }
   return data;
 }

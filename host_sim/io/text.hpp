@@ -44,11 +44,12 @@ namespace mrd::io {
 /// How error messages name a file: its path as given.
 [[nodiscard]] std::string file_label(const std::filesystem::path& path);
 
-/// The whole content of the regular file `path`, read through a descriptor
-/// that cannot block (FIFOs, devices and folders are refused before any read).
-/// Throws io::UsageError "<file>: <problem>" for a missing file, one that is
-/// not a regular file, one larger than `max_bytes` (the limit is stated), or a
-/// read error.
+/// The whole content of the regular file `path`, read under the reader policy
+/// (posix::read_regular_file, firmware/platform/linux/regular_file.hpp: a
+/// descriptor that cannot block; FIFOs, devices and folders are refused before
+/// any read). Throws io::UsageError "<file>: <problem>" for a missing file, one
+/// that is not a regular file, one larger than `max_bytes` (the limit is
+/// stated), or a read error.
 [[nodiscard]] std::string read_regular_file(const std::filesystem::path& path, std::size_t max_bytes);
 
 /// Checks that `path` names a regular file of at most `max_bytes` (the same

@@ -11,6 +11,9 @@
 #include <string>
 
 #include "firmware/app/board_config.hpp"
+#include "firmware/app/option_checks.hpp"
+#include "firmware/platform/linux/regular_file.hpp"
+#include "host_sim/io/text.hpp"
 #include "host_sim/plant/plant.hpp"
 
 namespace mrd::peers {
@@ -30,6 +33,7 @@ inline void install_stop_signals() {
 inline std::optional<int> parse_options(CLI::App& app, int argc, char** argv, const char* who) {
   try {
     app.parse(argc, argv);
+    app::refuse_empty_values(app);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::fprintf(stderr, "%s: error: %s\n", who, e.what());
@@ -38,8 +42,17 @@ inline std::optional<int> parse_options(CLI::App& app, int argc, char** argv, co
   return std::nullopt;
 }
 
-/// The board file's settings when one is given, else the defaults; throws
-/// app::BoardConfigError naming the file and line.
+/// The board file `path`, read under the reader policy (a regular file of at
+/// most app::kMaxBoardFileBytes, opened without blocking; io::UsageError
+/// "<file>: <problem>" otherwise) and parsed, its state path checked as
+/// mrd-firmware checks it (app::BoardConfigError naming file, line and field).
+inline app::BoardConfig load_board_file(const std::string& path) {
+  return app::parse_board_config(io::read_regular_file(path, app::kMaxBoardFileBytes), io::file_label(path),
+                                 posix::non_regular_problem);
+}
+
+/// The board file's settings when one is given (no --board: `path` empty),
+/// else the defaults; throws as load_board_file().
 inline app::BoardConfig board_or_defaults(const std::string& path) {
   if (path.empty()) {
     app::BoardConfig b;
@@ -47,7 +60,7 @@ inline app::BoardConfig board_or_defaults(const std::string& path) {
     b.can_interface = "vcan0";
     return b;
   }
-  return app::load_board_config(path);
+  return load_board_file(path);
 }
 
 /// "key=value ..." with every double to 17 significant digits (round-trip).

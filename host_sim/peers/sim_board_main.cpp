@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   app.add_option("--mode", mode, "Override the board's mode: passive-off | passive-on | semi-active");
   if (const auto status = peers::parse_options(app, argc, argv, "mrd-sim-board")) return *status;
   try {
-    app::BoardConfig board = app::load_board_config(board_file);
+    app::BoardConfig board = peers::load_board_file(board_file);
     if (!mode.empty()) {
       const auto m = control::parse_mode_name(mode);
       if (!m) throw io::UsageError("--mode: expected passive-off, passive-on or semi-active, got '" + mode + "'");

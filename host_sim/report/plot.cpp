@@ -434,6 +434,7 @@ PlotResult run_gnuplot(const std::string& script, const fs::path& dir, const Plo
 }
 
 bool starts_with_png_signature(const fs::path& file) {
+  // reader policy: not a user's file: the image gnuplot just wrote under this run's own temporary name.
   Fd fd(::open(file.c_str(), O_RDONLY | O_CLOEXEC));
   if (fd.get() < 0) return false;
   std::array<unsigned char, kPngSignature.size()> head{};

@@ -7,6 +7,7 @@
 #include "host_sim/report/output_dir.hpp"
 #include "host_sim/report/plot.hpp"
 #include "host_sim/report/summary_json.hpp"
+#include "host_sim/run/validity.hpp"
 #include "mrd/control/io.hpp"
 
 namespace mrd::risk {
@@ -26,6 +27,18 @@ nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 
 }  // namespace
 
+std::vector<std::string> fragility_warnings(const std::vector<RunMetrics>& runs) {
+  std::vector<run::ValidityPeaks> peaks;
+  peaks.reserve(runs.size());
+  for (const RunMetrics& m : runs) {
+    run::ValidityPeaks p;
+    p.stroke_m = m.peak_base_displacement_m;
+    p.force_n = m.peak_damper_force_n;  // velocity and current: not recorded, left at 0
+    peaks.push_back(p);
+  }
+  return run::validity_warnings(peaks);
+}
+
 std::string runs_csv(const FragilityPlan& plan, const std::vector<RunMetrics>& runs) {
   std::string s =
       "run,record,control,idle_years,pga_g,peak_base_displacement_m,peak_damper_force_kn,peak_floor_accel_m_s2,"
@@ -43,7 +56,9 @@ std::string runs_csv(const FragilityPlan& plan, const std::vector<RunMetrics>& r
 
 std::string fragility_csv(const FragilityPlan& plan, const std::vector<LimitState>& limit_states,
                           const std::vector<FragilityCurve>& curves) {
-  std::string s = std::string(kFragilityCsvHeader) + "\n";
+  std::string s = std::string(kFragilityCsvHeader) + "," + kFragilityCsvRangeColumns + "\n";
+  const std::string range = plan.pga_g.empty() ? std::string(",nan,nan")
+                                               : ',' + num(plan.pga_g.front()) + ',' + num(plan.pga_g.back());
   for (const auto& c : curves) {
     unsigned runs = 0, exceed = 0;
     for (const auto& l : c.levels) {
@@ -55,7 +70,7 @@ std::string fragility_csv(const FragilityPlan& plan, const std::vector<LimitStat
          num(limit_states[c.limit_state].threshold) + ',' + num(plan.idle_years[c.idle]) + ',' +
          fit_status_name(c.fit.status) + ',' + num(c.fit.median_im) + ',' + (fitted ? num(c.fit.beta) : "nan") + ',' +
          num(c.band.median_low) + ',' + num(c.band.median_high) + ',' + num(c.band.beta_low) + ',' +
-         num(c.band.beta_high) + ',' + std::to_string(runs) + ',' + std::to_string(exceed) + '\n';
+         num(c.band.beta_high) + ',' + std::to_string(runs) + ',' + std::to_string(exceed) + range + '\n';
   }
   return s;
 }
@@ -111,6 +126,7 @@ nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<Li
           {"bootstrap_resamples", session.bootstrap},
           {"limit_states", states},
           {"curves", fits},
+          {"warnings", session.warnings},
           {"ranks", session.ranks},
           {"threads_per_rank", session.threads_per_rank},
           {"wall_s", session.wall_s},

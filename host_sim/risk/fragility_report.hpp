@@ -19,6 +19,10 @@ namespace mrd::risk {
 inline constexpr const char* kFragilityCsvHeader =
     "control,limit_state,threshold,idle_years,status,median_pga_g,beta,median_pga_g_p05,median_pga_g_p95,"
     "beta_p05,beta_p95,runs,exceedances";
+/// Columns fragility.csv has after kFragilityCsvHeader: the lowest and highest
+/// PGA level the curves were fitted over, g (beyond them a curve is
+/// extrapolated). `mrd risk` reads them when present.
+inline constexpr const char* kFragilityCsvRangeColumns = "pga_g_min,pga_g_max";
 
 std::string runs_csv(const FragilityPlan& plan, const std::vector<RunMetrics>& runs);
 std::string fragility_csv(const FragilityPlan& plan, const std::vector<LimitState>& limit_states,
@@ -36,7 +40,15 @@ struct FragilitySession {
   unsigned threads_per_rank = 1;
   unsigned bootstrap = 0;
   bool synthetic = false;
+  std::vector<std::string> warnings;  ///< fragility_warnings of the runs
 };
+
+/// Where the runs leave the model (run::validity_warnings over every run):
+/// one sentence per limit, with the number of runs beyond it and the worst
+/// peak. The runs keep the peak stroke (base displacement) and damper force;
+/// the velocity and coil current are not recorded per run, so those limits
+/// are not checked here.
+std::vector<std::string> fragility_warnings(const std::vector<RunMetrics>& runs);
 
 nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<LimitState>& limit_states,
                                  const std::vector<FragilityCurve>& curves, const FragilitySession& session);

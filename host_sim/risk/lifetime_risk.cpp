@@ -35,14 +35,26 @@ double parse_number(std::string_view field, const std::string& prefix, const cha
 
 std::string num4(double v) { return io::format_number("%.4g", v); }
 
+std::string percent(double fraction) { return io::format_number("%.0f", 100.0 * fraction) + " %"; }
+
+/// The part of `total` not in `in_range`, in [0, 1] (0 for a zero total).
+double extrapolated_part(double total, double in_range) {
+  if (!(total > 0.0)) return 0.0;
+  return std::clamp(1.0 - in_range / total, 0.0, 1.0);
+}
+
+std::string pga_range(double lo_g, double hi_g) { return num4(lo_g) + "-" + num4(hi_g) + " g"; }
+
 }  // namespace
 
 std::vector<FragilityRow> parse_fragility_csv(std::string_view text, const std::string& file) {
   text = io::strip_bom(text);
   const auto header = io::split_commas(kFragilityCsvHeader);
+  const auto range_columns = io::split_commas(kFragilityCsvRangeColumns);
   std::vector<FragilityRow> rows;
   std::size_t line_no = 0, pos = 0;
   bool seen_header = false;
+  std::size_t fields = header.size();  // with the range columns when the header has them
   while (pos < text.size()) {
     const std::size_t eol = std::min(text.find('\n', pos), text.size());
     const std::string_view line = io::trim(text.substr(pos, eol - pos));
@@ -57,11 +69,14 @@ std::vector<FragilityRow> parse_fragility_csv(std::string_view text, const std::
                              std::string(kFragilityCsvHeader).substr(0, 40) + "...')");
       }
       seen_header = true;
+      if (f.size() >= header.size() + range_columns.size() &&
+          std::equal(range_columns.begin(), range_columns.end(), f.begin() + static_cast<long>(header.size()))) {
+        fields += range_columns.size();
+      }
       continue;
     }
-    if (f.size() < header.size()) {
-      throw io::UsageError(prefix + "expected " + std::to_string(header.size()) + " fields, got " +
-                           std::to_string(f.size()));
+    if (f.size() < fields) {
+      throw io::UsageError(prefix + "expected " + std::to_string(fields) + " fields, got " + std::to_string(f.size()));
     }
     FragilityRow r;
     r.control = std::string(f[0]);
@@ -90,6 +105,17 @@ std::vector<FragilityRow> parse_fragility_csv(std::string_view text, const std::
     } else {
       throw io::UsageError(prefix + "field 'status': expected fitted, none_exceeded or all_exceeded, got '" +
                            io::excerpt(f[4], 40) + "'");
+    }
+    if (fields > header.size()) {
+      const std::size_t c = header.size();
+      r.pga_min_g = parse_number(f[c], prefix, "pga_g_min");
+      r.pga_max_g = parse_number(f[c + 1], prefix, "pga_g_max");
+      if (!(r.pga_min_g > 0.0) || !std::isfinite(r.pga_min_g)) {
+        throw io::UsageError(prefix + "field 'pga_g_min': expected the lowest PGA level, > 0 g");
+      }
+      if (!(r.pga_max_g >= r.pga_min_g) || !std::isfinite(r.pga_max_g)) {
+        throw io::UsageError(prefix + "field 'pga_g_max': expected the highest PGA level, >= pga_g_min");
+      }
     }
     rows.push_back(std::move(r));
   }
@@ -123,13 +149,24 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
   r.control = control.empty() ? rows.front().control : control;
   r.hazard_source = hazard.source;
   std::map<std::string, std::vector<std::pair<double, LognormalFit>>> by_state;
+  bool range_known = true;
+  double pga_lo_g = std::numeric_limits<double>::infinity(), pga_hi_g = 0.0;
   for (const auto& row : rows) {
     if (row.control != r.control) continue;
+    range_known = range_known && std::isfinite(row.pga_min_g) && std::isfinite(row.pga_max_g);
+    pga_lo_g = std::min(pga_lo_g, row.pga_min_g);
+    pga_hi_g = std::max(pga_hi_g, row.pga_max_g);
     if (!by_state.count(row.limit_state)) r.limit_states.push_back(row.limit_state);
     by_state[row.limit_state].push_back({row.idle_years, row.fit});
   }
   if (r.limit_states.empty())
     throw io::UsageError("--control: no fragility curves for control mode '" + r.control + "'");
+  if (range_known) {
+    r.fitted_pga_min_g = pga_lo_g;
+    r.fitted_pga_max_g = pga_hi_g;
+  }
+  // λ_LS(τ_k) from the PGAs within the fitted levels alone (range known).
+  std::map<std::string, std::vector<double>> in_range_at_idle;
   for (const auto& name : r.limit_states) {
     auto& curves = by_state[name];
     std::sort(curves.begin(), curves.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -142,6 +179,13 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
       }
       idle.push_back(tau);
       freq.push_back(limit_state_frequency(hazard, [&fit = fit](double x) { return fit.probability(x); }));
+      if (range_known) {
+        const double in = limit_state_frequency(hazard, [&fit = fit, pga_lo_g, pga_hi_g](double x) {
+          return x >= pga_lo_g && x <= pga_hi_g ? fit.probability(x) : 0.0;
+        });
+        in_range_at_idle[name].push_back(in);
+        r.extrapolated_fraction_at_idle[name].push_back(extrapolated_part(freq.back(), in));
+      }
     }
     if (r.idle_years.empty()) {
       r.idle_years = idle;
@@ -164,7 +208,7 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
       pr.idle_fraction.push_back(
           {grid[k], k + 1 < grid.size() ? grid[k + 1] : std::numeric_limits<double>::infinity(), 0.0});
     }
-    std::map<std::string, double> sums;
+    std::map<std::string, double> sums, in_range_sums;
     double tau_sum = 0.0;
     const std::size_t days = p.daily_min_capacity.size();
     for (double c : p.daily_min_capacity) {
@@ -174,12 +218,18 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
       std::size_t bin = 0;
       while (bin + 1 < grid.size() && tau >= grid[bin + 1]) ++bin;
       pr.idle_fraction[bin].fraction += 1.0;
-      for (const auto& name : r.limit_states) sums[name] += frequency_at(grid, r.frequency_at_idle[name], tau);
+      for (const auto& name : r.limit_states) {
+        sums[name] += frequency_at(grid, r.frequency_at_idle[name], tau);
+        if (range_known) in_range_sums[name] += frequency_at(grid, in_range_at_idle[name], tau);
+      }
     }
     days_all += days;
     for (auto& b : pr.idle_fraction) b.fraction /= static_cast<double>(std::max<std::size_t>(days, 1));
     pr.mean_equivalent_idle_years = tau_sum / static_cast<double>(std::max<std::size_t>(days, 1));
-    for (const auto& name : r.limit_states) pr.annual_exceedance[name] = sums[name] / static_cast<double>(days);
+    for (const auto& name : r.limit_states) {
+      pr.annual_exceedance[name] = sums[name] / static_cast<double>(days);
+      if (range_known) pr.extrapolated_fraction[name] = extrapolated_part(sums[name], in_range_sums[name]);
+    }
     r.policies.push_back(std::move(pr));
   }
   r.days_beyond_study_fraction = static_cast<double>(beyond) / static_cast<double>(std::max<std::size_t>(days_all, 1));
@@ -187,11 +237,63 @@ RiskResult compute_risk(const std::vector<FragilityRow>& rows, const std::string
   ref.name = kReference;
   ref.cycles_per_year = std::numeric_limits<double>::quiet_NaN();
   ref.idle_fraction.push_back({0.0, 0.0, 1.0});
-  for (const auto& name : r.limit_states)
+  for (const auto& name : r.limit_states) {
     ref.annual_exceedance[name] = frequency_at(grid, r.frequency_at_idle[name], 0.0);
+    if (range_known) {
+      ref.extrapolated_fraction[name] =
+          extrapolated_part(ref.annual_exceedance[name], frequency_at(grid, in_range_at_idle[name], 0.0));
+    }
+  }
   r.policies.push_back(std::move(ref));
   r.schedule = std::move(sched);
+  r.warnings = risk_warnings(r, hazard);
   return r;
+}
+
+std::vector<std::string> risk_warnings(const RiskResult& r, const HazardCurve& hazard) {
+  std::vector<std::string> out;
+  if (r.days_beyond_study_fraction > 0.0) {
+    out.push_back(io::format_number("%.1f", 100.0 * r.days_beyond_study_fraction) +
+                  " % of the days are idler than the study's longest idle time (" + num4(r.idle_years.back()) +
+                  " years); their curves are held at it");
+  }
+  if (!std::isfinite(r.fitted_pga_min_g)) {
+    out.push_back(std::string("fragility.csv does not give the PGA levels its curves were fitted over (columns ") +
+                  kFragilityCsvRangeColumns +
+                  ", written by mrd fragility since they exist): how much of the result is extrapolated is not "
+                  "checked");
+    return out;
+  }
+  const std::string fitted = pga_range(r.fitted_pga_min_g, r.fitted_pga_max_g);
+  const std::string reach = pga_range(hazard.pga_g.front(), hazard.pga_g.back());
+  for (const auto& name : r.limit_states) {
+    const auto& part = r.extrapolated_fraction_at_idle.at(name);
+    const auto worst = std::max_element(part.begin(), part.end());
+    if (*worst <= kMaterialExtrapolation) continue;
+    out.push_back("the hazard curve (" + reach + ") reaches beyond the fragility's fitted PGA levels (" + fitted +
+                  "): " + percent(*worst) + " of the annual exceedance of " + name + " at idle " +
+                  num4(r.idle_years[static_cast<std::size_t>(worst - part.begin())]) +
+                  " years comes from extrapolated curves");
+  }
+  const PolicyRisk& ref = r.policies.back();
+  for (const auto& name : r.limit_states) {
+    const double ref_f = ref.annual_exceedance.at(name);
+    if (!(ref_f > 0.0)) continue;  // no ratio reported
+    const double ref_part = ref.extrapolated_fraction.at(name);
+    std::string listed;
+    for (std::size_t i = 0; i + 1 < r.policies.size(); ++i) {
+      const PolicyRisk& p = r.policies[i];
+      const double part = p.extrapolated_fraction.at(name);
+      if (part <= kMainlyExtrapolation && ref_part <= kMainlyExtrapolation) continue;
+      listed += (listed.empty() ? "" : ", ") + p.name + " " + num4(p.annual_exceedance.at(name) / ref_f) + "x (" +
+                percent(part) + ")";
+    }
+    if (listed.empty()) continue;
+    out.push_back("the ratios to " + ref.name + " for " + name + " rest mainly on extrapolated curves: " + listed +
+                  ", against " + percent(ref_part) + " for " + ref.name +
+                  " (in brackets: the part of the annual exceedance from PGAs outside " + fitted + ")");
+  }
+  return out;
 }
 
 nlohmann::json risk_summary(const RiskResult& r) {
@@ -212,11 +314,14 @@ nlohmann::json risk_summary(const RiskResult& r) {
                         {"cycles_per_year", value(p.cycles_per_year)},
                         {"annual_exceedance", ex},
                         {"relative_to_fully_mixed", rel},
+                        {"extrapolated_fraction", p.extrapolated_fraction},
                         {"mean_equivalent_idle_years", p.mean_equivalent_idle_years},
                         {"idle_time_fraction", bins}});
   }
   nlohmann::json at_idle = nlohmann::json::object();
   for (const auto& [name, f] : r.frequency_at_idle) at_idle[name] = f;
+  nlohmann::json extrapolated = nlohmann::json::object();
+  for (const auto& [name, f] : r.extrapolated_fraction_at_idle) extrapolated[name] = f;
   const auto& o = r.schedule.options;
   return {{"control", r.control},
           {"hazard", r.hazard_source},
@@ -224,6 +329,11 @@ nlohmann::json risk_summary(const RiskResult& r) {
           {"idle_years", r.idle_years},
           {"annual_exceedance_at_idle", at_idle},
           {"days_beyond_study_fraction", r.days_beyond_study_fraction},
+          {"fitted_pga_g", std::isfinite(r.fitted_pga_min_g)
+                               ? nlohmann::json{{"min", r.fitted_pga_min_g}, {"max", r.fitted_pga_max_g}}
+                               : nlohmann::json(nullptr)},
+          {"extrapolated_fraction_at_idle", extrapolated},
+          {"warnings", r.warnings},
           {"reference", kReference},
           {"schedule",
            {{"years", o.world.years},
@@ -268,6 +378,10 @@ std::vector<std::string> write_risk_outputs(const std::filesystem::path& dir, co
     }
     csv += "\n";
     md += "\n";
+  }
+  if (!r.warnings.empty()) {
+    md += "\nWarnings:\n\n";
+    for (const auto& w : r.warnings) md += "- " + w + "\n";
   }
   md += "\n![annual exceedance against idle time](risk.png)\n";
   report::write_file_atomically(dir / "risk.csv", csv);

@@ -16,6 +16,7 @@
 /// reference, always fully mixed, is λ_LS(0).
 
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -33,11 +34,15 @@ struct FragilityRow {
   std::string control, limit_state;
   double threshold = 0.0, idle_years = 0.0;
   LognormalFit fit;
+  /// The PGA levels the curve was fitted over, g (NaN when the file does not
+  /// say: written before the columns pga_g_min, pga_g_max existed).
+  double pga_min_g = std::numeric_limits<double>::quiet_NaN();
+  double pga_max_g = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Parses fragility.csv as `mrd fragility` writes it (kFragilityCsvHeader;
-/// extra columns after it are ignored). Errors: io::UsageError
-/// "<file>:<line>: field '<column>': ...".
+/// Parses fragility.csv as `mrd fragility` writes it (kFragilityCsvHeader,
+/// then optionally kFragilityCsvRangeColumns; other columns after them are
+/// ignored). Errors: io::UsageError "<file>:<line>: field '<column>': ...".
 std::vector<FragilityRow> parse_fragility_csv(std::string_view text, const std::string& file);
 std::vector<FragilityRow> read_fragility_csv(const std::filesystem::path& path);
 
@@ -51,6 +56,9 @@ struct PolicyRisk {
   double cycles_per_year = 0.0;  ///< NaN for the always-fully-mixed reference
   double mean_equivalent_idle_years = 0.0;
   std::map<std::string, double> annual_exceedance;  ///< limit state → 1/year
+  /// limit state → the part of annual_exceedance from PGAs outside the fitted
+  /// levels (empty when they are not known).
+  std::map<std::string, double> extrapolated_fraction;
   std::vector<IdleBin> idle_fraction;
 };
 
@@ -63,7 +71,32 @@ struct RiskResult {
   double days_beyond_study_fraction = 0.0;  ///< days whose τ exceeds the last τ_k (λ held there)
   std::vector<PolicyRisk> policies;         ///< the schedule's policies, then always-fully-mixed
   schedule::ScheduleResult schedule;
+  /// The PGA levels the control's curves were fitted over, g (NaN: not known).
+  double fitted_pga_min_g = std::numeric_limits<double>::quiet_NaN();
+  double fitted_pga_max_g = std::numeric_limits<double>::quiet_NaN();
+  /// limit state → per τ_k, the part of λ_LS(τ_k) that Eq. (1) of
+  /// hazard_curve.hpp takes at PGAs outside the fitted levels, where the
+  /// curve is extrapolated (empty when the levels are not known).
+  std::map<std::string, std::vector<double>> extrapolated_fraction_at_idle;
+  std::vector<std::string> warnings;  ///< risk_warnings
 };
+
+/// Part of a result resting on extrapolated fragility curves above which the
+/// hazard curve is said to reach materially beyond the fitted PGA levels.
+inline constexpr double kMaterialExtrapolation = 0.10;
+/// Part above which a ratio to the fully mixed reference is said to rest
+/// mainly on extrapolation.
+inline constexpr double kMainlyExtrapolation = 0.5;
+
+/// What the result cannot vouch for, one sentence each: days idler than the
+/// study's longest idle time; a fragility.csv that does not give its PGA
+/// levels; for each limit state whose annual exceedance at some idle time
+/// takes more than kMaterialExtrapolation from PGAs outside the fitted levels,
+/// the hazard's range, the levels and the worst part; for each limit state
+/// whose ratios to the reference rest mainly (more than kMainlyExtrapolation
+/// of the reference's or a policy's annual exceedance) on extrapolation, the
+/// ratios and the parts.
+std::vector<std::string> risk_warnings(const RiskResult& r, const HazardCurve& hazard);
 
 /// Equivalent idle time of a capacity fraction under the schedule's settling
 /// model, s, within [0, T_max].

@@ -63,7 +63,7 @@ StudyMotion load_study_motion(const fs::path& path, double pga_g, double step_s,
   return m;
 }
 
-StudyMotion synthetic_study_motion(unsigned seed, double pga_g, double step_s, double duration_s) {
+StudyMotion synthetic_study_motion(std::uint64_t seed, double pga_g, double step_s, double duration_s) {
   excitation::SyntheticMotionParams p;
   p.seed = seed;
   p.duration_s = duration_s;

@@ -4,6 +4,7 @@
 /// resampled to the run's step; or a synthetic motion when no record is at
 /// hand.
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -37,7 +38,7 @@ StudyMotion load_study_motion(const std::filesystem::path& path, double pga_g, d
 
 /// A synthetic stationary-filtered, enveloped motion (see
 /// excitation/synthetic_motion.hpp) scaled to `pga_g`.
-StudyMotion synthetic_study_motion(unsigned seed, double pga_g, double step_s, double duration_s);
+StudyMotion synthetic_study_motion(std::uint64_t seed, double pga_g, double step_s, double duration_s);
 
 /// The four records of Table 6.2 (cases a–d) at `pga_g`; when the shared
 /// folder is absent, four synthetic motions (seeds 1–4, 40 s) instead, with

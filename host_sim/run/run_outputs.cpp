@@ -147,6 +147,11 @@ nlohmann::json sim_summary_json(const SimRun& run) {
   j["step_s"] = run.spec.step_s;
   const plant::CoilFigures& c = run.summary.coil;
   j["plant"] = plant::plant_kind_name(run.spec.plant);
+  // What only the hardware plant uses: its sensor noise and where its damper
+  // is parked (the thesis plant's sensors are ideal and its damper centred).
+  const bool hardware = run.spec.plant == plant::PlantKind::kHardware;
+  j["sensor_seed"] = hardware ? nlohmann::json(run.spec.sensor_seed) : nlohmann::json(nullptr);
+  j["parking_offset_m"] = hardware ? nlohmann::json(run.spec.stroke_offset_m) : nlohmann::json(nullptr);
   j["peak_coil_current_a"] = c.peak_coil_current_a;
   j["rms_coil_current_a"] = c.rms_coil_current_a;
   j["time_above_rated_s"] = c.time_above_rated_s;

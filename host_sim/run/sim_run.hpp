@@ -24,7 +24,7 @@ struct SimSpec {
   double idle_years = 0.0;
   double duration_s = 0.0;      ///< 0: the record's length (40 s for a synthetic motion)
   double step_s = 1.0e-3;
-  unsigned seed = 1;            ///< of the synthetic motion
+  std::uint64_t seed = 1;       ///< of the synthetic motion
   bool keep_record = false;     ///< keep the time series for the outputs
   plant::PlantKind plant = plant::PlantKind::kThesis;
   std::uint64_t sensor_seed = 1;   ///< of the hardware plant's sensor noise

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mrd/units.hpp"
+#include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
 #include "host_sim/report/plot.hpp"
 #include "host_sim/report/summary_json.hpp"
@@ -39,14 +40,19 @@ nlohmann::json policy_json(const PolicyResult& p, double threshold) {
 
 }  // namespace
 
+void check_interval_days(const std::optional<double>& interval_days) {
+  if (!interval_days || (std::isfinite(*interval_days) && *interval_days >= kMinIntervalDays)) return;
+  throw io::UsageError("--interval-days: expected a number of days >= 0.0417 (1 hour), got " +
+                       io::format_number("%g", *interval_days) +
+                       " (leave the option out to search the longest interval that keeps the threshold)");
+}
+
 ScheduleResult run_schedule(const ScheduleOptions& o) {
   // Above 0.99 the threshold is reached within hours of a full mixing and
   // the fixed interval falls below the search's resolution of an hour.
   check(std::isfinite(o.threshold) && o.threshold > 0.0 && o.threshold <= 0.99,
         "--threshold: expected a capacity fraction > 0 and <= 0.99");
-  check(std::isfinite(o.interval_days) && o.interval_days >= 0.0,
-        "--interval-days: expected a number of days > 0 (or leave it out to search)");
-  check(o.interval_days == 0.0 || o.interval_days >= 1.0 / 24.0, "--interval-days: expected at least 1 hour (0.0417 days)");
+  check_interval_days(o.interval_days);
   check(std::isfinite(o.maintenance_days) && o.maintenance_days >= 0.0 && o.maintenance_days <= 365.0,
         "--maintenance-days: expected 0 to 365 days");
   check(std::isfinite(o.lead_hours) && o.lead_hours >= 0.0 && o.lead_hours <= 24.0 * 365.0,
@@ -71,9 +77,9 @@ ScheduleResult run_schedule(const ScheduleOptions& o) {
   r.threshold_idle_s = m.idle_of_pr(m.pr_of_capacity(o.threshold));
   r.plan = plan_at_threshold(c);
 
-  if (o.interval_days > 0.0) {
+  if (o.interval_days) {
     r.interval_from_option = true;
-    r.search.interval_s = o.interval_days * units::kSecondsPerDay;
+    r.search.interval_s = *o.interval_days * units::kSecondsPerDay;
   } else {
     r.search = longest_fixed_interval(r.world, c);
   }

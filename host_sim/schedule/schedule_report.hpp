@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,7 @@ namespace mrd::schedule {
 struct ScheduleOptions {
   WorldConfig world{};
   double threshold = 0.8;             ///< capacity fraction to keep
-  double interval_days = 0.0;         ///< fixed policy; 0: search the longest that keeps the threshold
+  std::optional<double> interval_days; ///< fixed policy, days; none: search the longest that keeps the threshold
   bool actuator = true;
   double maintenance_days = 7.0;      ///< request to visit without an actuator, days
   double lead_hours = 2.0;            ///< forecast horizon with an actuator, h
@@ -32,6 +33,14 @@ struct ScheduleResult {
   double max_settling_time_s = 0.0;   ///< Eq. 5.4
   std::vector<PolicyResult> policies; ///< none, fixed-interval, estimator
 };
+
+/// Shortest fixed interval, days: the search's resolution of an hour.
+inline constexpr double kMinIntervalDays = 1.0 / 24.0;
+
+/// Checks a given fixed interval: finite and at least kMinIntervalDays (0
+/// and negative values included: the search is asked for by giving no
+/// interval). Throws io::UsageError naming --interval-days otherwise.
+void check_interval_days(const std::optional<double>& interval_days);
 
 /// Checks the options (io::UsageError naming the option) and runs.
 ScheduleResult run_schedule(const ScheduleOptions& options);

@@ -3,6 +3,7 @@
 // sim board's summary equals `mrd sim`'s summary.json.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -54,12 +56,101 @@ class Programs : public ::testing::Test {
 
 int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
 
+/// `cmd` stopped after 10 s (exit 124), so that a program that blocks fails the test instead of hanging it.
+std::string within_10_s(const std::string& cmd) { return "timeout 10 " + cmd; }
+
+/// A board file without GPIO whose [state] path (line 9) is `state_path`.
+std::string board_with_state_path(const std::string& state_path) {
+  return "[board]\nname = \"x\"\n[control]\n[can]\ninterface = \"can0\"\n[gpio]\nfitted = false\n[state]\npath = \"" +
+         state_path + "\"\n";
+}
+
 TEST_F(Programs, FirmwareRefusesABadBoardFileNamingLineAndField) {
   const auto board = write("b.toml", "[board]\nname = \"x\"\n[control]\nmode = \"fast\"\n[can]\ninterface = \"can0\"\n");
   const Result r = run(std::string(MRD_FIRMWARE) + " --board " + board.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(lines(r.err), 1);
   EXPECT_NE(r.err.find(board.string() + ":4: control.mode: expected passive-off"), std::string::npos) << r.err;
+}
+
+// A plain open() of a FIFO waits for a writer: --print-state hung for ever.
+TEST_F(Programs, FirmwarePrintStateOnAFifoReturnsAtOnceWithExit2) {
+  const fs::path fifo = dir_ / "state.bin";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const Result r = run(within_10_s(std::string(MRD_FIRMWARE) + " --board " + MRD_BOARDS_DIR +
+                                   "/emulated-arm64/board.toml --state " + fifo.string() + " --print-state"));
+  EXPECT_EQ(r.exit_code, 2) << "124: it blocked\n" << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("--state: " + fifo.string() + ": is a pipe (FIFO), expected a regular file"),
+            std::string::npos) << r.err;
+}
+
+TEST_F(Programs, FirmwareRefusesABoardFileWhoseStatePathIsAFifoAFolderADeviceOrHoldsANul) {
+  const fs::path fifo = dir_ / "state.bin";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path folder = dir_ / "state";
+  fs::create_directory(folder);
+  const std::pair<std::string, std::string> cases[] = {
+      {fifo.string(), fifo.string() + ": is a pipe (FIFO), expected a regular file"},
+      {folder.string(), folder.string() + ": is a folder, expected a regular file"},
+      {"/dev/null", "/dev/null: is a device, expected a regular file"},
+      {"/data/a\\u0000b.bin", "expected a file path without a NUL character"},
+  };
+  for (const auto& [state_path, problem] : cases) {
+    const fs::path board = write("b.toml", board_with_state_path(state_path));
+    const Result r = run(within_10_s(std::string(MRD_FIRMWARE) + " --board " + board.string() + " --print-state"));
+    EXPECT_EQ(r.exit_code, 2) << state_path << "\n" << r.err;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(board.string() + ":9: state.path: " + problem), std::string::npos) << r.err;
+  }
+}
+
+// Each program reads its board file under the reader policy: a FIFO, a
+// folder or /dev/zero is refused unread, at once, naming the file.
+TEST_F(Programs, BoardProgramsRefuseABoardFileThatIsAFifoAFolderOrADevice) {
+  const fs::path fifo = dir_ / "board.toml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::pair<std::string, std::string> boards[] = {
+      {fifo.string(), "is a pipe (FIFO), expected a regular file"},
+      {dir_.string(), "is a folder, expected a regular file"},
+      {"/dev/zero", "is a device, expected a regular file"},
+  };
+  const std::string programs[] = {std::string(MRD_FIRMWARE) + " --print-state --board ",
+                                  std::string(MRD_PLANT_SIM) + " --record r.csv --board ",
+                                  std::string(MRD_SIM_BOARD) + " --record r.csv --board "};
+  for (const std::string& program : programs) {
+    for (const auto& [board, problem] : boards) {
+      const Result r = run(within_10_s(program + board));
+      EXPECT_EQ(r.exit_code, 2) << program << board << "\n" << r.err;
+      EXPECT_EQ(lines(r.err), 1) << r.err;
+      EXPECT_NE(r.err.find(board + ": " + problem), std::string::npos) << program << board << "\n" << r.err;
+    }
+  }
+}
+
+// An empty value was taken as "not given": --state '' printed the board's
+// state file, --can '' opened the board's interface.
+TEST_F(Programs, AnEmptyOptionValueIsAnErrorNamingTheOption) {
+  const std::string firmware = std::string(MRD_FIRMWARE) + " --board " + MRD_BOARDS_DIR +
+                               "/emulated-arm64/board.toml --print-state";
+  const std::pair<std::string, std::string> cases[] = {
+      {firmware + " --state ''", "mrd-firmware: error: --state: expected a value, got an empty one"},
+      {firmware + " --state " + (dir_ / "state.bin").string() + " --can ''",
+       "mrd-firmware: error: --can: expected a value, got an empty one"},
+      {firmware + " --state " + (dir_ / "state.bin").string() + " --mode ''",
+       "mrd-firmware: error: --mode: expected a value, got an empty one"},
+      {std::string(MRD_PLANT_SIM) + " --record r.csv --can ''",
+       "mrd-plant-sim: error: --can: expected a value, got an empty one"},
+      {std::string(MRD_PLANT_SIM) + " --record r.csv --board ''",
+       "mrd-plant-sim: error: --board: expected a value, got an empty one"},
+      {std::string(MRD_SIM_BOARD) + " --board " + MRD_BOARDS_DIR + "/sim/board.toml --record r.csv --mode ''",
+       "mrd-sim-board: error: --mode: expected a value, got an empty one"},
+  };
+  for (const auto& [cmd, message] : cases) {
+    const Result r = run(within_10_s(cmd));
+    EXPECT_EQ(r.exit_code, 2) << cmd << "\n" << r.err;
+    EXPECT_EQ(r.err, message + "\n") << cmd;
+  }
 }
 
 TEST_F(Programs, FirmwareNamesTheCanInterfaceItCannotOpen) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -91,6 +92,36 @@ TEST_F(SimCli, HardwarePlantPassiveOnCoilFigures) {
   EXPECT_EQ(j["time_above_rated_s"].get<double>(), 0.0);
   EXPECT_GT(j["peak_coil_temperature_rise_k"].get<double>(), 0.0);
   EXPECT_LT(j["peak_coil_temperature_rise_k"].get<double>(), 60.0 * (1.0 - std::exp(-2.0 / 1200.0)));
+}
+
+// summary.json says which sensor noise and which parking offset the hardware
+// plant ran with: --sensor-seed 18446744073709551615 (2^64 - 1, the largest
+// seed, kept exactly) and --offset-mm -7.5 = -0.0075 m.
+TEST_F(SimCli, HardwarePlantSummaryHasSensorSeedAndParkingOffset) {
+  const auto r = run_mrd("sim --plant hardware --record none --duration-s 0.5 --sensor-seed 18446744073709551615 "
+                         "--offset-mm -7.5 --out " + out_.path().string(),
+                         scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  ASSERT_TRUE(j.contains("sensor_seed"));
+  ASSERT_TRUE(j.contains("parking_offset_m"));
+  EXPECT_EQ(j["sensor_seed"].get<std::uint64_t>(), 18446744073709551615u);
+  EXPECT_DOUBLE_EQ(j["parking_offset_m"].get<double>(), -0.0075);
+  EXPECT_NE(r.out.find("sensor seed"), std::string::npos) << r.out;
+}
+
+// The thesis plant has ideal sensors and a centred damper: neither option
+// acts on it, and summary.json says so with null rather than the defaults.
+TEST_F(SimCli, ThesisPlantSummaryHasNoSensorSeedOrParkingOffset) {
+  const auto r = run_mrd("sim --record none --duration-s 0.5 --sensor-seed 5 --offset-mm 4 --out " +
+                             out_.path().string(),
+                         scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  ASSERT_TRUE(j.contains("sensor_seed"));
+  ASSERT_TRUE(j.contains("parking_offset_m"));
+  EXPECT_TRUE(j["sensor_seed"].is_null());
+  EXPECT_TRUE(j["parking_offset_m"].is_null());
 }
 
 TEST_F(SimCli, ThesisPlantWritesTheCoilFiguresToo) {

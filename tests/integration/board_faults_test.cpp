@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "firmware/app/board_config.hpp"
+#include "host_sim/io/text.hpp"
 #include "host_sim/peers/in_process_board.hpp"
 
 namespace mrd {
@@ -20,7 +21,8 @@ constexpr double kSafeCurrentA = 2.5;
 double ag(int k) { return 0.5 * std::sin(2.0 * 3.141592653589793 * 1e-3 * k); }
 
 std::unique_ptr<peers::InProcessBoard> board(control::ControlMode mode) {
-  app::BoardConfig b = app::load_board_config(std::string(MRD_BOARDS_DIR) + "/sim/board.toml");
+  const std::string file = std::string(MRD_BOARDS_DIR) + "/sim/board.toml";
+  app::BoardConfig b = app::parse_board_config(io::read_regular_file(file, app::kMaxBoardFileBytes), file);
   b.mode = mode;
   return std::make_unique<peers::InProcessBoard>(b, plant::PlantSpec{}, peers::DriveConfig{});
 }

@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "firmware/app/board_config.hpp"
+#include "host_sim/io/text.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/peers/in_process_board.hpp"
 #include "quantized_reference.hpp"
@@ -39,7 +40,8 @@ std::vector<double> ground_motion() {
 }
 
 app::BoardConfig sim_board(control::ControlMode mode) {
-  app::BoardConfig b = app::load_board_config(std::string(MRD_BOARDS_DIR) + "/sim/board.toml");
+  const std::string file = std::string(MRD_BOARDS_DIR) + "/sim/board.toml";
+  app::BoardConfig b = app::parse_board_config(io::read_regular_file(file, app::kMaxBoardFileBytes), file);
   b.mode = mode;
   return b;
 }

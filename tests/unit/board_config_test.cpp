@@ -1,22 +1,36 @@
 // Board files: every board in boards/ parses; bad files get one line naming
-// file, line and field; a board says whether it has GPIO lines.
+// file, line and field; a board says whether it has GPIO lines; a state path
+// that holds a NUL or names a folder, a FIFO or a device is refused.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "firmware/app/board_config.hpp"
+#include "firmware/platform/linux/regular_file.hpp"
 
 namespace mrd::app {
 namespace {
 
-std::string error_of(const std::string& text) {
+std::string error_of(const std::string& text, StatePathCheck check = nullptr) {
   try {
-    parse_board_config(text, "b.toml");
+    parse_board_config(text, "b.toml", check);
   } catch (const BoardConfigError& e) {
     return e.what();
   }
   return "";
+}
+
+/// A board file as the programs read it: under the reader policy, its state path checked.
+BoardConfig load_board_file(const std::filesystem::path& path) {
+  std::string text;
+  const posix::FileCheck c = posix::read_regular_file(path.c_str(), kMaxBoardFileBytes, text);
+  if (!c.ok()) throw BoardConfigError(path.string() + ": " + posix::problem_text(c, kMaxBoardFileBytes));
+  return parse_board_config(text, path.string(), posix::non_regular_problem);
 }
 
 /// Everything but [gpio].
@@ -45,14 +59,14 @@ TEST(BoardConfig, EveryBoardInTheRepositoryParses) {
     const auto file = d.path() / "board.toml";
     if (!std::filesystem::exists(file)) continue;
     ++n;
-    const BoardConfig c = load_board_config(file);
+    const BoardConfig c = load_board_file(file);
     EXPECT_EQ(c.name, d.path().filename().string()) << file;
   }
   EXPECT_GE(n, 3) << "sim, emulated-arm64 and at least one real board";
 }
 
 TEST(BoardConfig, EmulatedBoardUsesVcanAndThePl061) {
-  const BoardConfig c = load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "emulated-arm64" / "board.toml");
+  const BoardConfig c = load_board_file(std::filesystem::path(MRD_BOARDS_DIR) / "emulated-arm64" / "board.toml");
   EXPECT_EQ(c.can_interface, "vcan0");
   EXPECT_TRUE(c.gpio_fitted);
   EXPECT_EQ(c.gpio_chip, "gpiochip0");
@@ -103,7 +117,7 @@ TEST(BoardConfig, AMixingSettingOutOfRangeNamesLineFieldAndUnit) {
 
 TEST(BoardConfig, TheMaintenanceTestBoardRunsItsMixingTask) {
   const BoardConfig c =
-      load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "emulated-arm64" / "maintenance-test.toml");
+      load_board_file(std::filesystem::path(MRD_BOARDS_DIR) / "emulated-arm64" / "maintenance-test.toml");
   EXPECT_GT(c.mixing.confirm_hold_s, fw::IdleModelConfig{}.quiet_close_s) << "mixing_scheduler.hpp's rule";
   // 2π · 1 Hz · 0.03 m = 0.188 m/s, within the plan's 0.19 m/s velocity limit.
   EXPECT_LE(2.0 * 3.141592653589793 * c.mixing.preferred_frequency_hz * c.mixing.max_amplitude_m,
@@ -166,17 +180,81 @@ TEST(BoardConfig, FittedLinesNeedTheChip) {
 }
 
 TEST(BoardConfig, OnlyTheSimBoardHasNoGpio) {
-  EXPECT_FALSE(load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "sim" / "board.toml").gpio_fitted);
-  EXPECT_TRUE(load_board_config(std::filesystem::path(MRD_BOARDS_DIR) / "rpi-cm4-mcp2515" / "board.toml").gpio_fitted);
+  EXPECT_FALSE(load_board_file(std::filesystem::path(MRD_BOARDS_DIR) / "sim" / "board.toml").gpio_fitted);
+  EXPECT_TRUE(load_board_file(std::filesystem::path(MRD_BOARDS_DIR) / "rpi-cm4-mcp2515" / "board.toml").gpio_fitted);
 }
 
 TEST(BoardConfig, MissingFileIsNamed) {
   try {
-    load_board_config("/nonexistent/board.toml");
+    load_board_file("/nonexistent/board.toml");
     FAIL();
   } catch (const BoardConfigError& e) {
-    EXPECT_STREQ(e.what(), "/nonexistent/board.toml:0: cannot open the board file");
+    EXPECT_STREQ(e.what(), "/nonexistent/board.toml: file not found");
   }
+}
+
+TEST(BoardConfig, AnEmptyStatePathIsRefused) {
+  EXPECT_EQ(error_of(std::string(kMinimal) + kNoGpio + "[state]\npath = \"\"\n"),
+            "b.toml:9: state.path: expected an absolute file path, got ''");
+}
+
+// TOML's \u0000 puts a NUL in the string: the path the system would see ends there.
+TEST(BoardConfig, AStatePathHoldingANulIsRefused) {
+  EXPECT_EQ(error_of(std::string(kMinimal) + kNoGpio + "[state]\npath = \"/data/a\\u0000b.bin\"\n"),
+            "b.toml:9: state.path: expected a file path without a NUL character");
+}
+
+class BoardStatePath : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "mrd-board-state-XXXXXX").string();
+    ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+    dir_ = tmpl;
+  }
+  void TearDown() override {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+  }
+  static std::string with_state_path(const std::string& path) {
+    return std::string(kMinimal) + kNoGpio + "[state]\npath = \"" + path + "\"\n";
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(BoardStatePath, AFolderAFifoOrADeviceIsRefusedWithLineAndField) {
+  const std::string folder = dir_.string();
+  EXPECT_EQ(error_of(with_state_path(folder), posix::non_regular_problem),
+            "b.toml:9: state.path: " + folder + ": is a folder, expected a regular file");
+  const std::string fifo = (dir_ / "state.bin").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(error_of(with_state_path(fifo), posix::non_regular_problem),
+            "b.toml:9: state.path: " + fifo + ": is a pipe (FIFO), expected a regular file");
+  EXPECT_EQ(error_of(with_state_path("/dev/null"), posix::non_regular_problem),
+            "b.toml:9: state.path: /dev/null: is a device, expected a regular file");
+}
+
+TEST_F(BoardStatePath, AMissingOrRegularStateFileIsAccepted) {
+  const std::string missing = (dir_ / "state.bin").string();
+  EXPECT_EQ(parse_board_config(with_state_path(missing), "b.toml", posix::non_regular_problem).state_path, missing);
+  const std::string regular = (dir_ / "old.bin").string();
+  { std::ofstream(regular) << "a record"; }
+  EXPECT_EQ(parse_board_config(with_state_path(regular), "b.toml", posix::non_regular_problem).state_path, regular);
+}
+
+TEST_F(BoardStatePath, ABoardFileThatIsAFifoAFolderOrADeviceIsRefusedUnread) {
+  const std::filesystem::path fifo = dir_ / "board.toml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto error_loading = [](const std::filesystem::path& p) {
+    try {
+      load_board_file(p);
+    } catch (const BoardConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_loading(fifo), fifo.string() + ": is a pipe (FIFO), expected a regular file");
+  EXPECT_EQ(error_loading(dir_), dir_.string() + ": is a folder, expected a regular file");
+  EXPECT_EQ(error_loading("/dev/zero"), "/dev/zero: is a device, expected a regular file");
 }
 
 }  // namespace

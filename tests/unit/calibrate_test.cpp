@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <string_view>
@@ -512,23 +514,26 @@ TEST(BaselineFile, RefusesBadFieldsNamingFileLineAndField) {
   };
   const std::vector<Case> cases = {
       {"law = \"bingham\"", "law = \"spring\"", "law = ", "model.law", "expected \"bingham\" or \"bouc_wen\""},
-      {"at_zero = 100.0", "at_zero = -100.0", "at_zero = ", "yield_n.at_zero", "expected a number >= 0"},
+      {"at_zero = 100.0", "at_zero = -100.0", "at_zero = ", "yield_n.at_zero",
+       "expected a force in [0.001, 1e+09] N, got -100.0"},
       {"at_zero = 100.0", "at_zero = nan", "at_zero = ", "yield_n.at_zero", "expected a finite number"},
       {"v_tf_m_s = 0.005", "v_tf_m_s = \"fast\"", "v_tf_m_s = ", "bingham.v_tf_m_s", "expected a number"},
       {"current_max_a = 1.0", "current_max_a = inf", "current_max_a", "validity.current_max_a", "finite"},
       {"weight_fast = 0.5", "weight_fast = 0.5\ntau_fastest_s = 0.01", "tau_fastest_s", "coil.tau_fastest_s",
        "unknown key"},
       {"tau_slow_s_sigma = 0.0012", "tau_slow_s_sigma = -0.0012", "tau_slow_s_sigma", "coil.tau_slow_s_sigma",
-       "expected a number >= 0"},
-      {"share = 0.45", "share = 1.5", "share = ", "lost_motion.share", "expected a share in (0, 1]"},
-      {"m_per_n = 3e-07", "m_per_n = 0", "m_per_n = ", "lost_motion.m_per_n", "expected a number > 0"},
-      {"band_m_s = 0.015", "band_m_s = 0", "band_m_s = ", "lost_motion.band_m_s", "expected a number > 0"},
+       "expected a standard error in [0, 1000] s, got -0.0012"},
+      {"share = 0.45", "share = 1.5", "share = ", "lost_motion.share", "expected a share in [1e-06, 1], got 1.5"},
+      {"m_per_n = 3e-07", "m_per_n = 0", "m_per_n = ", "lost_motion.m_per_n",
+       "expected a play per newton in [1e-18, 1] m/N, got 0"},
+      {"band_m_s = 0.015", "band_m_s = 0", "band_m_s = ", "lost_motion.band_m_s",
+       "expected a velocity in [1e-06, 10] m/s, got 0"},
       {"transition = \"tanh\"", "transition = \"cubic\"", "transition = ", "bingham.transition",
        "expected \"linear\" or \"tanh\", got \"cubic\""},
       {"transition_time_s = 0.0055", "transition_time_s = 0.5", "transition_time_s = ", "bingham.transition_time_s",
-       "expected a time in (0, 0.1] s"},
+       "expected a time in [1e-06, 0.1] s, got 0.5"},
       {"transition_time_s = 0.0055", "transition_time_s = -0.001", "transition_time_s = ",
-       "bingham.transition_time_s", "expected a number >= 0"},
+       "bingham.transition_time_s", "expected a time in [1e-06, 0.1] s, got -0.001"},
       {"transition_time_s_sigma = 4e-04", "transition_time_s_sigma = \"small\"", "transition_time_s_sigma",
        "bingham.transition_time_s_sigma", "expected a number"},
   };
@@ -540,6 +545,108 @@ TEST(BaselineFile, RefusesBadFieldsNamingFileLineAndField) {
         << c.field << " -> " << e;
     EXPECT_NE(e.find(c.problem), std::string::npos) << e;
   }
+}
+
+// The one range rule: every number of the file (values, standard errors,
+// the validity range, the fits' gaps and sample counts) has a physical range.
+// 1e300 lies above and -1e300 below every one of them (the largest top is the
+// viscous coefficient's 1e8 N at 1 mm/s, 1e11 N s/m), so each must be refused
+// naming its own line and field and the range expected.
+TEST(BaselineFile, EveryNumberHasAPhysicalRange) {
+  for (const BaseLaw law : {BaseLaw::bingham, BaseLaw::bouc_wen}) {
+    const std::string text = baseline_toml(sample_file(law));
+    ASSERT_TRUE(error_of(text).empty()) << error_of(text);
+    std::string table;
+    int line_no = 0, numbers = 0;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+      const std::size_t end = text.find('\n', pos);
+      const std::string line = text.substr(pos, end - pos);
+      ++line_no;
+      const std::size_t eq = line.find(" = ");
+      const char first = eq == std::string::npos ? '\0' : line[eq + 3];
+      if (!line.empty() && line[0] == '[') table = line.substr(0, line.find(']') + 1);
+      if (eq != std::string::npos && (std::isdigit(static_cast<unsigned char>(first)) || first == '-')) {
+        const std::string key = line.substr(0, eq);
+        ++numbers;
+        for (const char* v : {"1e300", "-1e300"}) {
+          const std::string bad = text.substr(0, pos) + key + " = " + v + text.substr(end);
+          const std::string e = error_of(bad);
+          EXPECT_EQ(e.rfind("damper.toml:" + std::to_string(line_no) + ": ", 0), 0u) << table << key << " = " << v
+                                                                                       << " -> " << e;
+          EXPECT_NE(e.find("." + key + ": expected "), std::string::npos) << e;
+          EXPECT_NE(e.find(" in ["), std::string::npos) << e;
+        }
+      }
+      pos = end == std::string::npos ? text.size() : end + 1;
+    }
+    // The numbers of the sample, counted by hand: two current laws of 6 (3 values, 3 sigmas), the law's own 4
+    // (Bingham: v_tf, transition time, each with a sigma; Bouc-Wen: x_y, k_0 with theirs), the lost motion's 6
+    // (Bingham sample only), the channel's 2, the coil's 4 (+ 2 sigmas when identified: Bingham sample), the
+    // participant ratio's 11, the validity's 9 and 2 per [[fit]] (4 fits Bingham, 2 Bouc-Wen):
+    // Bingham 12 + 4 + 6 + 2 + 6 + 11 + 9 + 8 = 58, Bouc-Wen 12 + 4 + 2 + 4 + 11 + 9 + 4 = 46.
+    EXPECT_EQ(numbers, law == BaseLaw::bingham ? 58 : 46) << base_law_name(law);
+  }
+}
+
+// The values the probes of a damper.toml found accepted, each refused with its
+// range: a participant ratio is a share of the particles, [0, 1] (§5.3); a yield
+// force lies between 1 mN and 1e9 N; a time constant is positive; a coil branch's
+// weight is a share of the unity DC gain, so 1.5 and -0.5 (sum 1, accepted by the
+// sum check alone) reverse the fast branch.
+TEST(BaselineFile, RefusesValuesOutsideTheirPhysicalRange) {
+  struct Case {
+    std::string from, to, key, message;
+  };
+  const std::vector<Case> cases = {
+      {"a_initial = 1.0", "a_initial = 5", "a_initial = ",
+       "participant_ratio.a_initial: expected a participant ratio in [0, 1], got 5.0"},
+      {"b_final = 0.605", "b_final = -0.2", "b_final = ",
+       "participant_ratio.b_final: expected a participant ratio in [0, 1], got -0.2"},
+      {"limit = 1500.0", "limit = 1e308", "limit = ",
+       "yield_n.limit: expected a force in [0.001, 1e+09] N, got 1e+308"},
+      {"at_zero = 100.0", "at_zero = 1e-300", "at_zero = ",
+       "yield_n.at_zero: expected a force in [0.001, 1e+09] N, got 1e-300"},
+      {"tau_fast_s = 0.0017", "tau_fast_s = -0.03", "tau_fast_s = ",
+       "coil.tau_fast_s: expected a time constant in [1e-06, 1000] s, got -0.03"},
+      {"tau_slow_s = 0.021", "tau_slow_s = 5e3", "tau_slow_s = ",
+       "coil.tau_slow_s: expected a time constant in [1e-06, 1000] s, got 5000.0"},
+      {"weight_slow = 0.5\nweight_fast = 0.5", "weight_slow = 1.5\nweight_fast = -0.5", "weight_slow = ",
+       "coil.weight_slow: expected a weight in [0, 1], got 1.5"},
+      {"flow_area_m2 = 0.01062", "flow_area_m2 = 1e-300", "flow_area_m2 = ",
+       "participant_ratio.flow_area_m2: expected an area in [1e-06, 1] m2, got 1e-300"},
+      {"velocity_max_m_s = 0.05", "velocity_max_m_s = 500.0", "velocity_max_m_s = ",
+       "validity.velocity_max_m_s: expected a velocity in [1e-09, 100] m/s, got 500.0"},
+      {"samples = 4000", "samples = 999999999999", "samples = ",
+       "fit[0].samples: expected an integer in [0, 134217728]"},
+  };
+  for (const Case& c : cases) {
+    const std::string text = edited(c.from, c.to);
+    const std::string e = error_of(text);
+    EXPECT_EQ(e, "damper.toml:" + std::to_string(line_of(text, c.key)) + ": " + c.message) << c.to;
+  }
+  // A current of either sign is what records cover (the measured reader's limits, 1000 A).
+  EXPECT_EQ(error_of(edited("current_min_a = 0.0", "current_min_a = -0.5")), "");
+}
+
+// A standard error beyond its quantity's range (a parameter the records do not
+// identify, or an infinite one) is written as that range's top, said so in a
+// comment, so that every damper.toml written reads back: the yield force's top
+// is 1e9 N, the viscous coefficient's 1e8 N / 1 mm/s = 1e11 N s/m.
+TEST(BaselineFile, StandardErrorBeyondItsRangeIsWrittenAsItsTop) {
+  BaselineFile f = sample_file(BaseLaw::bingham);
+  f.sigma.yield_n.limit = 1e12;
+  f.sigma.viscous_ns_m.at_zero = std::numeric_limits<double>::infinity();
+  const std::string text = baseline_toml(f);
+  EXPECT_NE(text.find("limit_sigma = 1e+09  # the fit's standard error, 1e+12, exceeds the quantity's range: not "
+                      "identified\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("at_zero_sigma = 1e+11  # the fit's standard error, inf,"), std::string::npos) << text;
+  const BaselineFile g = parse_baseline_toml(text, "damper.toml");
+  EXPECT_EQ(g.sigma.yield_n.limit, 1e9);
+  EXPECT_EQ(g.sigma.viscous_ns_m.at_zero, 1e11);
+  EXPECT_EQ(g.sigma.yield_n.at_zero, f.sigma.yield_n.at_zero);  // within its range: as it was
 }
 
 TEST(BaselineFile, RefusesMissingTablesAndTheOtherLawsTable) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "host_sim/discrepancy/baseline_check.hpp"
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/discrepancy/plausibility.hpp"
 #include "host_sim/discrepancy/signatures.hpp"
 #include "host_sim/discrepancy/workflow.hpp"
 #include "mrd/physics/mr_damper.hpp"
@@ -471,6 +473,122 @@ TEST(DiscrepancyVerdict, AFullySettledDamperIsIdleSettlingNotACollapse) {
   ASSERT_FALSE(r.params.empty());
   EXPECT_GT(r.params[0], 0.9);
   EXPECT_LT(r.gap_validation_after, 0.5 * r.gap_validation_before);
+}
+
+// ---- plausibility of measured records (plausibility.hpp) ------------------------
+
+/// A 4 s sine record at 1 kHz: displacement amplitude_m sin(2π t) written as
+/// `disp_scale` times that (1000: millimetres in the _m column), current
+/// `current_a`, force force_n cos(2π t).
+MeasuredData sine_record(const std::string& source, double amplitude_m, double current_a, double force_n,
+                         double disp_scale = 1.0) {
+  MeasuredData d;
+  d.source = source;
+  for (int k = 0; k <= 4000; ++k) {
+    const double t = k * 1e-3;
+    d.time_s.push_back(t);
+    d.displacement_m.push_back(disp_scale * amplitude_m * std::sin(2.0 * units::kPi * t));
+    d.current_cmd_a.push_back(current_a);
+    d.force_n.push_back(force_n * std::cos(2.0 * units::kPi * t));
+  }
+  return d;
+}
+
+RecordReach reach_of(const std::string& source, double half_range_m, double velocity_m_s, double current_a,
+                     double force_n) {
+  RecordReach r;
+  r.source = source;
+  r.half_range_m = half_range_m;
+  r.velocity_max_m_s = velocity_m_s;
+  r.current_cmd_max_a = current_a;
+  r.force_peak_n = force_n;
+  return r;
+}
+
+// 5 mm at 1 Hz: half range 5 mm, peak velocity 2π·1·5 mm = 31.42 mm/s (derived
+// by the quartic fit, gain within 0.3 % of 1), peak force 1200 N at t = 0.
+TEST(DiscrepancyPlausibility, ReachOfASineRecord) {
+  const RecordReach r = record_reach(sine_record("a.csv", 0.005, 1.0, 1200.0));
+  EXPECT_EQ(r.source, "a.csv");
+  EXPECT_NEAR(r.half_range_m, 0.005, 5e-5);
+  EXPECT_NEAR(r.velocity_max_m_s, 0.031416, 1e-4);
+  EXPECT_TRUE(r.velocity_derived);
+  EXPECT_DOUBLE_EQ(r.current_cmd_max_a, 1.0);
+  EXPECT_DOUBLE_EQ(r.current_meas_max_a, 0.0);
+  EXPECT_DOUBLE_EQ(r.force_peak_n, 1200.0);
+  EXPECT_TRUE(unit_warnings(r).empty());
+}
+
+TEST(DiscrepancyPlausibility, ValuesProbablyInAnotherUnitAreWarned) {
+  // Millimetres in the _m column: a 5 mm test at 5 m of half range; its derived
+  // velocity (31.4 m/s) is the same cause and is not warned about again.
+  const auto mm = plausibility_warnings(std::vector{sine_record("mm.csv", 0.005, 1.0, 1200.0, 1000.0)});
+  ASSERT_EQ(mm.size(), 1u);
+  EXPECT_NE(mm[0].find("mm.csv: displacement half range 5 m, beyond any damper's half stroke (warned above 1 m)"),
+            std::string::npos)
+      << mm[0];
+  // Milliamperes in the _A column: 0.5 A written as 500.
+  const auto ma = plausibility_warnings(std::vector{sine_record("ma.csv", 0.005, 500.0, 1200.0)});
+  ASSERT_EQ(ma.size(), 1u);
+  EXPECT_NE(ma[0].find("ma.csv: commanded current up to 500 A, beyond any MR damper's coil (warned above 20 A)"),
+            std::string::npos)
+      << ma[0];
+  // A measured velocity column of 20 m/s (mm/s of a 20 mm/s test), and a measured coil current of 25 A.
+  RecordReach v = reach_of("v.csv", 0.005, 20.0, 1.0, 1200.0);
+  v.current_meas_max_a = 25.0;
+  const auto w = unit_warnings(v);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_NE(w[0].find("v.csv: peak velocity 20 m/s, beyond any damper (warned above 10 m/s)"), std::string::npos)
+      << w[0];
+  EXPECT_NE(w[1].find("v.csv: measured coil current up to 25 A"), std::string::npos) << w[1];
+  // The thesis's 200 kN damper at its limits: ±0.2921 m of stroke (§3.1), 0.2491 m/s (Table 3.1), 2.5 A.
+  EXPECT_TRUE(unit_warnings(reach_of("thesis.csv", 0.2921, 0.2491, 2.5, 200e3)).empty());
+  // A seismic damper tested at 1.5 m/s over ±0.6 m with a 20 A coil: no warning (the thresholds are strict).
+  EXPECT_TRUE(unit_warnings(reach_of("seismic.csv", 0.6, 1.5, 20.0, 2e6)).empty());
+}
+
+// One damper's peak force grows at most by the ratio of the currents times the
+// ratio of the peak velocities (the laws concave in I, the force affine in |v|);
+// a pair more than 10 times beyond that is warned about, once.
+TEST(DiscrepancyPlausibility, ForceScalesFarBeyondCurrentAndVelocityAreWarned) {
+  // Two dampers 250 times apart at the same current and velocity: a laboratory
+  // damper at 1 A, F = (200 + 800 I) + (1000 + 3000 I) v = 1000 + 4000 · 0.0314 = 1125.7 N,
+  // and one 250 times stronger, 281.4 kN.
+  const std::vector<RecordReach> two{reach_of("lab.csv", 0.005, 0.0314, 1.0, 1125.7),
+                                     reach_of("big.csv", 0.005, 0.0314, 1.0, 281.4e3)};
+  const auto w = force_scale_warnings(two);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("records big.csv and lab.csv: peak forces 2.814e+05 N and 1126 N, 250 times apart"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[0].find("allow one damper a ratio of at most 1 (warned above 10 times that)"), std::string::npos)
+      << w[0];
+  // The same damper at 0.25 A: 400 + 1750 · 0.0314 = 455 N, 2.47 times below 1 A, where the currents allow 4.
+  EXPECT_TRUE(
+      force_scale_warnings(std::vector{two[0], reach_of("quarter.csv", 0.005, 0.0314, 0.25, 455.0)}).empty());
+  // At 0.5 A and 1 A (bound 2) and the same velocity: 12 times apart is 6 beyond the bound, not warned;
+  // 25 times is 12.5 beyond, warned.
+  EXPECT_TRUE(force_scale_warnings(std::vector{reach_of("a", 0.005, 0.03, 0.5, 100.0),
+                                               reach_of("b", 0.005, 0.03, 1.0, 1200.0)})
+                  .empty());
+  EXPECT_EQ(force_scale_warnings(std::vector{reach_of("a", 0.005, 0.03, 0.5, 100.0),
+                                             reach_of("b", 0.005, 0.03, 1.0, 2500.0)})
+                .size(),
+            1u);
+  // Ten times the velocity (bound 10) and 50 times the force: 5 beyond, not warned.
+  EXPECT_TRUE(force_scale_warnings(std::vector{reach_of("slow", 0.005, 0.01, 1.0, 100.0),
+                                               reach_of("fast", 0.005, 0.1, 1.0, 5000.0)})
+                  .empty());
+  // The thesis damper without field and at 2.5 A: Y 4.1 kN and 141 kN, 34 times apart; a record without field
+  // is compared only with another without field.
+  EXPECT_TRUE(force_scale_warnings(std::vector{reach_of("off", 0.01, 0.1, 0.0, 4.1e3),
+                                               reach_of("on", 0.01, 0.1, 2.5, 141e3)})
+                  .empty());
+  // Two records without field 250 times apart are compared (bound 1).
+  EXPECT_EQ(force_scale_warnings(std::vector{reach_of("off1", 0.01, 0.1, 0.0, 4.1e3),
+                                             reach_of("off2", 0.01, 0.1, 0.0, 1.025e6)})
+                .size(),
+            1u);
 }
 
 }  // namespace

@@ -100,5 +100,90 @@ TEST(RiskCombine, PoliciesSitBetweenTheCurvesOfTheirIdleTimes) {
   EXPECT_THROW(compute_risk(rows, "semi-active", default_hazard_curve(), schedule::run_schedule(so)), io::UsageError);
 }
 
+// The PGA levels a curve was fitted over, when fragility.csv gives them.
+TEST(RiskCombine, ReadsTheFittedPgaRangeWhenGiven) {
+  const std::string header = std::string(kFragilityCsvHeader) + "," + kFragilityCsvRangeColumns + "\n";
+  const auto rows = parse_fragility_csv(header + "m,stroke,0.2921,0,fitted,0.8,0.4,,,,,80,12,0.2,1.5\n", "f.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].pga_min_g, 0.2);
+  EXPECT_EQ(rows[0].pga_max_g, 1.5);
+  EXPECT_TRUE(std::isnan(parse_fragility_csv(kHeader + "m,s,1,0,fitted,0.5,1,,,,,1,1\n", "f.csv")[0].pga_min_g));
+  EXPECT_EQ(fragility_error_of(header + "m,s,1,0,fitted,0.5,1,,,,,1,1\n"), "f.csv:2: expected 15 fields, got 13");
+  EXPECT_EQ(fragility_error_of(header + "m,s,1,0,fitted,0.5,1,,,,,1,1,0,1\n"),
+            "f.csv:2: field 'pga_g_min': expected the lowest PGA level, > 0 g");
+  EXPECT_EQ(fragility_error_of(header + "m,s,1,0,fitted,0.5,1,,,,,1,1,0.5,0.2\n"),
+            "f.csv:2: field 'pga_g_max': expected the highest PGA level, >= pga_g_min");
+}
+
+std::vector<FragilityRow> rows_fitted_over(double lo_g, double hi_g, FitStatus status = FitStatus::kFitted) {
+  std::vector<FragilityRow> rows(2);
+  rows[0] = {"passive-on", "stroke", 0.2921, 0.0, {status, 0.4, 0.5}, lo_g, hi_g};
+  rows[1] = {"passive-on", "stroke", 0.2921, 1.0, {status, 0.3, 0.5}, lo_g, hi_g};
+  return rows;
+}
+
+bool has_warning(const RiskResult& r, const std::string& text) {
+  for (const auto& w : r.warnings) {
+    if (w.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// P ≡ 1 (every run exceeded) over a hazard with points at 0.05, 0.2, 1.5 and
+// 5 g, λ = 0.1, 0.01, 0.001, 1e-4 per year, curves fitted over 0.2-1.5 g:
+// λ_LS = λ(0.05) = 0.1 (the drops plus the tail), of which the fitted levels
+// hold λ(0.2) − λ(1.5) = 0.009; extrapolated: 1 − 0.009/0.1 = 0.91.
+TEST(RiskCombine, PartOfTheResultFromOutsideTheFittedLevels) {
+  const HazardCurve hazard{"test site", {0.05, 0.2, 1.5, 5.0}, {0.1, 0.01, 1e-3, 1e-4}};
+  schedule::ScheduleOptions so;
+  so.world.years = 2.0;
+  const RiskResult r =
+      compute_risk(rows_fitted_over(0.2, 1.5, FitStatus::kAllExceeded), "", hazard, schedule::run_schedule(so));
+  EXPECT_EQ(r.fitted_pga_min_g, 0.2);
+  EXPECT_EQ(r.fitted_pga_max_g, 1.5);
+  ASSERT_EQ(r.extrapolated_fraction_at_idle.at("stroke").size(), 2u);
+  EXPECT_NEAR(r.extrapolated_fraction_at_idle.at("stroke")[0], 0.91, 1e-12);
+  EXPECT_NEAR(r.policies.back().extrapolated_fraction.at("stroke"), 0.91, 1e-12);
+  EXPECT_TRUE(has_warning(r,
+                          "the hazard curve (0.05-5 g) reaches beyond the fragility's fitted PGA levels (0.2-1.5 g): "
+                          "91 % of the annual exceedance of stroke"))
+      << r.warnings.front();
+  EXPECT_TRUE(has_warning(r, "rest mainly on extrapolated curves"));
+}
+
+// A hazard far below the fitted levels (0.001-0.01 g against 0.2-1.5 g): every
+// part of λ_LS is extrapolated, and so is every ratio; a hazard within them
+// (0.3-1.2 g) is not.
+TEST(RiskCombine, WarnsWhenTheRatiosRestOnExtrapolatedCurves) {
+  schedule::ScheduleOptions so;
+  so.world.years = 2.0;
+  const auto sched = schedule::run_schedule(so);
+  const HazardCurve far{"far", {0.001, 0.01}, {1.0, 0.1}};
+  const RiskResult r = compute_risk(rows_fitted_over(0.2, 1.5), "", far, sched);
+  EXPECT_EQ(r.extrapolated_fraction_at_idle.at("stroke")[0], 1.0);
+  EXPECT_TRUE(has_warning(r, "the hazard curve (0.001-0.01 g) reaches beyond"));
+  EXPECT_TRUE(has_warning(r, "the ratios to always-fully-mixed for stroke rest mainly on extrapolated curves: none "));
+  EXPECT_TRUE(has_warning(r, "against 100 % for always-fully-mixed"));
+  const auto j = risk_summary(r);
+  EXPECT_EQ(j["warnings"].size(), r.warnings.size());
+  EXPECT_EQ(j["fitted_pga_g"]["max"], 1.5);
+
+  const HazardCurve within{"within", {0.3, 1.2}, {1e-2, 1e-4}};
+  const RiskResult in = compute_risk(rows_fitted_over(0.2, 1.5), "", within, sched);
+  EXPECT_EQ(in.extrapolated_fraction_at_idle.at("stroke")[0], 0.0);
+  EXPECT_FALSE(has_warning(in, "extrapolat"));
+}
+
+// A fragility.csv without the range columns: said, not guessed.
+TEST(RiskCombine, FragilityWithoutItsPgaLevelsIsNamed) {
+  schedule::ScheduleOptions so;
+  so.world.years = 2.0;
+  std::vector<FragilityRow> rows(1);
+  rows[0] = {"passive-on", "stroke", 0.2921, 0.0, {FitStatus::kFitted, 0.4, 0.5}};
+  const RiskResult r = compute_risk(rows, "", default_hazard_curve(), schedule::run_schedule(so));
+  EXPECT_TRUE(has_warning(r, "fragility.csv does not give the PGA levels its curves were fitted over"));
+  EXPECT_TRUE(r.extrapolated_fraction_at_idle.empty());
+}
+
 }  // namespace
 }  // namespace mrd::risk

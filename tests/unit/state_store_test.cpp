@@ -11,10 +11,12 @@
 #include <zlib.h>
 
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iterator>
 #include <limits>
 #include <random>
@@ -276,10 +278,46 @@ TEST_F(FileStore, FailedSaveKeepsTheOldRecord) {
 }
 
 TEST_F(FileStore, UnreadableRecordIsAnIoError) {
-  fs::create_directory(path_);  // read() on a folder fails with EISDIR
+  fs::create_directory(path_);  // a folder is refused before any read
   posix::FileStateStore store(path_.string());
   hal::StateRecord back{};
   EXPECT_EQ(store.load(back), hal::StoreStatus::kIoError);
+  EXPECT_EQ(store.last_load().problem, posix::FileProblem::kFolder);
+}
+
+// A FIFO as the state file: a plain open() would wait for a writer for ever
+// (the boot and --print-state hung). The load is refused at once (5 s bound
+// here, a writer then releases it) and a save leaves the FIFO in place.
+TEST_F(FileStore, AFifoIsRefusedPromptlyAndNeverReplaced) {
+  ASSERT_EQ(::mkfifo(path_.c_str(), 0600), 0);
+  posix::FileStateStore store(path_.string());
+  hal::StateRecord back{};
+  auto pending = std::async(std::launch::async, [&] { return store.load(back); });
+  if (pending.wait_for(std::chrono::seconds(5)) != std::future_status::ready) {
+    ADD_FAILURE() << "load() blocked on the FIFO";
+    const int w = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK);
+    if (w >= 0) ::close(w);
+  }
+  EXPECT_EQ(pending.get(), hal::StoreStatus::kIoError);
+  EXPECT_EQ(store.last_load().problem, posix::FileProblem::kPipe);
+  EXPECT_EQ(store.save(encode_state(sample_state())), hal::StoreStatus::kIoError);
+  struct stat st {};
+  ASSERT_EQ(::lstat(path_.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the save replaced the FIFO";
+  EXPECT_FALSE(fs::exists(store.temp_path()));
+}
+
+// A state path that leads to a device (here a link to /dev/null) is neither
+// read nor replaced by a save's rename.
+TEST_F(FileStore, ADeviceIsRefusedAndNeverReplaced) {
+  fs::create_symlink("/dev/null", path_);
+  posix::FileStateStore store(path_.string());
+  hal::StateRecord back{};
+  EXPECT_EQ(store.load(back), hal::StoreStatus::kIoError);
+  EXPECT_EQ(store.last_load().problem, posix::FileProblem::kDevice);
+  EXPECT_EQ(store.save(encode_state(sample_state())), hal::StoreStatus::kIoError);
+  EXPECT_TRUE(fs::is_symlink(path_));
+  EXPECT_EQ(fs::read_symlink(path_), "/dev/null");
 }
 
 TEST_F(FileStore, BareFileNameUsesTheCurrentFolder) {

@@ -4,8 +4,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <utility>
+
+#include "firmware/platform/linux/regular_file.hpp"
 
 namespace mrd::posix {
 namespace {
@@ -37,33 +40,28 @@ FileStateStore::FileStateStore(std::string path)
     : path_(std::move(path)), temp_path_(path_ + ".new"), dir_(parent_dir(path_)) {}
 
 hal::StoreStatus FileStateStore::load(hal::StateRecord& out) noexcept {
-  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    last_errno_ = errno;
-    return errno == ENOENT ? hal::StoreStatus::kMissing : hal::StoreStatus::kIoError;
-  }
-  // Read one byte more than a record to tell "too long" from "exact".
-  std::uint8_t buf[hal::kStateRecordSize + 1];
+  // At most one record: a longer file is refused unread, as is a folder, a FIFO or a device.
+  std::uint8_t buf[hal::kStateRecordSize];
   std::size_t got = 0;
-  while (got < sizeof buf) {
-    const ssize_t n = ::read(fd, buf + got, sizeof buf - got);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      last_errno_ = errno;
-      ::close(fd);
-      return hal::StoreStatus::kIoError;
-    }
-    if (n == 0) break;
-    got += static_cast<std::size_t>(n);
+  last_load_ = read_regular_file(path_.c_str(), buf, sizeof buf, got);
+  last_errno_ = last_load_.err;
+  switch (last_load_.problem) {
+    case FileProblem::kNone: break;
+    case FileProblem::kMissing: return hal::StoreStatus::kMissing;
+    case FileProblem::kTooLarge: return hal::StoreStatus::kWrongSize;
+    default: return hal::StoreStatus::kIoError;
   }
-  ::close(fd);
-  last_errno_ = 0;
   if (got != hal::kStateRecordSize) return hal::StoreStatus::kWrongSize;
   for (std::size_t i = 0; i < hal::kStateRecordSize; ++i) out[i] = buf[i];
   return hal::StoreStatus::kOk;
 }
 
 hal::StoreStatus FileStateStore::save(const hal::StateRecord& record) noexcept {
+  // The rename below would replace whatever `<path>` names: never a folder, a FIFO or a device.
+  if (const FileCheck target = check_regular_file(path_.c_str(), SIZE_MAX); is_non_regular(target.problem)) {
+    last_errno_ = 0;
+    return hal::StoreStatus::kIoError;
+  }
   const int fd = ::open(temp_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
     last_errno_ = errno;
