@@ -46,7 +46,8 @@ host_sim/risk/stochastic_motion.hpp). Each record is scaled to each PGA.
 Limit states (exceeded when the peak reaches the threshold):
   stroke          peak base displacement >= 0.2921 m, the damper's stroke (thesis 3.1)
   isolation_gap   peak base displacement >= --gap-m (default 0.20 m, an assumption)
-  floor_accel     peak absolute floor acceleration, floors 1-5, >= --floor-accel-g (default 0.3 g)
+  floor_accel     peak absolute floor acceleration (DOFs 1..N-1, thesis floors 1-5; fixed base: all)
+                  >= --floor-accel-g (default 0.3 g)
   story_drift     peak story drift (max |x_i - x_{i-1}| over the stories) >= --drift-m (default
                   0.02 m, an assumption: a building file gives no story heights, so the threshold is
                   a drift, not a drift ratio; 0.02 m is 0.5 % of a 4 m story)

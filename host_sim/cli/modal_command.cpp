@@ -36,7 +36,8 @@ struct ModalOptions {
 };
 
 void print_table(const structure::ModalResult& r) {
-  std::printf("Modes of the building without the MR damper (the thesis building: §6.1, Fig. 6.2)\n\n");
+  std::printf("Modes of the building without the MR damper (%zu DOFs; the thesis building: §6.1, Fig. 6.2)\n\n",
+              r.frequencies_hz.size());
   std::printf("  %4s  %10s  %10s  %8s  %14s\n", "mode", "f (Hz)", "T (s)", "zeta (%)", "undamped f (Hz)");
   for (std::size_t k = 0; k < r.frequencies_hz.size(); ++k) {
     std::printf("  %4zu  %10.4f  %10.4f  %8.3f  %14.4f\n", k + 1, r.frequencies_hz[k], r.periods_s[k],

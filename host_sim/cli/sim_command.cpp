@@ -15,10 +15,13 @@ namespace sim_command {
 namespace {
 
 constexpr CommandHelp kSimHelp{
-    "sim", "Closed-loop earthquake run of the base-isolated building",
-    R"(The closed loop: the 6-DOF base-isolated building of Table 6.1 (exact zero-order hold at
---step-s), the MR damper between ground and base (Bingham + transition, Eq. 4.1-4.4; idle-time
-participant ratio, Eq. 5.5-5.12; coil dynamics Eq. 4.5), and the controller.
+    "sim", "Closed-loop earthquake run of the building (the thesis's or --building FILE)",
+    R"(The closed loop: the building, by default the 6-DOF base-isolated building of Table 6.1, or
+--building FILE (any shear building, isolated on lead-rubber or friction-pendulum bearings or
+fixed-base, dampers on chosen elements; README "Your building"), stepped by the exact zero-order
+hold at --step-s (an isolated building's bearings in sub-steps, structural_substeps); the MR
+damper(s) (Bingham + transition, Eq. 4.1-4.4; idle-time participant ratio, Eq. 5.5-5.12; coil
+dynamics Eq. 4.5), and the controller, which senses the first damper.
 Without --record the run uses a synthetic Kanai-Tajimi motion and says so; --record none runs
 without ground motion (zero acceleration) for --duration-s.
 
@@ -31,10 +34,15 @@ without ground motion (zero acceleration) for --duration-s.
 (the LVDT reads it; the building is at rest). See host_sim/plant/README.md.
 
 Fields of DIR/summary.json:
-  peak_base_displacement_m        max |base displacement relative to the ground|, m
-  peak_damper_force_kn            max |damper force|, kN
-  peak_superstructure_accel_m_s2  max |absolute acceleration| over floors 1-5, m/s^2
-  peak_base_accel_m_s2            max |absolute acceleration| of the base, m/s^2
+  peak_base_displacement_m        max |base (DOF 0) displacement relative to the ground|, m
+  peak_damper_force_kn            max |force of one damper (the first)|, kN
+  peak_superstructure_accel_m_s2  max |absolute acceleration| over DOFs 1..N-1 (thesis: floors 1-5;
+                                  a fixed base: every DOF), m/s^2
+  peak_base_accel_m_s2            max |absolute acceleration| of the base (DOF 0), m/s^2
+  peak_isolator_force_kn          max |sum of the isolators' forces, counts included|, kN (0 without)
+  peak_story_drift_m              max |story deformation| over elements 1..N-1 (fixed base: all), m
+  peak_damper_stroke_m            max |deformation of the first damper's element|, m
+  building, dofs, structural_substeps  the building's name, its DOFs, sub-steps per step
   peak_current_a                  max |coil current|, A
   sq, final_participant_ratio     settling quotient at the start (Eq. 5.5), PR at the end (Eq. 5.9)
   record, pga_m_s2, scale_factor, control, numeric, idle_years, duration_s, step_s: the run's inputs
