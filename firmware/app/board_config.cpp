@@ -32,8 +32,9 @@ class Table {
   bool integer(const char* key, T& out, std::int64_t lo, std::int64_t hi) {
     const toml::node* n = find(key);
     if (!n) return false;
-    const auto v = n->value<std::int64_t>();
-    if (!n->is_integer() || !v) fail(origin_, n->source(), field(key), "expected an integer");
+    // value<int64_t>() of a float node converts it (undefined beyond int64's range): integers only.
+    const auto v = n->is_integer() ? n->value<std::int64_t>() : std::nullopt;
+    if (!v) fail(origin_, n->source(), field(key), "expected an integer");
     if (*v < lo || *v > hi)
       fail(origin_, n->source(), field(key),
            "expected " + std::to_string(lo) + " … " + std::to_string(hi) + ", got " + std::to_string(*v));

@@ -131,8 +131,9 @@ class Table {
   /// An integer in [0, max].
   std::size_t count(const char* key, std::size_t max) {
     const toml::node& n = need(key);
-    const auto v = n.value<std::int64_t>();
-    if (!n.is_integer() || !v || *v < 0 || static_cast<std::uint64_t>(*v) > max)
+    // value<int64_t>() of a float node converts it (undefined beyond int64's range): integers only.
+    const auto v = n.is_integer() ? n.value<std::int64_t>() : std::nullopt;
+    if (!v || *v < 0 || static_cast<std::uint64_t>(*v) > max)
       fail(origin_, n.source(), field(key), "expected an integer in [0, " + std::to_string(max) + "]");
     return static_cast<std::size_t>(*v);
   }

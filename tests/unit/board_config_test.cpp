@@ -140,6 +140,14 @@ TEST(BoardConfig, OutOfRangeNamesLineAndField) {
   EXPECT_EQ(e, "b.toml:4: control.period_us: expected 100 … 100000, got 50");
 }
 
+TEST(BoardConfig, AFloatWhereAnIntegerGoesIsRefusedWhateverItsSize) {
+  // 1e300 is no integer, and beyond int64's range: refused by type, never converted.
+  EXPECT_EQ(error_of("[board]\nname = \"x\"\n[control]\nperiod_us = 1e300\n[can]\n"),
+            "b.toml:4: control.period_us: expected an integer");
+  EXPECT_EQ(error_of("[board]\nname = \"x\"\n[control]\nperiod_us = 1000.0\n[can]\n"),
+            "b.toml:4: control.period_us: expected an integer");
+}
+
 TEST(BoardConfig, UnknownKeyIsRefused) {
   const std::string e = error_of("[board]\nname = \"x\"\n[control]\nperoid_us = 1000\n[can]\n");
   EXPECT_EQ(e, "b.toml:4: control.peroid_us: unknown key");
