@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -21,6 +23,23 @@ inline std::string slurp(const std::filesystem::path& p) {
   std::stringstream ss;
   ss << f.rdbuf();
   return ss.str();
+}
+
+/// Every regular file under `dir` (path relative to it) with its bytes.
+using Snapshot = std::map<std::string, std::string>;
+inline Snapshot snapshot(const std::filesystem::path& dir) {
+  Snapshot s;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (e.is_regular_file()) s[std::filesystem::relative(e.path(), dir).string()] = slurp(e.path());
+  }
+  return s;
+}
+
+/// The names in the folder `dir`.
+inline std::set<std::string> entries(const std::filesystem::path& dir) {
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
 }
 
 /// A fresh temporary folder per test, removed afterwards.

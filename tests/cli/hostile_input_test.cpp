@@ -31,23 +31,6 @@ namespace mrd::test {
 namespace {
 namespace fs = std::filesystem;
 
-using Snapshot = std::map<std::string, std::string>;  // path relative to the folder -> bytes
-
-/// Every file under `dir` with its bytes.
-Snapshot snapshot(const fs::path& dir) {
-  Snapshot s;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_regular_file()) s[fs::relative(e.path(), dir).string()] = slurp(e.path());
-  }
-  return s;
-}
-
-std::set<std::string> entries(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
-
 /// A ground-motion CSV of `n` samples every `dt_s`, acceleration `accel(i)`.
 template <class F>
 std::string record_csv(int n, double dt_s, F accel) {

@@ -22,22 +22,6 @@ namespace mrd::test {
 namespace {
 namespace fs = std::filesystem;
 
-using Snapshot = std::map<std::string, std::string>;  // path relative to the folder -> bytes
-
-Snapshot snapshot(const fs::path& dir) {
-  Snapshot s;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_regular_file()) s[fs::relative(e.path(), dir).string()] = slurp(e.path());
-  }
-  return s;
-}
-
-std::set<std::string> entries(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
-
 /// A fragility study of one short stochastic motion: a few runs, well under a second.
 const std::string kTinyStudy =
     "fragility --synthetic 1 --duration-s 2 --pga-g 0.1 --idle-years 0 --control passive-on --bootstrap 0 "
