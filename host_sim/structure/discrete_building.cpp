@@ -55,6 +55,7 @@ constexpr auto kUnrolledDots = unrolled_dots(std::make_index_sequence<32>{});
 
 /// dot_halving_n for a run-time n: the same halving, unrolled below 33 terms.
 double dot_halving(const double* row, Eigen::Index stride, const double* q, int n) noexcept {
+  if (n == 12) return dot_halving_n<12>(row, stride, q);  // the thesis building, inlined
   if (n <= static_cast<int>(kUnrolledDots.size())) return kUnrolledDots[static_cast<std::size_t>(n - 1)](row, stride, q);
   const int half = n / 2;
   return dot_halving(row, stride, q, half) + dot_halving(row + half * stride, stride, q + half, n - half);
