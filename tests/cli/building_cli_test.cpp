@@ -36,18 +36,6 @@ struct Program {
   std::string command;
 };
 
-/// Runs a shell command line; stdout and stderr kept.
-RunResult run_line(const std::string& line, const fs::path& scratch) {
-  const auto out = scratch / "stdout.txt";
-  const auto err = scratch / "stderr.txt";
-  const int status = std::system((line + " >" + out.string() + " 2>" + err.string()).c_str());
-  RunResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
 /// summary.json without the fields that measure the machine (wall and CPU
 /// time and the rates derived from them).
 nlohmann::json summary_without_timing(const fs::path& dir) {
@@ -142,7 +130,7 @@ class BuildingCli : public ::testing::Test {
 TEST_F(BuildingCli, EveryProgramsHelpNamesTheBuildingOption) {
   for (const auto& p : programs(out_.path() / "unused")) {
     const std::string help = p.command.substr(0, p.command.find(" --")) + " --help";
-    const auto r = run_line(help, scratch_.path());
+    const auto r = run_command(help, scratch_.path());
     EXPECT_EQ(r.exit_code, 0) << p.name << ": " << r.err;
     EXPECT_NE(r.out.find("--building"), std::string::npos) << p.name << " --help:\n" << r.out;
   }
@@ -154,7 +142,7 @@ TEST_F(BuildingCli, EveryProgramsHelpNamesTheBuildingOption) {
 TEST_F(BuildingCli, ABadBuildingFileIsOneLineNamingFileLineAndFieldAndWritesNothing) {
   const fs::path bad = bad_building();
   for (const auto& p : programs(out_.path() / "out")) {
-    const auto r = run_line(p.command + " --building " + bad.string(), scratch_.path());
+    const auto r = run_command(p.command + " --building " + bad.string(), scratch_.path());
     EXPECT_EQ(r.exit_code, 2) << p.name << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << p.name << ": " << r.err;
     // Line 3 of the file written above holds mass_kg.
@@ -167,7 +155,7 @@ TEST_F(BuildingCli, ABadBuildingFileIsOneLineNamingFileLineAndFieldAndWritesNoth
 TEST_F(BuildingCli, AMissingBuildingFileIsNamed) {
   const fs::path missing = scratch_.path() / "no-such-building.toml";
   for (const auto& p : programs(out_.path() / "out")) {
-    const auto r = run_line(p.command + " --building " + missing.string(), scratch_.path());
+    const auto r = run_command(p.command + " --building " + missing.string(), scratch_.path());
     EXPECT_EQ(r.exit_code, 2) << p.name << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << p.name << ": " << r.err;
     EXPECT_NE(r.err.find("no-such-building.toml"), std::string::npos) << p.name << ": " << r.err;
@@ -197,8 +185,8 @@ TEST_F(BuildingCli, TheThesisBuildingsFileGivesTheSameOutputsAsNoFile) {
   const auto with = programs(out_.path() / "with");
   for (std::size_t i = 0; i < without.size(); ++i) {
     SCOPED_TRACE(without[i].name);
-    const auto a = run_line(without[i].command, scratch_.path());
-    const auto b = run_line(with[i].command + " --building " + kThesis.string(), scratch_.path());
+    const auto a = run_command(without[i].command, scratch_.path());
+    const auto b = run_command(with[i].command + " --building " + kThesis.string(), scratch_.path());
     if (without[i].name == "mrd-plant-sim") {
       // No CAN interface here: the building is read, then the interface refused (exit 1, not 2).
       EXPECT_EQ(b.exit_code, 1) << b.err;
@@ -232,7 +220,7 @@ TEST_F(BuildingCli, EveryCommandRunsTheShippedBuildingsAndNamesThem) {
       if (p.name == "mrd-plant-sim" || p.name == "mrd-sim-board") continue;  // below
       if (p.name == "study" && file == kLeadRubber) continue;  // StudyReportNamesTheBuildingAndItsPeaks
       SCOPED_TRACE(p.name + " " + name);
-      const auto r = run_line(p.command + " --building " + file.string(), scratch_.path());
+      const auto r = run_command(p.command + " --building " + file.string(), scratch_.path());
       ASSERT_EQ(r.exit_code, 0) << r.err;
       const auto j = nlohmann::json::parse(slurp(out_.path() / "out" / "summary.json"));
       if (p.name == "modal") {
@@ -253,7 +241,7 @@ TEST_F(BuildingCli, SimBoardOnABuildingFileEqualsMrdSim) {
   for (const auto& [file, name] :
        {std::pair{kLeadRubber, "lead-rubber-7dof"}, std::pair{kFixedBase, "fixed-base-8dof"}}) {
     SCOPED_TRACE(name);
-    const auto board = run_line(std::string(MRD_SIM_BOARD) + " --board " + MRD_BOARDS_DIR +
+    const auto board = run_command(std::string(MRD_SIM_BOARD) + " --board " + MRD_BOARDS_DIR +
                                     "/sim/board.toml --mode passive-on --record " + rec + " --building " +
                                     file.string(),
                                 scratch_.path());
@@ -275,7 +263,7 @@ TEST_F(BuildingCli, SimBoardOnABuildingFileEqualsMrdSim) {
 TEST_F(BuildingCli, PlantSimulatorReadsTheBuildingBeforeTheInterface) {
   const std::string rec = short_record().string();
   for (const auto& file : {kLeadRubber, kFixedBase}) {
-    const auto r = run_line(std::string(MRD_PLANT_SIM) + " --record " + rec + " --can mrdnone0 --building " +
+    const auto r = run_command(std::string(MRD_PLANT_SIM) + " --record " + rec + " --can mrdnone0 --building " +
                                 file.string(),
                             scratch_.path());
     EXPECT_EQ(r.exit_code, 1) << r.err;  // the interface, not the building (2)

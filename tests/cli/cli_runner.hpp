@@ -59,20 +59,28 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-/// `args` is appended to the binary path as shell words; the program runs in
-/// `cwd` when one is given (its output is kept in `scratch` either way).
-inline RunResult run_mrd(const std::string& args, const std::filesystem::path& scratch,
-                         const std::filesystem::path& cwd = {}) {
+/// Runs the shell command line `line` with its stdout and stderr kept in
+/// `scratch` (stdout.txt, stderr.txt) and read back.
+inline RunResult run_command(const std::string& line, const std::filesystem::path& scratch) {
   const auto out = scratch / "stdout.txt";
   const auto err = scratch / "stderr.txt";
-  const std::string cd = cwd.empty() ? std::string() : "cd '" + cwd.string() + "' && ";
-  const std::string cmd = cd + std::string(MRD_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
+  const int status = std::system((line + " >" + out.string() + " 2>" + err.string()).c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+/// `args` is appended to the binary path as shell words; the program runs in
+/// `cwd` when one is given (its output is kept in `scratch` either way), and
+/// is killed after `kill_after_s` seconds when that is above 0 (so that a
+/// program that blocks fails a test instead of hanging it).
+inline RunResult run_mrd(const std::string& args, const std::filesystem::path& scratch,
+                         const std::filesystem::path& cwd = {}, int kill_after_s = 0) {
+  const std::string cd = cwd.empty() ? std::string() : "cd '" + cwd.string() + "' && ";
+  const std::string limit = kill_after_s > 0 ? "timeout -s KILL " + std::to_string(kill_after_s) + " " : std::string();
+  return run_command(cd + limit + std::string(MRD_BINARY) + " " + args, scratch);
 }
 
 inline int count_lines(const std::string& s) {

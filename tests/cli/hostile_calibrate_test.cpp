@@ -27,16 +27,7 @@ constexpr double kPi = 3.14159265358979323846;
 /// `mrd ARGS` run in `cwd`, killed after 60 s: a reader that blocks or reads
 /// without end fails the test instead of hanging it.
 RunResult run_in(const std::string& args, const fs::path& cwd, const fs::path& scratch) {
-  const auto out = scratch / "stdout.txt";
-  const auto err = scratch / "stderr.txt";
-  const std::string cmd = "cd '" + cwd.string() + "' && timeout -s KILL 60 " + std::string(MRD_BINARY) + " " + args +
-                          " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return run_mrd(args, scratch, cwd, 60);
 }
 
 /// Options that keep a calibration of two or three small records well under a second.
