@@ -301,6 +301,15 @@ fs::path begin_output(const fs::path& given) {
 
 void commit_outputs() {
   Registry& reg = registry();
+  if (reg.open.empty()) return;
+  // From the first swap on, the new result is in place: a cleanup signal can no
+  // longer give the old one back, so it is held for the rest of the run (which
+  // then ends normally with the new result) instead of ending it with a result
+  // the signal's handler claims to have undone.
+  sigset_t cleanup;
+  sigemptyset(&cleanup);
+  for (const int s : kCleanupSignals) sigaddset(&cleanup, s);
+  ::pthread_sigmask(SIG_BLOCK, &cleanup, nullptr);
   while (!reg.open.empty()) {
     const Transaction t = reg.open.front();
     fsync_folder(t.staging);

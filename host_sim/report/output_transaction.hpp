@@ -8,11 +8,13 @@
 ///
 /// - commit: the staging folder and the target swap names in one
 ///   renameat2(RENAME_EXCHANGE) (a plain rename when there was no target),
-///   then the previous result, now under the staging name, is removed.
+///   then the previous result, now under the staging name, is removed. From
+///   the commit on, SIGINT, SIGTERM, SIGHUP and SIGQUIT are held: the run ends
+///   normally with the new result.
 /// - an error (an exception reaching `mrd`'s main), a normal exit without a
-///   commit, or SIGINT, SIGTERM, SIGHUP or SIGQUIT: the staging folder is
-///   removed and the target is left exactly as it was; folders created to hold
-///   the target are removed again.
+///   commit, or SIGINT, SIGTERM, SIGHUP or SIGQUIT before the commit: the
+///   staging folder is removed and the target is left exactly as it was;
+///   folders created to hold the target are removed again.
 /// - SIGKILL cannot be caught: it can leave a staging folder (never a
 ///   half-written target). The next run into the same parent removes staging
 ///   folders of processes that no longer run.
