@@ -14,7 +14,9 @@
 #include <cpuid.h>
 #endif
 
+#include "host_sim/batch/any_lanes.hpp"
 #include "host_sim/batch/lane_block.hpp"
+#include "host_sim/batch/lane_stepper.hpp"
 #include "host_sim/structure/discrete_building.hpp"
 #include "mrd/physics/bingham.hpp"
 #include "mrd/physics/participant_ratio.hpp"
@@ -57,6 +59,47 @@ bool lane_isa_cpu_runs(LaneIsa isa) {
 #endif
 }
 
+SharedModel damper_constants(const plant::PlantSpec& spec) {
+  SharedModel m;
+  const physics::BinghamParams& bp = spec.damper.bingham;
+  m.fc_a_n = bp.fc_a_n;
+  m.fc_b_n = bp.fc_b_n;
+  m.neg_fc_c_per_a = -bp.fc_c_per_a;
+  m.c0_a_ns_m = bp.c0_a_ns_m;
+  m.c0_b_ns_m = bp.c0_b_ns_m;
+  m.neg_c0_c_per_a = -bp.c0_c_per_a;
+  m.v_tf_m_s = bp.v_tf_m_s;
+  // As physics::CurrentDynamics::init and plant::CoilThermal::init compute them.
+  m.a_slow = std::exp(-spec.step_s / spec.damper.coil.tau_slow_s);
+  m.a_fast = std::exp(-spec.step_s / spec.damper.coil.tau_fast_s);
+  m.one_minus_a_slow = 1.0 - m.a_slow;
+  m.one_minus_a_fast = 1.0 - m.a_fast;
+  m.weight_slow = spec.damper.coil.weight_slow;
+  m.weight_fast = spec.damper.coil.weight_fast;
+  m.flow_area_m2 = spec.damper.pr.flow_area_m2;
+  m.volume_unit_m3 = spec.damper.pr.volume_unit_m3;
+  m.step_s = spec.step_s;
+  m.thermal_a = std::exp(-spec.step_s / spec.thermal.time_constant_s);
+  m.thermal_gain_k_w = (1.0 - m.thermal_a) * spec.thermal.thermal_resistance_k_w;
+  m.resistance_ohm = spec.thermal.resistance_ohm;
+  m.rated_current_a = plant::kRatedCoilCurrent_a;
+  return m;
+}
+
+plant::CoilFigures coil_figures(double peak_a, double peak_rise_k, double sum_sq_a2, double ticks_above_rated,
+                                double command_changes, std::size_t ticks, double step_s) noexcept {
+  // plant::CoilFigureCounter::figures.
+  plant::CoilFigures f;
+  f.peak_coil_current_a = peak_a;
+  f.peak_coil_temperature_rise_k = peak_rise_k;
+  if (ticks == 0) return f;
+  const double duration_s = static_cast<double>(ticks) * step_s;
+  f.rms_coil_current_a = std::sqrt(sum_sq_a2 / static_cast<double>(ticks));
+  f.time_above_rated_s = ticks_above_rated * step_s;
+  f.command_changes_per_s = command_changes / duration_s;
+  return f;
+}
+
 namespace {
 
 LaneKernel kernel_of(LaneIsa isa) {
@@ -93,21 +136,25 @@ double dot_row12(const double* row, const double* q) {
   return a + b;
 }
 
+/// The thesis's shape: 6 DOFs on linear isolation (no bearings, so no
+/// sub-steps), one damper on element 0, stepped in modal form. Its lanes
+/// keep the whole state in registers (lane_kernel.hpp).
+bool thesis_shape(const plant::PlantSpec& spec) {
+  const structure::BuildingParams& b = spec.building;
+  if (spec.kind != plant::PlantKind::kThesis || b.dofs() != kBlockDofs || !b.isolators.empty() ||
+      b.dampers.size() != 1 || b.dampers[0].element != 0 || b.dampers[0].count != 1 ||
+      b.base != structure::BaseKind::kIsolated) {
+    return false;
+  }
+  structure::DiscreteBuilding d;
+  d.init(b, spec.step_s);
+  return d.modal_stepping();
+}
+
 SharedModel shared_model(const plant::PlantSpec& spec) {
-  if (spec.kind != plant::PlantKind::kThesis) {
-    throw std::invalid_argument("the batch runs the thesis plant only");
-  }
-  const structure::BuildingParams& building = spec.building;
-  if (building.dofs() != kBlockDofs || !building.isolators.empty() || building.dampers.size() != 1 ||
-      building.dampers[0].element != 0 || building.dampers[0].count != 1) {
-    throw std::invalid_argument("the batch runs buildings of 6 DOFs without isolators and one damper on element 0");
-  }
   structure::DiscreteBuilding b;
-  b.init(building, spec.step_s);
-  if (!b.modal_stepping()) {
-    throw std::invalid_argument("the batch needs the building's modal stepping form (an underdamped building)");
-  }
-  SharedModel m;
+  b.init(spec.building, spec.step_s);
+  SharedModel m = damper_constants(spec);
   for (int r = 0; r < kBlockStates; ++r) {
     m.blocks[r][0] = b.modal_blocks()(r, 0);
     m.blocks[r][1] = b.modal_blocks()(r, 1);
@@ -116,61 +163,124 @@ SharedModel shared_model(const plant::PlantSpec& spec) {
     m.disp_row[r] = b.modal_basis()(structure::kBaseDof, r);
     m.vel_row[r] = b.modal_basis()(b.dofs() + structure::kBaseDof, r);
     for (int i = 0; i < kBlockDofs; ++i) m.accel_rows[i][r] = b.accel_rows()(i, r);
+    for (int i = 0; i < kBlockDofs; ++i) m.disp_rows[i][r] = b.modal_basis()(i, r);
   }
   m.inv_base_mass_per_kg = b.inv_base_mass_per_kg();
-  const physics::BinghamParams& bp = spec.damper.bingham;
-  m.fc_a_n = bp.fc_a_n;
-  m.fc_b_n = bp.fc_b_n;
-  m.neg_fc_c_per_a = -bp.fc_c_per_a;
-  m.c0_a_ns_m = bp.c0_a_ns_m;
-  m.c0_b_ns_m = bp.c0_b_ns_m;
-  m.neg_c0_c_per_a = -bp.c0_c_per_a;
-  m.v_tf_m_s = bp.v_tf_m_s;
-  // As physics::CurrentDynamics::init and plant::CoilThermal::init compute them.
-  m.a_slow = std::exp(-spec.step_s / spec.damper.coil.tau_slow_s);
-  m.a_fast = std::exp(-spec.step_s / spec.damper.coil.tau_fast_s);
-  m.one_minus_a_slow = 1.0 - m.a_slow;
-  m.one_minus_a_fast = 1.0 - m.a_fast;
-  m.weight_slow = spec.damper.coil.weight_slow;
-  m.weight_fast = spec.damper.coil.weight_fast;
-  m.flow_area_m2 = spec.damper.pr.flow_area_m2;
-  m.volume_unit_m3 = spec.damper.pr.volume_unit_m3;
-  m.step_s = spec.step_s;
-  m.thermal_a = std::exp(-spec.step_s / spec.thermal.time_constant_s);
-  m.thermal_gain_k_w = (1.0 - m.thermal_a) * spec.thermal.thermal_resistance_k_w;
-  m.resistance_ohm = spec.thermal.resistance_ohm;
-  m.rated_current_a = plant::kRatedCoilCurrent_a;
   return m;
 }
 
-constexpr double kNoGround = 0.0;  ///< what an idle lane reads
 constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 constexpr int kModes = 3;
 
 bool passive(control::ControlMode m) { return m != control::ControlMode::kSemiActive; }
 
-/// Steps the runs of one queue through one block, a lane taking the next
-/// run when its run ends.
+/// Lanes of the thesis's shape (see thesis_shape), in registers.
+class ThesisLanes {
+ public:
+  ThesisLanes(const plant::PlantSpec& spec, const LaneKernel& kernel, bool story_drift)
+      : spec_(spec),
+        kernel_(kernel),
+        model_(shared_model(spec)),
+        block_(std::make_unique<LaneBlock>()),
+        run_(story_drift ? kernel.run : kernel.run_without_drift) {
+    for (int l = 0; l < kMaxLanes; ++l) rest(l, 1.0);
+  }
+
+  int lanes() const noexcept { return kernel_.lanes; }
+
+  void rest(int l, double sq) {
+    LaneBlock& b = *block_;
+    for (auto& row : b.q) row[l] = 0.0;
+    for (double* v : {b.y_slow, b.y_fast, b.displaced_m3, b.held_force_n, b.base_accel_m_s2, b.rise_k, b.peak_disp_m,
+                      b.peak_force_n, b.peak_vel_m_s, b.peak_current_a, b.peak_floor_accel_m_s2,
+                      b.peak_base_accel_m_s2, b.peak_story_drift_m, b.coil_peak_a, b.coil_sum_sq_a2,
+                      b.coil_peak_rise_k, b.last_command_a, b.ticks_above_rated, b.command_changes, b.command_a}) {
+      v[l] = 0.0;
+    }
+    // Plant::init: PR and the damper's coefficients at ∫Q = 0 and i = 0 A
+    // (physics::ParticipantRatio::reset, MrDamper::update_coefficients).
+    const physics::PrCoefficients c = physics::pr_coefficients(spec_.damper.pr, sq);
+    b.a_pr[l] = c.a_pr;
+    b.b_pr[l] = c.b_pr;
+    b.neg_c_pr[l] = -c.c_pr;
+    b.pr[l] = physics::participant_ratio(c, 0.0 / spec_.damper.pr.volume_unit_m3);
+    const double i0_a = model_.weight_slow * 0.0 + model_.weight_fast * 0.0;
+    b.fc_n[l] = physics::coulomb_force_n(spec_.damper.bingham, i0_a, b.pr[l]);
+    b.c0_ns_m[l] = physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, b.pr[l]);
+    b.exp_current_a[l] = std::numeric_limits<double>::quiet_NaN();
+    b.ground[l] = &kNoGround;
+    b.ground_scale[l] = 1.0;
+    b.ground_stride[l] = 0;
+  }
+
+  void start(int l, const double* ground, double scale) noexcept {
+    block_->ground[l] = ground;
+    block_->ground_scale[l] = scale;
+    block_->ground_stride[l] = 1;
+  }
+  void set_command(int l, double current_a) noexcept { block_->command_a[l] = current_a; }
+
+  void run(std::size_t ticks) { run_(model_, *block_, ticks); }
+  void sense() { kernel_.sense(model_, *block_); }
+  void advance() { kernel_.advance(model_, *block_); }
+
+  LaneSensed sensed(int l) const noexcept {
+    const LaneBlock& b = *block_;
+    return LaneSensed{b.ground_accel_m_s2[l], b.base_disp_m[l], b.base_vel_m_s[l], b.damper_force_n[l],
+                      b.base_accel_m_s2[l],   b.current_a[l],   b.pr[l]};
+  }
+
+  plant::PlantSummary summary(int l, std::size_t ticks, double sq) const {
+    const LaneBlock& b = *block_;
+    plant::PlantSummary s;
+    double q[kBlockStates];
+    for (int k = 0; k < kBlockStates; ++k) q[k] = b.q[k][l];
+    s.ticks = ticks;
+    s.sq = sq;
+    s.duration_s = static_cast<double>(s.ticks) * spec_.step_s;
+    s.peak_base_displacement_m = std::max(b.peak_disp_m[l], std::fabs(dot_row12(model_.disp_row, q)));
+    s.peak_damper_stroke_m = s.peak_base_displacement_m;  // the one damper is on element 0
+    s.peak_damper_force_n = b.peak_force_n[l];
+    s.peak_base_velocity_m_s = b.peak_vel_m_s[l];
+    s.peak_superstructure_accel_m_s2 = b.peak_floor_accel_m_s2[l];
+    s.peak_base_accel_m_s2 = b.peak_base_accel_m_s2[l];
+    s.peak_current_a = b.peak_current_a[l];
+    s.peak_story_drift_m = b.peak_story_drift_m[l];
+    s.final_participant_ratio = b.pr[l];
+    s.coil = coil_figures(b.coil_peak_a[l], b.coil_peak_rise_k[l], b.coil_sum_sq_a2[l], b.ticks_above_rated[l],
+                          b.command_changes[l], ticks, spec_.step_s);
+    return s;
+  }
+
+ private:
+  const plant::PlantSpec& spec_;
+  const LaneKernel& kernel_;
+  SharedModel model_;
+  std::unique_ptr<LaneBlock> block_;
+  void (*run_)(const SharedModel&, LaneBlock&, std::size_t);
+};
+
+/// Steps the runs of one queue through one set of lanes, a lane taking the
+/// next run when its run ends. `Lanes` is ThesisLanes or AnyLanes.
+template <class Lanes>
 class Batch {
  public:
-  Batch(const plant::PlantSpec& spec, const LaneKernel& kernel, const SharedModel& model,
-        std::span<const BatchRun> runs, const BatchOptions& options, std::vector<plant::PlantSummary>& out)
-      : spec_(spec), kernel_(kernel), model_(model), runs_(runs), options_(options), out_(out) {
-    block_ = std::make_unique<LaneBlock>();
-    for (int l = 0; l < kMaxLanes; ++l) rest(l);
-  }
+  Batch(const plant::PlantSpec& spec, Lanes& lanes, std::span<const BatchRun> runs, const BatchOptions& options,
+        std::vector<plant::PlantSummary>& out)
+      : spec_(spec), lanes_(lanes), runs_(runs), options_(options), out_(out) {}
 
   void run(const std::vector<std::size_t>& queue) {
     queue_ = &queue;
     next_ = 0;
-    for (int l = 0; l < kernel_.lanes; ++l) take_next(l);
+    const int width = lanes_.lanes();
+    for (int l = 0; l < width; ++l) take_next(l);
     for (;;) {
       std::size_t left = std::numeric_limits<std::size_t>::max();
       bool tick_by_tick = false;
-      for (int l = 0; l < kernel_.lanes; ++l) {
-        if (lanes_[l].run == kNone) continue;
-        left = std::min(left, lanes_[l].ticks - lanes_[l].tick);
-        const BatchRun& r = runs_[lanes_[l].run];
+      for (int l = 0; l < width; ++l) {
+        if (lane_[l].run == kNone) continue;
+        left = std::min(left, lane_[l].ticks - lane_[l].tick);
+        const BatchRun& r = runs_[lane_[l].run];
         tick_by_tick = tick_by_tick || r.record != nullptr || !passive(r.mode);
       }
       if (left == std::numeric_limits<std::size_t>::max()) return;  // every lane idle
@@ -178,12 +288,12 @@ class Batch {
         tick();
         left = 1;
       } else {
-        kernel_.run(model_, *block_, left);
+        lanes_.run(left);
       }
-      for (int l = 0; l < kernel_.lanes; ++l) {
-        if (lanes_[l].run == kNone) continue;
-        lanes_[l].tick += left;
-        if (lanes_[l].tick == lanes_[l].ticks) {
+      for (int l = 0; l < width; ++l) {
+        if (lane_[l].run == kNone) continue;
+        lane_[l].tick += left;
+        if (lane_[l].tick == lane_[l].ticks) {
           finish(l);
           take_next(l);
         }
@@ -198,55 +308,28 @@ class Batch {
     std::size_t ticks = 0;
     double sq = 0.0;
     double desired_force_n = 0.0;  ///< the passive core's F_d (0)
+    double command_a = 0.0;        ///< u[n]: the passive core's for the run, the semi-active core's this tick
     run::Controller* controller = nullptr;  ///< semi-active only
   };
 
   const plant::PlantSpec& spec_;
-  const LaneKernel& kernel_;
-  const SharedModel& model_;
+  Lanes& lanes_;
   std::span<const BatchRun> runs_;
   const BatchOptions& options_;
   std::vector<plant::PlantSummary>& out_;
-  std::unique_ptr<LaneBlock> block_;
-  std::array<Lane, kMaxLanes> lanes_{};
+  std::array<Lane, kMaxLanes> lane_{};
   std::array<std::array<std::unique_ptr<run::Controller>, kModes>, kMaxLanes> controllers_{};
   const std::vector<std::size_t>* queue_ = nullptr;
   std::size_t next_ = 0;
 
-  run::Controller& controller(int lane, control::ControlMode mode) {
-    auto& c = controllers_[lane][static_cast<int>(mode)];
+  run::Controller& controller(int l, control::ControlMode mode) {
+    auto& c = controllers_[l][static_cast<int>(mode)];
     if (!c) c = run::make_controller(mode, spec_.step_s, options_.numeric);
     return *c;
   }
 
-  /// Lane l at rest with nothing to run.
-  void rest(int l) {
-    LaneBlock& b = *block_;
-    for (auto& row : b.q) row[l] = 0.0;
-    for (double* v : {b.y_slow, b.y_fast, b.displaced_m3, b.held_force_n, b.base_accel_m_s2, b.rise_k, b.peak_disp_m,
-                      b.peak_force_n, b.peak_vel_m_s, b.peak_current_a, b.peak_floor_accel_m_s2,
-                      b.peak_base_accel_m_s2, b.coil_peak_a, b.coil_sum_sq_a2, b.coil_peak_rise_k, b.last_command_a,
-                      b.ticks_above_rated, b.command_changes, b.command_a}) {
-      v[l] = 0.0;
-    }
-    // Plant::init: PR and the damper's coefficients at ∫Q = 0 and i = 0 A
-    // (physics::ParticipantRatio::reset, MrDamper::update_coefficients).
-    const physics::PrCoefficients c = physics::pr_coefficients(spec_.damper.pr, lanes_[l].sq);
-    b.a_pr[l] = c.a_pr;
-    b.b_pr[l] = c.b_pr;
-    b.neg_c_pr[l] = -c.c_pr;
-    b.pr[l] = physics::participant_ratio(c, 0.0 / spec_.damper.pr.volume_unit_m3);
-    const double i0_a = model_.weight_slow * 0.0 + model_.weight_fast * 0.0;
-    b.fc_n[l] = physics::coulomb_force_n(spec_.damper.bingham, i0_a, b.pr[l]);
-    b.c0_ns_m[l] = physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, b.pr[l]);
-    b.exp_current_a[l] = std::numeric_limits<double>::quiet_NaN();
-    b.ground[l] = &kNoGround;
-    b.ground_scale[l] = 1.0;
-    b.ground_stride[l] = 0;
-  }
-
   void take_next(int l) {
-    Lane& lane = lanes_[l];
+    Lane& lane = lane_[l];
     lane = Lane{};
     while (next_ < queue_->size()) {
       const std::size_t i = (*queue_)[next_++];
@@ -254,24 +337,22 @@ class Batch {
       lane.run = i;
       lane.ticks = r.ground_accel_m_s2.size();
       lane.sq = physics::settling_quotient_after_idle(r.idle_time_s, spec_.settling);
-      rest(l);
+      lanes_.rest(l, lane.sq);
       if (r.record) start_record(*r.record, lane.ticks);
       if (lane.ticks == 0) {
         finish(l);
         lane = Lane{};
         continue;
       }
-      LaneBlock& b = *block_;
-      b.ground[l] = r.ground_accel_m_s2.data();
-      b.ground_scale[l] = r.ground_scale;
-      b.ground_stride[l] = 1;
+      lanes_.start(l, r.ground_accel_m_s2.data(), r.ground_scale);
       run::Controller& c = controller(l, r.mode);
       c.reset();
       if (passive(r.mode)) {
         // SAFE-3: a passive core's output ignores its input, so its first
         // tick's command holds for the run.
         const control::ControllerOutput o = c.step(control::ControllerInput{});
-        b.command_a[l] = plant::command_stage_a(plant::CoilDrive{static_cast<double>(o.current_command_a), o.drive_enable});
+        lane.command_a = plant::command_stage_a(run::coil_drive(o));
+        lanes_.set_command(l, lane.command_a);
         lane.desired_force_n = o.desired_force_n;
       } else {
         lane.controller = &c;
@@ -279,95 +360,67 @@ class Batch {
       return;
     }
     lane = Lane{};
-    rest(l);
+    lanes_.rest(l, 1.0);
   }
 
-  static void start_record(run::ClosedLoopRecord& rec, std::size_t n) {
-    for (auto* v : {&rec.time_s, &rec.ground_accel_m_s2, &rec.base_disp_m, &rec.base_vel_m_s, &rec.damper_force_n,
-                    &rec.desired_force_n, &rec.command_a, &rec.current_a, &rec.pr, &rec.roof_accel_m_s2,
-                    &rec.peak_floor_accel_m_s2}) {
-      v->clear();
-      v->reserve(n);
+  void start_record(run::ClosedLoopRecord& rec, std::size_t n) {
+    if constexpr (requires(Lanes& s) { s.start_record(rec, n); }) {
+      lanes_.start_record(rec, n);
+    } else {
+      throw std::logic_error("time series are recorded on any building's lanes");
     }
   }
 
   /// One tick of every lane, the semi-active lanes' cores in between, as
   /// run::run_closed_loop does it.
   void tick() {
-    LaneBlock& b = *block_;
-    kernel_.sense(model_, b);
+    lanes_.sense();
+    std::array<LaneSensed, kMaxLanes> sensed{};
     std::array<double, kMaxLanes> desired{};
-    std::array<double, kMaxLanes> pr{};
-    for (int l = 0; l < kernel_.lanes; ++l) {
-      Lane& lane = lanes_[l];
+    for (int l = 0; l < lanes_.lanes(); ++l) {
+      Lane& lane = lane_[l];
       if (lane.run == kNone) continue;
-      pr[l] = b.pr[l];
+      sensed[l] = lanes_.sensed(l);
       desired[l] = lane.desired_force_n;
       if (!lane.controller) continue;
+      const LaneSensed& s = sensed[l];
       control::ControllerInput in;
       in.tick = lane.tick;
-      in.damper_disp_m = static_cast<float>(b.base_disp_m[l]);
-      in.damper_force_n = static_cast<float>(b.damper_force_n[l]);
-      in.ground_accel_m_s2 = static_cast<float>(b.ground_accel_m_s2[l]);
-      in.base_accel_m_s2 = static_cast<float>(b.base_accel_m_s2[l]);
-      in.coil_current_a = static_cast<float>(b.current_a[l]);
+      in.damper_disp_m = static_cast<float>(s.stroke_m);
+      in.damper_force_n = static_cast<float>(s.damper_force_n);
+      in.ground_accel_m_s2 = static_cast<float>(s.ground_accel_m_s2);
+      in.base_accel_m_s2 = static_cast<float>(s.base_accel_m_s2);
+      in.coil_current_a = static_cast<float>(s.current_a);
       const control::ControllerOutput o = lane.controller->step(in);
-      b.command_a[l] = plant::command_stage_a(plant::CoilDrive{static_cast<double>(o.current_command_a), o.drive_enable});
+      lane.command_a = plant::command_stage_a(run::coil_drive(o));
+      lanes_.set_command(l, lane.command_a);
       desired[l] = o.desired_force_n;
     }
-    // The sensed values, before advance() overwrites what they came from.
-    LaneBlock::Lanes x, v, f, ag, i;
-    std::memcpy(x, b.base_disp_m, sizeof x);
-    std::memcpy(v, b.base_vel_m_s, sizeof v);
-    std::memcpy(f, b.damper_force_n, sizeof f);
-    std::memcpy(ag, b.ground_accel_m_s2, sizeof ag);
-    std::memcpy(i, b.current_a, sizeof i);
-    kernel_.advance(model_, b);
-    for (int l = 0; l < kernel_.lanes; ++l) {
-      const Lane& lane = lanes_[l];
-      if (lane.run == kNone || !runs_[lane.run].record) continue;
-      run::ClosedLoopRecord& rec = *runs_[lane.run].record;
-      rec.time_s.push_back(static_cast<double>(lane.tick) * spec_.step_s);
-      rec.ground_accel_m_s2.push_back(ag[l]);
-      rec.base_disp_m.push_back(x[l]);
-      rec.base_vel_m_s.push_back(v[l]);
-      rec.damper_force_n.push_back(f[l]);
-      rec.desired_force_n.push_back(desired[l]);
-      rec.command_a.push_back(b.command_a[l]);
-      rec.current_a.push_back(i[l]);
-      rec.pr.push_back(pr[l]);
-      rec.roof_accel_m_s2.push_back(b.roof_accel_m_s2[l]);
-      rec.peak_floor_accel_m_s2.push_back(b.floor_peak_m_s2[l]);
+    lanes_.advance();
+    if constexpr (requires(Lanes& s, run::ClosedLoopRecord& r) { s.record_after(0, r); }) {
+      for (int l = 0; l < lanes_.lanes(); ++l) {
+        const Lane& lane = lane_[l];
+        if (lane.run == kNone || !runs_[lane.run].record) continue;
+        run::ClosedLoopRecord& rec = *runs_[lane.run].record;
+        const LaneSensed& s = sensed[l];
+        rec.time_s.push_back(static_cast<double>(lane.tick) * spec_.step_s);
+        rec.ground_accel_m_s2.push_back(s.ground_accel_m_s2);
+        rec.base_disp_m.push_back(s.stroke_m);
+        rec.base_vel_m_s.push_back(s.rate_m_s);
+        rec.damper_force_n.push_back(s.damper_force_n);
+        rec.desired_force_n.push_back(desired[l]);
+        rec.command_a.push_back(lane.command_a);
+        rec.current_a.push_back(s.current_a);
+        rec.pr.push_back(s.pr);
+        lanes_.record_after(l, rec);
+      }
     }
   }
 
-  /// Plant::summary() of lane l's run.
   void finish(int l) {
-    const LaneBlock& b = *block_;
-    const Lane& lane = lanes_[l];
-    plant::PlantSummary s;
-    double q[kBlockStates];
-    for (int k = 0; k < kBlockStates; ++k) q[k] = b.q[k][l];
-    s.ticks = lane.tick;
-    s.sq = lane.sq;
-    s.duration_s = static_cast<double>(s.ticks) * spec_.step_s;
-    s.peak_base_displacement_m = std::max(b.peak_disp_m[l], std::fabs(dot_row12(model_.disp_row, q)));
-    s.peak_damper_stroke_m = s.peak_base_displacement_m;  // the batch's one damper is on element 0
-    s.peak_damper_force_n = b.peak_force_n[l];
-    s.peak_base_velocity_m_s = b.peak_vel_m_s[l];
-    s.peak_superstructure_accel_m_s2 = b.peak_floor_accel_m_s2[l];
-    s.peak_base_accel_m_s2 = b.peak_base_accel_m_s2[l];
-    s.peak_current_a = b.peak_current_a[l];
-    s.final_participant_ratio = b.pr[l];
-    // plant::CoilFigureCounter::figures.
-    s.coil.peak_coil_current_a = b.coil_peak_a[l];
-    s.coil.peak_coil_temperature_rise_k = b.coil_peak_rise_k[l];
-    if (s.ticks > 0) {
-      s.coil.rms_coil_current_a = std::sqrt(b.coil_sum_sq_a2[l] / static_cast<double>(s.ticks));
-      s.coil.time_above_rated_s = b.ticks_above_rated[l] * spec_.step_s;
-      s.coil.command_changes_per_s = b.command_changes[l] / s.duration_s;
-    }
-    out_[lane.run] = s;
+    const Lane& lane = lane_[l];
+    out_[lane.run] = lanes_.summary(l, lane.tick, lane.sq);
+    if (!options_.story_drift) out_[lane.run].peak_story_drift_m = std::numeric_limits<double>::quiet_NaN();
   }
 };
 
@@ -409,16 +462,30 @@ std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& p
     throw std::invalid_argument(std::string("the ") + lane_isa_name(isa) +
                                 " lane kernel does not run here (instruction set, or the C library's exp())");
   }
+  if (plant.kind != plant::PlantKind::kThesis) throw std::invalid_argument("the batch runs the thesis plant only");
   const LaneKernel kernel = kernel_of(isa);
-  const SharedModel model = shared_model(plant);
   std::vector<plant::PlantSummary> out(runs.size());
   // Passive runs step many ticks per kernel call; semi-active ones tick by
   // tick around their cores. Each kind fills its own lanes.
   std::vector<std::size_t> passive_runs, active_runs;
-  for (std::size_t i = 0; i < runs.size(); ++i) (passive(runs[i].mode) ? passive_runs : active_runs).push_back(i);
-  Batch batch(plant, kernel, model, runs, options, out);
-  batch.run(passive_runs);
-  batch.run(active_runs);
+  bool recorded = false;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    (passive(runs[i].mode) ? passive_runs : active_runs).push_back(i);
+    recorded = recorded || runs[i].record != nullptr;
+  }
+  // Time series (story drifts, isolator force) come from any building's lanes.
+  auto run_all = [&](auto& lanes) {
+    Batch batch(plant, lanes, runs, options, out);
+    batch.run(passive_runs);
+    batch.run(active_runs);
+  };
+  if (thesis_shape(plant) && !recorded) {
+    ThesisLanes lanes(plant, kernel, options.story_drift);
+    run_all(lanes);
+  } else {
+    AnyLanes lanes(plant, kernel);
+    run_all(lanes);
+  }
   return out;
 }
 

@@ -26,6 +26,7 @@ struct SharedModel {
   double disp_row[kBlockStates] = {};             ///< row 0 of T: base displacement from q, m
   double vel_row[kBlockStates] = {};              ///< row 6 of T: base velocity from q, m/s
   double accel_rows[kBlockDofs][kBlockStates] = {};  ///< rows 6..11 of A·T: ẍ from q
+  double disp_rows[kBlockDofs][kBlockStates] = {};   ///< rows 0..5 of T: displacements from q
   double inv_base_mass_per_kg = 0.0;
   // Damper, Eq. 4.4, 5.10–5.11.
   double fc_a_n = 0.0, fc_b_n = 0.0, neg_fc_c_per_a = 0.0;
@@ -60,7 +61,7 @@ struct alignas(64) LaneBlock {
 
   // Peaks and coil figures so far.
   Lanes peak_disp_m = {}, peak_force_n = {}, peak_vel_m_s = {}, peak_current_a = {};
-  Lanes peak_floor_accel_m_s2 = {}, peak_base_accel_m_s2 = {};
+  Lanes peak_floor_accel_m_s2 = {}, peak_base_accel_m_s2 = {}, peak_story_drift_m = {};
   Lanes coil_peak_a = {}, coil_sum_sq_a2 = {}, coil_peak_rise_k = {}, last_command_a = {};
   Lanes ticks_above_rated = {}, command_changes = {};  ///< counts, exact in double below 2^53
 
@@ -78,6 +79,9 @@ struct alignas(64) LaneBlock {
   Lanes roof_accel_m_s2 = {}, floor_peak_m_s2 = {};
 };
 
+struct AnyModel;  // lane_block_any.hpp
+struct AnyBlock;
+
 /// One instruction set's kernel.
 struct LaneKernel {
   const char* name = "";
@@ -88,8 +92,14 @@ struct LaneKernel {
   void (*advance)(const SharedModel&, LaneBlock&) = nullptr;
   /// `ticks` × (sense, advance) with command_a constant.
   void (*run)(const SharedModel&, LaneBlock&, std::size_t ticks) = nullptr;
+  /// run() leaving peak_story_drift_m untouched.
+  void (*run_without_drift)(const SharedModel&, LaneBlock&, std::size_t ticks) = nullptr;
   /// y[i] = exp(x[i]) for n values, as the kernel evaluates it.
   void (*exp)(const double* x, double* y, std::size_t n) = nullptr;
+  /// The same three steps on any building (lane_block_any.hpp, lane_kernel_any.hpp).
+  void (*any_sense)(const AnyModel&, AnyBlock&) = nullptr;
+  void (*any_advance)(const AnyModel&, AnyBlock&) = nullptr;
+  void (*any_run)(const AnyModel&, AnyBlock&, std::size_t ticks) = nullptr;
 };
 
 /// The kernels this build has. The x86-64-v3 and -v4 kernels run only on

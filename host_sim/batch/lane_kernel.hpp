@@ -210,7 +210,7 @@ template <class V4, class V>
 struct Regs {
   vd q[kBlockStates];
   vd y_slow, y_fast, displaced, a_pr, b_pr, neg_c_pr, pr, fc, c0, held, base_accel, rise;
-  vd pk_disp, pk_force, pk_vel, pk_current, pk_floor, pk_base;
+  vd pk_disp, pk_force, pk_vel, pk_current, pk_floor, pk_base, pk_drift;
   vd coil_peak, coil_sum_sq, coil_peak_rise, last_cmd, above, changes;
   vd exp_fc, exp_c0, exp_current;  ///< the current laws' exp() terms and the |i| they are for
   vu ground_addr, ground_step;  ///< where each lane reads a_g, and its stride in bytes
@@ -237,6 +237,7 @@ struct Regs {
   r.pk_current = load(b.peak_current_a + o);
   r.pk_floor = load(b.peak_floor_accel_m_s2 + o);
   r.pk_base = load(b.peak_base_accel_m_s2 + o);
+  r.pk_drift = load(b.peak_story_drift_m + o);
   r.coil_peak = load(b.coil_peak_a + o);
   r.coil_sum_sq = load(b.coil_sum_sq_a2 + o);
   r.coil_peak_rise = load(b.coil_peak_rise_k + o);
@@ -270,6 +271,7 @@ struct Regs {
   store(b.peak_current_a + o, r.pk_current);
   store(b.peak_floor_accel_m_s2 + o, r.pk_floor);
   store(b.peak_base_accel_m_s2 + o, r.pk_base);
+  store(b.peak_story_drift_m + o, r.pk_drift);
   store(b.coil_peak_a + o, r.coil_peak);
   store(b.coil_sum_sq_a2 + o, r.coil_sum_sq);
   store(b.coil_peak_rise_k + o, r.coil_peak_rise);
@@ -307,6 +309,7 @@ struct Sensed {
 }
 
 /// Plant::advance on the thesis plant with the command stage's output `u`.
+template <bool kStoryDrift>
 [[gnu::always_inline]] inline void advance_regs(const SharedModel& m, const Sensed& s, vd u, Regs& r, vd& roof,
                                                 vd& floor_peak) {
   // MrDamper::step: coil (Eq. 4.5), then PR (Eq. 5.9), then f_c, c_0.
@@ -370,6 +373,14 @@ struct Sensed {
   r.pk_floor = vmax(r.pk_floor, floor_peak);
   r.pk_base = vmax(r.pk_base, vabs(a[0]));
   r.base_accel = a[0];
+  if constexpr (!kStoryDrift) return;
+  // Story drifts |x_i − x_{i−1}|, i = 1..5, each x_i as DiscreteBuilding::disp_m sums it.
+  vd below = dot_row12(m.disp_rows[0], r.q);
+  for (int i = 1; i < kBlockDofs; ++i) {
+    const vd x = dot_row12(m.disp_rows[i], r.q);
+    r.pk_drift = vmax(r.pk_drift, vabs(x - below));
+    below = x;
+  }
 }
 
 // The kernel steps kInterleave register sets of kW lanes in one loop, so
@@ -403,14 +414,15 @@ void advance(const SharedModel& m, LaneBlock& b) {
     s.force = load(b.damper_force_n + o);
     s.current = load(b.current_a + o);
     vd roof, floor_peak;
-    advance_regs(m, s, load(b.command_a + o), r, roof, floor_peak);
+    advance_regs<true>(m, s, load(b.command_a + o), r, roof, floor_peak);
     store_regs(b, o, r);
     store(b.roof_accel_m_s2 + o, roof);
     store(b.floor_peak_m_s2 + o, floor_peak);
   }
 }
 
-void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
+template <bool kStoryDrift>
+void run_ticks(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
   if (ticks == 0) return;
   Regs r[kInterleave];
   vd u[kInterleave], roof[kInterleave], floor_peak[kInterleave];
@@ -421,7 +433,7 @@ void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
   for (std::size_t t = 0; t < ticks; ++t) {
     Sensed s[kInterleave];
     for (int h = 0; h < kInterleave; ++h) s[h] = sense_regs(m, r[h]);
-    for (int h = 0; h < kInterleave; ++h) advance_regs(m, s[h], u[h], r[h], roof[h], floor_peak[h]);
+    for (int h = 0; h < kInterleave; ++h) advance_regs<kStoryDrift>(m, s[h], u[h], r[h], roof[h], floor_peak[h]);
   }
   for (int h = 0; h < kInterleave; ++h) {
     store_regs(b, h * kW, r[h]);
@@ -429,6 +441,10 @@ void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
     store(b.floor_peak_m_s2 + h * kW, floor_peak[h]);
   }
 }
+
+void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) { run_ticks<true>(m, b, ticks); }
+/// run() without the story drifts' peak (six 12-term sums a tick fewer).
+void run_without_drift(const SharedModel& m, LaneBlock& b, std::size_t ticks) { run_ticks<false>(m, b, ticks); }
 
 void exp_n(const double* x, double* y, std::size_t n) {
   std::size_t i = 0;

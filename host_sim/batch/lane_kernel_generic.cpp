@@ -3,12 +3,14 @@
 #define MRD_BATCH_NS generic
 #define MRD_BATCH_FMA_EXP 0
 #include "host_sim/batch/lane_kernel.hpp"
+#include "host_sim/batch/lane_kernel_any.hpp"
 
 namespace mrd::batch {
 
 LaneKernel generic_lane_kernel() noexcept {
   return LaneKernel{"generic", generic::kW * generic::kInterleave, &generic::sense, &generic::advance, &generic::run,
-                    &generic::exp_n};
+                    &generic::run_without_drift, &generic::exp_n,
+                    &generic::any_sense, &generic::any_advance, &generic::any_run};
 }
 
 }  // namespace mrd::batch

@@ -19,6 +19,7 @@
 #include "host_sim/batch/batch_run.hpp"
 #include "host_sim/batch/lane_block.hpp"
 #include "host_sim/run/motions.hpp"
+#include "host_sim/structure/building_file.hpp"
 #include "mrd/units.hpp"
 
 namespace {
@@ -54,6 +55,9 @@ void expect_same_summary(const mrd::plant::PlantSummary& b, const mrd::plant::Pl
   expect_equal(b.peak_superstructure_accel_m_s2, s.peak_superstructure_accel_m_s2, "peak floor acceleration");
   expect_equal(b.peak_base_accel_m_s2, s.peak_base_accel_m_s2, "peak base acceleration");
   expect_equal(b.peak_current_a, s.peak_current_a, "peak current");
+  expect_equal(b.peak_isolator_force_n, s.peak_isolator_force_n, "peak isolator force");
+  expect_equal(b.peak_story_drift_m, s.peak_story_drift_m, "peak story drift");
+  expect_equal(b.peak_damper_stroke_m, s.peak_damper_stroke_m, "peak damper stroke");
   expect_equal(b.final_participant_ratio, s.final_participant_ratio, "final PR");
   expect_equal(b.sq, s.sq, "SQ");
   expect_equal(b.duration_s, s.duration_s, "duration");
@@ -92,8 +96,7 @@ mrd::plant::PlantSummary scalar_run(const mrd::plant::PlantSpec& plant, const Ba
   return mrd::run::run_closed_loop(spec, scaled, *controller, record);
 }
 
-void expect_batch_equals_scalar(const Case& c) {
-  const mrd::plant::PlantSpec plant;
+void expect_batch_equals_scalar(const Case& c, const mrd::plant::PlantSpec& plant = {}) {
   for (LaneIsa isa : isas()) {
     SCOPED_TRACE(mrd::batch::lane_isa_name(isa));
     mrd::batch::BatchOptions options;
@@ -270,7 +273,94 @@ TEST(Batch, TimeSeriesSamplesEqualTheScalarLoop) {
         expect_equal(b.roof_accel_m_s2[k], s.roof_accel_m_s2[k], "roof acceleration");
         expect_equal(b.peak_floor_accel_m_s2[k], s.peak_floor_accel_m_s2[k], "floor acceleration");
       }
+      ASSERT_EQ(b.story_elements, s.story_elements);
+      ASSERT_EQ(b.story_drift_m, s.story_drift_m);
+      ASSERT_EQ(b.isolator_force_n, s.isolator_force_n);
     }
+  }
+}
+
+/// The plant on a building file of buildings/.
+mrd::plant::PlantSpec plant_on(const char* file) {
+  mrd::plant::PlantSpec plant;
+  plant.building = mrd::structure::read_building_file(fs::path(MRD_BUILDINGS_DIR) / file);
+  return plant;
+}
+
+// Any building: lead-rubber bearings (sub-steps, Bouc-Wen in the lanes), a
+// friction pendulum with two dampers on different elements, a fixed base
+// with Rayleigh damping; every mode, batches of 5 runs of different lengths,
+// scalings and idle times, every peak the scalar plant reports.
+TEST(Batch, AnyBuildingsRunsOfEachModeEqualTheScalarLoop) {
+  for (const char* file : {"lead-rubber-7dof.toml", "friction-pendulum-5dof.toml", "fixed-base-8dof.toml"}) {
+    SCOPED_TRACE(file);
+    const mrd::plant::PlantSpec plant = plant_on(file);
+    for (ControlMode mode : {ControlMode::kPassiveOff, ControlMode::kPassiveOn, ControlMode::kSemiActive}) {
+      SCOPED_TRACE(mrd::control::mode_name(mode));
+      Case c;
+      for (std::size_t i = 0; i < 5; ++i) {
+        const auto& rec = synthetic(static_cast<unsigned>(11 + i % 2), 6.0);
+        add_run(c, rec, 3000 + 600 * i, 0.6 + 0.45 * static_cast<double>(i), 0.4 * static_cast<double>(i), mode);
+      }
+      expect_batch_equals_scalar(c, plant);
+    }
+  }
+}
+
+// The isolated buildings' time series: isolator force and every story's drift.
+TEST(Batch, AnyBuildingsTimeSeriesEqualTheScalarLoop) {
+  for (const char* file : {"lead-rubber-7dof.toml", "friction-pendulum-5dof.toml", "thesis-6dof.toml"}) {
+    SCOPED_TRACE(file);
+    const mrd::plant::PlantSpec plant = plant_on(file);
+    const auto& rec = synthetic(21, 5.0);
+    for (LaneIsa isa : isas()) {
+      SCOPED_TRACE(mrd::batch::lane_isa_name(isa));
+      Case c;
+      const ControlMode modes[] = {ControlMode::kSemiActive, ControlMode::kPassiveOn, ControlMode::kPassiveOff};
+      for (std::size_t i = 0; i < 3; ++i) add_run(c, rec, 5000 - 900 * i, 2.0, 1.0, modes[i]);
+      std::vector<mrd::run::ClosedLoopRecord> recs(c.runs.size());
+      for (std::size_t i = 0; i < c.runs.size(); ++i) c.runs[i].record = &recs[i];
+      mrd::batch::BatchOptions options;
+      options.isa = isa;
+      const auto batch = mrd::batch::run_closed_loop_batch(plant, c.runs, options);
+      for (std::size_t i = 0; i < c.runs.size(); ++i) {
+        SCOPED_TRACE("run " + std::to_string(i));
+        mrd::run::ClosedLoopRecord s;
+        expect_same_summary(batch[i], scalar_run(plant, c.runs[i], c.scaled[i], &s));
+        const auto& b = recs[i];
+        EXPECT_EQ(b.base_disp_m, s.base_disp_m);
+        EXPECT_EQ(b.base_vel_m_s, s.base_vel_m_s);
+        EXPECT_EQ(b.damper_force_n, s.damper_force_n);
+        EXPECT_EQ(b.command_a, s.command_a);
+        EXPECT_EQ(b.pr, s.pr);
+        EXPECT_EQ(b.roof_accel_m_s2, s.roof_accel_m_s2);
+        EXPECT_EQ(b.peak_floor_accel_m_s2, s.peak_floor_accel_m_s2);
+        EXPECT_EQ(b.story_elements, s.story_elements);
+        EXPECT_EQ(b.story_drift_m, s.story_drift_m);
+        EXPECT_EQ(b.isolator_force_n, s.isolator_force_n);
+      }
+    }
+  }
+}
+
+// Without story drifts the passive thesis lanes skip them: every other
+// figure is unchanged and the drift peak says it was not computed.
+TEST(Batch, WithoutStoryDriftsTheOtherPeaksAreUnchanged) {
+  Case c;
+  const auto& rec = synthetic(5, 6.0);
+  const ControlMode modes[] = {ControlMode::kPassiveOff, ControlMode::kPassiveOn, ControlMode::kSemiActive};
+  for (std::size_t i = 0; i < 6; ++i) add_run(c, rec, 4000 + 300 * i, 1.0 + 0.2 * static_cast<double>(i), 0.5, modes[i % 3]);
+  mrd::batch::BatchOptions options;
+  options.story_drift = false;
+  const auto without = mrd::batch::run_closed_loop_batch({}, c.runs, options);
+  const auto with = mrd::batch::run_closed_loop_batch({}, c.runs, {});
+  for (std::size_t i = 0; i < c.runs.size(); ++i) {
+    SCOPED_TRACE("run " + std::to_string(i));
+    EXPECT_TRUE(std::isnan(without[i].peak_story_drift_m));
+    EXPECT_GT(with[i].peak_story_drift_m, 0.0);
+    mrd::plant::PlantSummary a = without[i];
+    a.peak_story_drift_m = with[i].peak_story_drift_m;
+    expect_same_summary(a, with[i]);
   }
 }
 
