@@ -21,10 +21,35 @@
 
 namespace mrd::physics {
 
+/// The force law of a damper file's [model] law (host_sim/damper): the
+/// thesis's Bingham law, or one `mrd calibrate` fitted.
+enum class ForceLaw : unsigned char {
+  kBingham,      ///< Eq. 4.4: TF(v)·(f_c sgn v + c_0 v), TF = |v|/v_TF below v_TF, 1 above
+  kBinghamTanh,  ///< f_c·tanh(v/v_TF) + c_0·v
+  kBoucWen,      ///< f_c·z + c_0·v + k_0·x, z the normalized Bouc–Wen variable of width x_y
+};
+
+/// The Bouc–Wen law's two constants (ForceLaw::kBoucWen).
+struct BoucWenDamperParams {
+  double yield_disp_m = 0.0;   ///< x_y: the stroke over which z saturates, m
+  double stiffness_n_m = 0.0;  ///< k_0: the accumulator's stiffness, N/m
+};
+
+/// What a damper is rated for (Table 3.1, §3.1, §6.4 for the thesis damper).
+struct DamperRating {
+  double current_a = 2.5;          ///< rated coil current: Table 4.1's laws span 0–2.5 A; §6.4's passive-on
+  double force_n = 200.0e3;        ///< rated force, N (the 200 kN damper, §3.1)
+  double stroke_m = 0.2921;        ///< ± stroke from the centre: half Table 3.1's 0.5842 m total
+  double velocity_m_s = 0.2491;    ///< Table 3.1's maximum velocity
+};
+
 struct MrDamperParams {
   BinghamParams bingham{};
   CurrentDynamicsParams coil{};
   ParticipantRatioParams pr{};
+  ForceLaw law = ForceLaw::kBingham;
+  BoucWenDamperParams bouc_wen{};
+  DamperRating rating{};
 };
 
 class MrDamper {
