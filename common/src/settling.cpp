@@ -57,6 +57,7 @@ double settled_layer_height_m(const SettlingParams& p) noexcept {
 }
 
 double max_settling_time_s(const SettlingParams& p) noexcept {
+  if (p.measured_max_settling_time_s > 0.0) return p.measured_max_settling_time_s;
   // Eq. 5.4: the top particle falls from the inner diameter down to the top
   // of the fully settled layer at the hindered velocity.
   return (p.inner_diameter_m - settled_layer_height_m(p)) / hindered_velocity_m_s(p);

@@ -22,6 +22,9 @@ struct SettlingParams {
   /// the 0.5842 m total stroke (Table 3.1); see docs in settling.cpp.
   double fluid_length_m = 0.5842;
   double fluid_volume_m3 = 0.01660;      ///< Table 5.4 (a), method 1, rounded
+  /// A measured maximum settling time, s, that replaces Eq. 5.4 when > 0
+  /// (a fluid file's max_settling_time_s); 0: Eq. 5.4 from the values above.
+  double measured_max_settling_time_s = 0.0;
 };
 
 /// Stokes settling velocity, Eq. 5.1, m/s.
@@ -43,6 +46,7 @@ double settled_volume_m3(const SettlingParams& p, double height_m) noexcept;
 double settled_layer_height_m(const SettlingParams& p) noexcept;
 
 /// Maximum settling time, Eq. 5.4: (ID − h_max)/V_ts, s.
+/// (or the measured one when the parameters hold one).
 double max_settling_time_s(const SettlingParams& p) noexcept;
 
 /// Settling quotient SQ as a fraction, Eq. 5.5, saturating at 1 (a fluid
