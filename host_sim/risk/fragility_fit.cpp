@@ -7,14 +7,18 @@
 
 namespace mrd::risk {
 
-std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g, double story_drift_m) {
+std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g) {
   return {
       {"stroke", Metric::kBaseDisplacement, kDamperStroke_m, "peak base displacement reaches the damper stroke"},
       {"isolation_gap", Metric::kBaseDisplacement, isolation_gap_m, "peak base displacement reaches the isolation gap"},
       {"floor_accel", Metric::kFloorAccel, floor_accel_g * units::kStandardGravity_m_s2,
        "peak absolute floor acceleration (floors 1-5) reaches the threshold"},
-      {"story_drift", Metric::kStoryDrift, story_drift_m, "peak story drift (any story) reaches the threshold"},
   };
+}
+
+LimitState story_drift_limit_state(double story_drift_m) {
+  return {"story_drift", Metric::kStoryDrift, story_drift_m, "peak story drift (any story) reaches the threshold",
+          true};
 }
 
 double metric_value(const RunMetrics& m, Metric metric) noexcept {
@@ -29,6 +33,35 @@ double metric_value(const RunMetrics& m, Metric metric) noexcept {
   return 0.0;
 }
 
+namespace {
+
+/// Each limit state's rank among the states of its kind (opt-in or not), and
+/// the number of states that are not opt-in (the base states: the thesis's
+/// three in a study of `mrd fragility`).
+struct SeedRanks {
+  std::vector<std::size_t> rank;
+  std::size_t base_states = 0;
+};
+
+SeedRanks seed_ranks(const std::vector<LimitState>& limit_states) {
+  SeedRanks r;
+  std::size_t opt_in = 0;
+  for (const auto& l : limit_states) r.rank.push_back(l.opt_in ? opt_in++ : r.base_states++);
+  return r;
+}
+
+/// The seed index of the curve (m, k, s) (fragility_fit.hpp: base states
+/// first in (mode, idle, state) order, then each opt-in state's block).
+std::size_t seed_index(const FragilityPlan& plan, const std::vector<LimitState>& limit_states, const SeedRanks& r,
+                       std::size_t m, std::size_t k, std::size_t s) {
+  const std::size_t modes = plan.modes.size(), idles = plan.idle_years.size();
+  const std::size_t mode_idle = m * idles + k;
+  if (!limit_states[s].opt_in) return mode_idle * r.base_states + r.rank[s];
+  return modes * idles * (r.base_states + r.rank[s]) + mode_idle;
+}
+
+}  // namespace
+
 std::vector<FragilityCurve> fit_fragilities(const FragilityPlan& plan, const std::vector<RunMetrics>& runs,
                                             const std::vector<LimitState>& limit_states,
                                             const BootstrapOptions& bootstrap) {
@@ -39,6 +72,7 @@ std::vector<FragilityCurve> fit_fragilities(const FragilityPlan& plan, const std
   }
   std::vector<FragilityCurve> curves;
   const std::size_t n_rec = plan.records.size();
+  const SeedRanks ranks = seed_ranks(limit_states);
   for (std::size_t m = 0; m < plan.modes.size(); ++m) {
     for (std::size_t k = 0; k < plan.idle_years.size(); ++k) {
       for (std::size_t s = 0; s < limit_states.size(); ++s) {
@@ -58,8 +92,9 @@ std::vector<FragilityCurve> fit_fragilities(const FragilityPlan& plan, const std
           c.levels.push_back(level);
         }
         c.fit = fit_lognormal_mle(c.levels);
+        const std::size_t seed_at = seed_index(plan, limit_states, ranks, m, k, s);
         c.band = bootstrap_band(plan.pga_g, table, eval, bootstrap.resamples,
-                                record_seed(bootstrap.seed ^ 0x626f6f74ULL, curves.size()));
+                                record_seed(bootstrap.seed ^ 0x626f6f74ULL, seed_at));
         curves.push_back(std::move(c));
       }
     }

@@ -20,6 +20,10 @@ struct LimitState {
   Metric metric = Metric::kBaseDisplacement;
   double threshold = 0.0;  ///< in the metric's SI unit (m, m/s²)
   std::string description;
+  /// Fitted only when asked for (story_drift, `mrd fragility --drift-m`): its
+  /// curves take bootstrap seeds after every other curve's (fit_fragilities),
+  /// so asking for it moves no other curve's band.
+  bool opt_in = false;
 };
 
 /// The damper's stroke, ±0.2921 m (thesis §3.1, the Lord 200 kN damper).
@@ -28,14 +32,15 @@ inline constexpr double kDamperStroke_m = 0.2921;
 inline constexpr double kDefaultIsolationGap_m = 0.20;
 /// Floor acceleration threshold assumed by default, g (acceleration-sensitive contents).
 inline constexpr double kDefaultFloorAccel_g = 0.3;
-/// Story drift threshold assumed by default, m: an absolute drift, since a
-/// building file gives no story heights (0.02 m is 0.5 % of a 4 m story).
-inline constexpr double kDefaultStoryDrift_m = 0.02;
 
-/// stroke, isolation_gap, floor_accel and story_drift with the given gap (m),
-/// floor acceleration (g) and story drift (m).
-std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g,
-                                             double story_drift_m = kDefaultStoryDrift_m);
+/// The thesis's limit states: stroke, isolation_gap and floor_accel with the
+/// given gap (m) and floor acceleration (g).
+std::vector<LimitState> default_limit_states(double isolation_gap_m, double floor_accel_g);
+
+/// The opt-in story_drift limit state: peak story drift (any story) reaches
+/// `story_drift_m`, m. An absolute drift with no default: a drift limit
+/// depends on the story heights, which a building file does not hold.
+LimitState story_drift_limit_state(double story_drift_m);
 
 double metric_value(const RunMetrics& m, Metric metric) noexcept;
 
@@ -55,6 +60,16 @@ struct BootstrapOptions {
 };
 
 /// Every curve, ordered mode-major, then idle time, then limit state.
+///
+/// Bootstrap seeds: curve i's resamples are seeded by
+/// record_seed(seed ^ "boot", i) with a seed index i that does not depend on
+/// which opt-in limit states are present. With M modes, K idle times and C
+/// limit states that are not opt-in, the curve (mode m, idle k, c-th such
+/// state) takes (m K + k) C + c: the thesis's three states number their curves
+/// in (mode, idle, state) order, as when they were the only ones. The o-th
+/// opt-in state (o = 0, 1, ... in the order given) takes the next block of M K
+/// indices after all of those, M K C + o M K + (m K + k). Adding story_drift
+/// therefore leaves every other curve's band as it was.
 std::vector<FragilityCurve> fit_fragilities(const FragilityPlan& plan, const std::vector<RunMetrics>& runs,
                                             const std::vector<LimitState>& limit_states,
                                             const BootstrapOptions& bootstrap);

@@ -36,15 +36,15 @@ TEST_F(FragilityRiskCli, FragilityWritesRunsCurvesAndSummary) {
   EXPECT_EQ(runs.substr(0, runs.find('\n')),
             "run,record,control,idle_years,pga_g,peak_base_displacement_m,peak_damper_force_kn,"
             "peak_floor_accel_m_s2,peak_base_accel_m_s2,peak_story_drift_m");
-  // 1 control × 2 idle times × 4 limit states.
-  EXPECT_EQ(count_lines(slurp(dir / "fragility.csv")), 1 + 8);
+  // 1 control × 2 idle times × 3 limit states (story_drift only with --drift-m).
+  EXPECT_EQ(count_lines(slurp(dir / "fragility.csv")), 1 + 6);
   const auto j = nlohmann::json::parse(slurp(dir / "summary.json"));
   EXPECT_EQ(j["runs"], 18);
   EXPECT_EQ(j["runs_computed"], 18);
   EXPECT_EQ(j["runs_resumed"], 0);
   std::set<std::string> states;
   for (const auto& s : j["limit_states"]) states.insert(s["name"].get<std::string>());
-  EXPECT_EQ(states, (std::set<std::string>{"stroke", "isolation_gap", "floor_accel", "story_drift"}));
+  EXPECT_EQ(states, (std::set<std::string>{"stroke", "isolation_gap", "floor_accel"}));
   EXPECT_DOUBLE_EQ(j["limit_states"][0]["threshold"].get<double>(), 0.2921);
   EXPECT_GT(j["runs_per_core_hour"].get<double>(), 0.0);
   EXPECT_FALSE(fs::exists(out_.path() / "frag.journal"));
@@ -59,7 +59,7 @@ TEST_F(FragilityRiskCli, FragilityWritesRunsCurvesAndSummary) {
   for (const auto& p : s["policies"]) {
     names.insert(p["name"].get<std::string>());
     EXPECT_TRUE(p.contains("cycles_per_year"));
-    for (const char* ls : {"stroke", "isolation_gap", "floor_accel", "story_drift"}) {
+    for (const char* ls : {"stroke", "isolation_gap", "floor_accel"}) {
       EXPECT_TRUE(p["annual_exceedance"].contains(ls)) << p["name"] << " " << ls;
     }
   }

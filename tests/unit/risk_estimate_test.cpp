@@ -46,7 +46,7 @@ TEST(RiskEstimate, RunsCsvBoundIsTheLongestRunsCsv) {
   const std::vector<RunMetrics> real(8, RunMetrics{0.1234, 152345.6, 2.5, 3.25, 0.0042});
   EXPECT_LE(runs_csv(plan, real).size(), d.runs_csv);
   EXPECT_EQ(d.journal, 8u * 64u);
-  EXPECT_EQ(d.plots, 1u * 4u * kPlotBytesBound);  // one control x four limit states (stroke, gap, accel, drift)
+  EXPECT_EQ(d.plots, 1u * 3u * kPlotBytesBound);  // one control x three limit states (stroke, gap, accel)
   EXPECT_EQ(d.total(), d.runs_csv + d.journal + d.curves + d.plots + d.summary);
 }
 
