@@ -38,7 +38,7 @@ AnyLanes::AnyLanes(const plant::PlantSpec& spec, const LaneKernel& kernel) : spe
   const structure::BuildingParams& p = spec.building;
   structure::validate(p);
   if (p.dampers.empty()) throw std::invalid_argument("building: the plant needs at least one damper");
-  model_.damper = damper_constants(spec);
+  model_.damper = damper_constants(spec);  // throws for a law other than Bingham's
 
   // The building as plant::Plant::init steps it.
   const int substeps = plant::structural_substeps(p, spec.step_s);

@@ -19,6 +19,7 @@
 #include "host_sim/batch/lane_stepper.hpp"
 #include "host_sim/structure/discrete_building.hpp"
 #include "mrd/physics/bingham.hpp"
+#include "mrd/physics/mr_damper.hpp"
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/settling.hpp"
 
@@ -59,7 +60,21 @@ bool lane_isa_cpu_runs(LaneIsa isa) {
 #endif
 }
 
+namespace {
+
+/// The lanes step the thesis's Bingham law (Eq. 4.4) only: another law
+/// would be a different closed loop from plant::Plant's.
+void require_bingham_law(const plant::PlantSpec& spec) {
+  if (spec.damper.law != physics::ForceLaw::kBingham) {
+    throw std::invalid_argument(std::string("the batch steps the damper's bingham law only, not ") +
+                                physics::force_law_name(spec.damper.law) + " (run each closed loop on the plant)");
+  }
+}
+
+}  // namespace
+
 SharedModel damper_constants(const plant::PlantSpec& spec) {
+  require_bingham_law(spec);
   SharedModel m;
   const physics::BinghamParams& bp = spec.damper.bingham;
   m.fc_a_n = bp.fc_a_n;
@@ -82,7 +97,7 @@ SharedModel damper_constants(const plant::PlantSpec& spec) {
   m.thermal_a = std::exp(-spec.step_s / spec.thermal.time_constant_s);
   m.thermal_gain_k_w = (1.0 - m.thermal_a) * spec.thermal.thermal_resistance_k_w;
   m.resistance_ohm = spec.thermal.resistance_ohm;
-  m.rated_current_a = plant::kRatedCoilCurrent_a;
+  m.rated_current_a = spec.damper.rating.current_a;
   return m;
 }
 
@@ -463,6 +478,7 @@ std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& p
                                 " lane kernel does not run here (instruction set, or the C library's exp())");
   }
   if (plant.kind != plant::PlantKind::kThesis) throw std::invalid_argument("the batch runs the thesis plant only");
+  require_bingham_law(plant);
   const LaneKernel kernel = kernel_of(isa);
   std::vector<plant::PlantSummary> out(runs.size());
   // Passive runs step many ticks per kernel call; semi-active ones tick by

@@ -57,7 +57,7 @@ void Plant::init(const PlantSpec& spec) {
     d.init(hardware ? hardware_damper_params(spec.damper) : spec.damper, spec.step_s, s_.sq);
   }
   thermal_.init(spec.thermal, spec.step_s);
-  figures_ = CoilFigureCounter{};
+  figures_ = CoilFigureCounter{spec.damper.rating.current_a};
   if (hardware) {
     drive_.init(spec.hardware.drive, spec.hardware.coil);
     sensors_.init(spec.hardware.sensors);
@@ -75,11 +75,12 @@ PlantSensors Plant::sense(double ground_accel_m_s2) noexcept {
   state_.ground_accel_m_s2 = ground_accel_m_s2;
   state_.base_disp_m = sensed == structure::kBaseDof ? x0 : building_.element_deformation_m(sensed);
   state_.base_vel_m_s = building_.element_rate_m_s(sensed);
-  state_.damper_force_n = dampers_.front().force_n(state_.base_vel_m_s);
+  // Each damper at its element's deformation rate and deformation (its stroke).
+  state_.damper_force_n = dampers_.front().force_n(state_.base_vel_m_s, state_.base_disp_m);
   damper_force_n_.front() = state_.damper_force_n;
   for (std::size_t d = 1; d < dampers_.size(); ++d) {
     const int e = static_cast<int>(spec_.building.dampers[d].element);
-    damper_force_n_[d] = dampers_[d].force_n(building_.element_rate_m_s(e));
+    damper_force_n_[d] = dampers_[d].force_n(building_.element_rate_m_s(e), building_.element_deformation_m(e));
   }
   state_.base_accel_m_s2 = accel_[0];
   state_.participant_ratio = dampers_.front().participant_ratio();
@@ -95,9 +96,11 @@ PlantSensors Plant::sense(double ground_accel_m_s2) noexcept {
 void Plant::advance(const CoilDrive& drive) noexcept {
   const auto& placements = spec_.building.dampers;
   auto step_dampers = [&](double current_a) {
-    dampers_.front().step(current_a, state_.base_vel_m_s);
+    // The structure is still at t_n: the rates and strokes sense() used.
+    dampers_.front().step(current_a, state_.base_vel_m_s, state_.base_disp_m);
     for (std::size_t d = 1; d < dampers_.size(); ++d) {
-      dampers_[d].step(current_a, building_.element_rate_m_s(static_cast<int>(placements[d].element)));
+      const int e = static_cast<int>(placements[d].element);
+      dampers_[d].step(current_a, building_.element_rate_m_s(e), building_.element_deformation_m(e));
     }
   };
   if (spec_.kind == PlantKind::kHardware) {

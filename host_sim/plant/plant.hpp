@@ -8,7 +8,7 @@
 ///
 /// Tick n (step T, inputs held over the step, ZOH-exact linear structure):
 /// <pre>
-///   sense(a_g[n]):    x_b[n], v_b[n], F[n] = damper(v_b[n], i[n], PR[n]),
+///   sense(a_g[n]):    x_b[n], v_b[n], F[n] = damper(v_b[n], x_b[n], i[n], PR[n]),
 ///                     accelerations, i[n]; sensor stage → PlantSensors
 ///   advance(drive):   command stage → u[n];
 ///                     i[n+1], PR[n+1] from u[n] and |v_b[n]|   (Eq. 4.5, 5.9)
@@ -22,8 +22,12 @@
 /// first damper (building_params.hpp's dampers[0]): x_b and v_b are its
 /// element's deformation and rate (the base relative to the ground for a
 /// damper on element 0), F its force. Each damper has its own participant
-/// ratio and coil state; `count` identical dampers act as one of count times
-/// the force.
+/// ratio and coil state and sees its own element's deformation rate and
+/// deformation (its stroke, which the Bouc–Wen law of a calibrated damper
+/// uses; the Bingham laws ignore it); `count` identical dampers act as one
+/// of count times the force. The force law is spec.damper.law
+/// (physics::MrDamper: the thesis's Eq. 4.4 or a calibrated law); the coil
+/// figures' "above rated" is spec.damper.rating.current_a.
 ///
 /// Isolators: their linear parts are in the structure's K; their hysteretic
 /// forces (structure/isolators.hpp) change within a tick, so a building with

@@ -1,22 +1,32 @@
 #pragma once
-/// The damper model of the thesis as one discrete-time block: Bingham plastic
-/// with transition function (Eq. 4.1–4.4), participant ratio from idle time
-/// and mixing (Eq. 5.5–5.12), and coil-current dynamics (Eq. 4.5, unity DC
-/// gain). Pure, allocation-free, exception-free.
+/// The damper model of the thesis as one discrete-time block: a force law
+/// (the thesis's Bingham plastic with transition function, Eq. 4.1–4.4, or
+/// one `mrd calibrate` fitted, damper_laws.hpp), participant ratio from idle
+/// time and mixing (Eq. 5.5–5.12), and coil-current dynamics (Eq. 4.5, unity
+/// DC gain). Pure, allocation-free, exception-free.
 ///
-/// One step of period T, with the command u[n] and the damper velocity v[n]
-/// held over the step:
+/// One step of period T, with the command u[n], the damper velocity v[n]
+/// and its stroke x[n] held over the step:
 /// <pre>
-///   F[n]      = TF(v[n]) · ( f_c(|i[n]|, PR[n]) sgn v[n] + c_0(|i[n]|, PR[n]) v[n] )   Eq. 4.4, 5.10–5.12
+///   f_c[n], c_0[n] = f_c(|i[n]|, PR[n]), c_0(|i[n]|, PR[n])                      Eq. 5.10–5.11
+///   F[n]      = TF(v[n]) · ( f_c[n] sgn v[n] + c_0[n] v[n] )                     kBingham: Eq. 4.4, 5.12
+///             = f_c[n] tanh(v[n]/v_TF) + c_0[n] v[n]                            kBinghamTanh: baseline.hpp
+///             = f_c[n] z[n] + c_0[n] v[n] + k_0 x[n]                            kBoucWen: baseline.hpp
+///   z[n]      = Z(z[n−1], x[n] − x[n−1]),  z = 0 at x = 0 on reset             bouc_wen_z_after
 ///   i[n+1]    = CurrentDynamics(i[n], u[n])                                       Eq. 4.5 (ZOH-exact)
 ///   ∫Q[n+1]   = ∫Q[n] + |v[n]| · A · T                                             Eq. 5.9
 ///   PR[n+1]   = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q[n+1] / unit)                     Eq. 5.9
 /// </pre>
 /// so the force at step n uses the coil current and participant ratio reached
-/// at the start of that step.
+/// at the start of that step, and the Bouc–Wen variable at the stroke x[n]
+/// (exact at the samples for a stroke that does not reverse within a step:
+/// z depends on the stroke path only). A caller that knows only the velocity
+/// (step(u, v)) moves the stroke by v[n]·T after the force, as
+/// discrepancy::DamperModel moves z by v·dt. The Bingham laws ignore the stroke.
 
 #include "mrd/physics/bingham.hpp"
 #include "mrd/physics/current_dynamics.hpp"
+#include "mrd/physics/damper_laws.hpp"
 #include "mrd/physics/participant_ratio.hpp"
 
 namespace mrd::physics {
@@ -28,6 +38,17 @@ enum class ForceLaw : unsigned char {
   kBinghamTanh,  ///< f_c·tanh(v/v_TF) + c_0·v
   kBoucWen,      ///< f_c·z + c_0·v + k_0·x, z the normalized Bouc–Wen variable of width x_y
 };
+
+/// The law's name as a damper file and `mrd calibrate` spell it: "bingham",
+/// "bingham_tanh", "bouc_wen".
+constexpr const char* force_law_name(ForceLaw law) noexcept {
+  switch (law) {
+    case ForceLaw::kBinghamTanh: return "bingham_tanh";
+    case ForceLaw::kBoucWen: return "bouc_wen";
+    case ForceLaw::kBingham: break;
+  }
+  return "bingham";
+}
 
 /// The Bouc–Wen law's two constants (ForceLaw::kBoucWen).
 struct BoucWenDamperParams {
@@ -62,39 +83,79 @@ class MrDamper {
     period_s_ = period_s;
     coil_.init(p.coil, period_s);
     pr_.init(p.pr, sq);
+    z_ = 0.0;
+    stroke_m_ = 0.0;
     update_coefficients();
   }
 
   /// Starts an episode: settling quotient `sq` (0 fully mixed, 1 fully
-  /// settled) and a coil current already steady at `current_a`.
+  /// settled), a coil current already steady at `current_a`, and the damper
+  /// at the centre of its stroke, unloaded (x = 0, z = 0).
   void reset(double sq, double current_a = 0.0) noexcept {
     pr_.reset(sq);
     coil_.reset(current_a);
+    z_ = 0.0;
+    stroke_m_ = 0.0;
     update_coefficients();
   }
 
-  /// Damper force for velocity `velocity_m_s` at the present coil current
+  /// Damper force for velocity `velocity_m_s` at stroke `stroke_m` (m from
+  /// the centre, positive with positive velocity) at the present coil current
   /// and participant ratio, without advancing the state. N, positive when
-  /// resisting positive velocity.
-  /// Same value as damper_force_n(bingham, i, v, PR) (Eq. 4.4, 5.10–5.12),
-  /// with f_c and c_0 evaluated once per step rather than per call.
-  double force_n(double velocity_m_s) const noexcept {
-    const double sgn = velocity_m_s > 0.0 ? 1.0 : (velocity_m_s < 0.0 ? -1.0 : 0.0);
-    return transition_factor(p_.bingham, velocity_m_s) * (fc_n_ * sgn + c0_ns_m_ * velocity_m_s);
+  /// resisting positive velocity. For kBingham the same value as
+  /// damper_force_n(bingham, i, v, PR) (Eq. 4.4, 5.10–5.12), with f_c and
+  /// c_0 evaluated once per step rather than per call; the Bingham laws
+  /// ignore the stroke; kBoucWen takes z from the last step's stroke to this one.
+  double force_n(double velocity_m_s, double stroke_m) const noexcept {
+    switch (p_.law) {
+      case ForceLaw::kBinghamTanh: return tanh_force_n(velocity_m_s);
+      case ForceLaw::kBoucWen:
+        return bouc_wen_force_at_n(velocity_m_s, stroke_m, bouc_wen_z_after(z_, stroke_m - stroke_m_,
+                                                                            p_.bouc_wen.yield_disp_m));
+      case ForceLaw::kBingham: break;
+    }
+    return bingham_force_n(velocity_m_s);
   }
 
-  /// Returns the force over this step, then advances coil current and PR.
+  /// force_n at the stroke the damper is at (stroke_m()).
+  double force_n(double velocity_m_s) const noexcept { return force_n(velocity_m_s, stroke_m_); }
+
+  /// Returns the force over this step at velocity `velocity_m_s` and stroke
+  /// `stroke_m` (force_n), then moves z to that stroke and advances coil
+  /// current and PR.
+  double step(double command_a, double velocity_m_s, double stroke_m) noexcept {
+    double f = 0.0;
+    if (p_.law == ForceLaw::kBoucWen) {
+      z_ = bouc_wen_z_after(z_, stroke_m - stroke_m_, p_.bouc_wen.yield_disp_m);
+      stroke_m_ = stroke_m;
+      f = bouc_wen_force_at_n(velocity_m_s, stroke_m, z_);
+    } else {
+      f = force_n(velocity_m_s, stroke_m);
+    }
+    advance(command_a, velocity_m_s);
+    return f;
+  }
+
+  /// Returns the force over this step at the present stroke, then advances
+  /// coil current and PR and (kBoucWen) moves the stroke by v·T, z with it.
   double step(double command_a, double velocity_m_s) noexcept {
     const double f = force_n(velocity_m_s);
-    coil_.step(command_a);
-    pr_.step(velocity_m_s, period_s_);
-    update_coefficients();
+    if (p_.law == ForceLaw::kBoucWen) {
+      const double dx_m = velocity_m_s * period_s_;
+      z_ = bouc_wen_z_after(z_, dx_m, p_.bouc_wen.yield_disp_m);
+      stroke_m_ += dx_m;
+    }
+    advance(command_a, velocity_m_s);
     return f;
   }
 
   double current_a() const noexcept { return coil_.current_a(); }
   double participant_ratio() const noexcept { return pr_.pr(); }
   double displaced_volume_m3() const noexcept { return pr_.displaced_volume_m3(); }
+  /// Stroke of the last step (kBoucWen; 0 for the Bingham laws), m.
+  double stroke_m() const noexcept { return stroke_m_; }
+  /// Bouc–Wen variable at stroke_m() (kBoucWen; 0 for the Bingham laws).
+  double bouc_wen_z() const noexcept { return z_; }
   const ParticipantRatio& mixing() const noexcept { return pr_; }
   ParticipantRatio& mixing() noexcept { return pr_; }
   const MrDamperParams& params() const noexcept { return p_; }
@@ -105,8 +166,33 @@ class MrDamper {
   double period_s_ = 1.0e-3;
   CurrentDynamics coil_{};
   ParticipantRatio pr_{};
-  double fc_n_ = 0.0;     ///< f_c(|i|, PR), Eq. 5.10
-  double c0_ns_m_ = 0.0;  ///< c_0(|i|, PR), Eq. 5.11
+  double fc_n_ = 0.0;      ///< f_c(|i|, PR), Eq. 5.10
+  double c0_ns_m_ = 0.0;   ///< c_0(|i|, PR), Eq. 5.11
+  double z_ = 0.0;         ///< Bouc–Wen variable at stroke_m_ (kBoucWen)
+  double stroke_m_ = 0.0;  ///< stroke z_ belongs to, m (kBoucWen)
+
+  /// Eq. 4.4 × Eq. 5.12: TF(v) · (f_c sgn v + c_0 v).
+  double bingham_force_n(double velocity_m_s) const noexcept {
+    const double sgn = velocity_m_s > 0.0 ? 1.0 : (velocity_m_s < 0.0 ? -1.0 : 0.0);
+    return transition_factor(p_.bingham, velocity_m_s) * (fc_n_ * sgn + c0_ns_m_ * velocity_m_s);
+  }
+
+  /// baseline.hpp's tanh transition: f_c tanh(v/v_TF) + c_0 v.
+  double tanh_force_n(double velocity_m_s) const noexcept {
+    return physics::bingham_tanh_force_n(fc_n_, c0_ns_m_, velocity_m_s, p_.bingham.v_tf_m_s);
+  }
+
+  /// baseline.hpp's Bouc–Wen form: f_c z + c_0 v + k_0 x.
+  double bouc_wen_force_at_n(double velocity_m_s, double stroke_m, double z) const noexcept {
+    return bouc_wen_force_n(fc_n_, c0_ns_m_, p_.bouc_wen.stiffness_n_m, z, velocity_m_s, stroke_m);
+  }
+
+  /// Coil current (Eq. 4.5) and PR (Eq. 5.9) to the next step, then f_c and c_0.
+  void advance(double command_a, double velocity_m_s) noexcept {
+    coil_.step(command_a);
+    pr_.step(velocity_m_s, period_s_);
+    update_coefficients();
+  }
 
   void update_coefficients() noexcept {
     fc_n_ = coulomb_force_n(p_.bingham, coil_.current_a(), pr_.pr());
