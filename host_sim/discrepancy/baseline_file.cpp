@@ -1,13 +1,9 @@
 #include "host_sim/discrepancy/baseline_file.hpp"
 
-#include <toml++/toml.h>
-
-#include <charconv>
 #include <cmath>
-#include <cstdint>
-#include <set>
 
 #include "host_sim/discrepancy/physical_ranges.hpp"
+#include "host_sim/discrepancy/toml_fields.hpp"
 #include "host_sim/io/text.hpp"
 #include "host_sim/io/usage_error.hpp"
 #include "host_sim/report/output_dir.hpp"
@@ -17,14 +13,7 @@ namespace {
 
 // ---- writing ---------------------------------------------------------------
 
-/// Shortest text that reads back as exactly `v`, always a TOML float.
-std::string num(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, r.ptr);
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
+std::string num(double v) { return toml_number(v); }
 
 std::string quoted(const std::string& s) {
   std::string out = "\"";
@@ -79,95 +68,15 @@ void law_table(std::string& t, const char* name, const char* comment, const Curr
 
 // ---- reading ---------------------------------------------------------------
 
-/// "a force in [0.001, 1e+09] N": what a number of range `r` must be.
-std::string range_text(const PhysicalRange& r) {
-  std::string t = std::string(r.what) + " in [" + io::format_number("%.6g", r.min) + ", " +
-                  io::format_number("%.6g", r.max) + "]";
-  if (*r.unit != '\0') t += std::string(" ") + r.unit;
-  return t;
-}
+using Table = TomlTable;
 
 [[noreturn]] void fail(const std::string& origin, const toml::source_region& where, const std::string& field,
                        const std::string& problem) {
-  throw io::UsageError(origin + ":" + std::to_string(std::max<toml::source_index>(where.begin.line, 1)) + ": " +
-                       field + ": " + problem);
+  fail_at(origin, where, field, problem);
 }
 
-/// The keys of one table; refuses keys it was never asked for.
-class Table {
- public:
-  Table(const toml::table& t, std::string name, const std::string& origin) : t_(t), name_(std::move(name)), origin_(origin) {}
-
-  /// A finite number inside the physical range `r` (integers accepted).
-  double in(const char* key, const PhysicalRange& r) {
-    const toml::node& n = need(key);
-    const std::optional<double> v = n.is_number() ? n.value<double>() : std::nullopt;
-    if (!v) fail(origin_, n.source(), field(key), "expected a number");
-    if (!std::isfinite(*v)) fail(origin_, n.source(), field(key), "expected a finite number");
-    if (!r.contains(*v)) fail(origin_, n.source(), field(key), "expected " + range_text(r) + ", got " + num(*v));
-    return *v;
-  }
-  bool boolean(const char* key) {
-    const toml::node& n = need(key);
-    if (!n.is_boolean()) fail(origin_, n.source(), field(key), "expected true or false");
-    return *n.value<bool>();
-  }
-  std::string string(const char* key) {
-    const toml::node& n = need(key);
-    if (!n.is_string()) fail(origin_, n.source(), field(key), "expected a string");
-    return *n.value<std::string>();
-  }
-  std::vector<std::string> strings(const char* key) {
-    const toml::node& n = need(key);
-    const toml::array* a = n.as_array();
-    if (!a) fail(origin_, n.source(), field(key), "expected an array of strings");
-    std::vector<std::string> out;
-    for (const toml::node& e : *a) {
-      if (!e.is_string()) fail(origin_, e.source(), field(key), "expected an array of strings");
-      out.push_back(*e.value<std::string>());
-    }
-    return out;
-  }
-  /// An integer in [0, max].
-  std::size_t count(const char* key, std::size_t max) {
-    const toml::node& n = need(key);
-    // value<int64_t>() of a float node converts it (undefined beyond int64's range): integers only.
-    const auto v = n.is_integer() ? n.value<std::int64_t>() : std::nullopt;
-    if (!v || *v < 0 || static_cast<std::uint64_t>(*v) > max)
-      fail(origin_, n.source(), field(key), "expected an integer in [0, " + std::to_string(max) + "]");
-    return static_cast<std::size_t>(*v);
-  }
-  [[nodiscard]] bool has(const char* key) const { return t_.get(key) != nullptr; }
-  const toml::source_region& where(const char* key) const {
-    const toml::node* n = t_.get(key);
-    return n ? n->source() : t_.source();
-  }
-  void no_unknown_keys() const {
-    for (const auto& [k, v] : t_) {
-      if (!asked_.count(std::string(k.str()))) fail(origin_, v.source(), field(std::string(k.str()).c_str()), "unknown key");
-    }
-  }
-  std::string field(const char* key) const { return name_ + "." + key; }
-
- private:
-  const toml::node& need(const char* key) {
-    asked_.insert(key);
-    const toml::node* n = t_.get(key);
-    if (!n) fail(origin_, t_.source(), field(key), "missing key");
-    return *n;
-  }
-  const toml::table& t_;
-  std::string name_;
-  const std::string& origin_;
-  std::set<std::string> asked_;
-};
-
 const toml::table& table_of(const toml::table& root, const char* name, const std::string& origin) {
-  const toml::node* n = root.get(name);
-  if (!n) throw io::UsageError(origin + ":1: [" + std::string(name) + "]: missing table");
-  const toml::table* t = n->as_table();
-  if (!t) fail(origin, n->source(), name, std::string("expected a table [") + name + "]");
-  return *t;
+  return required_table(root, name, origin);
 }
 
 BaseLaw law_named(const std::string& s, const std::string& origin, const toml::source_region& where,
@@ -185,17 +94,24 @@ bool transition_named(Table& t, const std::string& origin, const std::string& fi
   fail(origin, t.where("transition"), field, "expected \"linear\" or \"tanh\", got \"" + s + "\"");
 }
 
+/// The standard error `key` of a quantity of range `r`: 0 when absent (a
+/// value written by hand, not fitted).
+double sigma_of(Table& t, const char* key, const PhysicalRange& r) {
+  return t.optional_in(key, sigma_range(r)).value_or(0.0);
+}
+
 void read_law(const toml::table& root, const char* name, const std::string& origin, CurrentLaw& v, CurrentLaw& s,
               CurrentLawFitted& f, const PhysicalRange& value_range) {
   Table t(table_of(root, name, origin), name, origin);
   v.at_zero = t.in("at_zero", value_range);
-  s.at_zero = t.in("at_zero_sigma", sigma_range(value_range));
+  s.at_zero = sigma_of(t, "at_zero_sigma", value_range);
   v.limit = t.in("limit", value_range);
-  s.limit = t.in("limit_sigma", sigma_range(value_range));
+  s.limit = sigma_of(t, "limit_sigma", value_range);
   v.rate_per_a = t.in("rate_per_a", kCurrentRateRange);
-  s.rate_per_a = t.in("rate_per_a_sigma", sigma_range(kCurrentRateRange));
+  s.rate_per_a = sigma_of(t, "rate_per_a_sigma", kCurrentRateRange);
   f = {false, false, false};
-  for (const std::string& p : t.strings("fitted")) {
+  const std::vector<std::string> fitted = t.has("fitted") ? t.strings("fitted") : std::vector<std::string>{};
+  for (const std::string& p : fitted) {
     if (p == "at_zero") {
       f.at_zero = true;
     } else if (p == "limit") {
@@ -207,6 +123,46 @@ void read_law(const toml::table& root, const char* name, const std::string& orig
     }
   }
   t.no_unknown_keys();
+}
+
+/// [coil]'s optional circuit: R, and L at 1 A and 2 A together (the
+/// inductance falls as the iron saturates: L(2 A) <= L(1 A)).
+void read_coil_circuit(Table& c, CoilCircuit& circuit) {
+  circuit.resistance_ohm = c.optional_in("resistance_ohm", kCoilResistanceRange);
+  circuit.inductance_1a_h = c.optional_in("inductance_1a_h", kCoilInductanceRange);
+  circuit.inductance_2a_h = c.optional_in("inductance_2a_h", kCoilInductanceRange);
+  if (circuit.inductance_1a_h && !circuit.inductance_2a_h)
+    c.refuse("inductance_2a_h", "missing key (inductance_1a_h needs it: L(i) is set by the two)");
+  if (circuit.inductance_2a_h && !circuit.inductance_1a_h)
+    c.refuse("inductance_1a_h", "missing key (inductance_2a_h needs it: L(i) is set by the two)");
+  if (circuit.inductance_1a_h && *circuit.inductance_2a_h > *circuit.inductance_1a_h)
+    c.refuse("inductance_2a_h", "expected at most inductance_1a_h (" + num(*circuit.inductance_1a_h) +
+                                    " H): the iron saturates, the inductance does not grow with the current");
+}
+
+physics::DamperRating read_rating(const toml::table& table, const std::string& origin) {
+  Table t(table, "rating", origin);
+  physics::DamperRating r;
+  r.current_a = t.in("current_a", kRatedCurrentRange);
+  r.force_n = t.in("force_n", kRatedForceRange);
+  r.stroke_m = t.in("stroke_m", kRatedStrokeRange);
+  r.velocity_m_s = t.in("velocity_m_s", kRatedVelocityRange);
+  t.no_unknown_keys();
+  return r;
+}
+
+DamperGeometry read_geometry(const toml::table& table, const std::string& origin) {
+  Table t(table, "geometry", origin);
+  DamperGeometry g;
+  g.inner_diameter_m = t.in("inner_diameter_m", kBoreDiameterRange);
+  g.shaft_radius_m = t.in("shaft_radius_m", kShaftRadiusRange);
+  g.fluid_length_m = t.in("fluid_length_m", kFluidLengthRange);
+  g.fluid_volume_m3 = t.in("fluid_volume_m3", kFluidVolumeRange);
+  if (!(g.shaft_radius_m < 0.5 * g.inner_diameter_m))
+    t.refuse("shaft_radius_m", "expected less than half inner_diameter_m (" + num(0.5 * g.inner_diameter_m) +
+                                   " m): the shaft runs inside the bore");
+  t.no_unknown_keys();
+  return g;
 }
 
 }  // namespace
@@ -284,6 +240,10 @@ std::string baseline_toml(const BaselineFile& f) {
   t += "weight_slow = " + num(b.coil.weight_slow) + "\n";
   t += "weight_fast = " + num(b.coil.weight_fast) + "\n";
   t += std::string("identified = ") + (b.coil_identified ? "true" : "false") + "\n";
+  const CoilCircuit& cc = f.coil_circuit;
+  if (cc.resistance_ohm) t += "resistance_ohm = " + num(*cc.resistance_ohm) + "\n";
+  if (cc.inductance_1a_h) t += "inductance_1a_h = " + num(*cc.inductance_1a_h) + "  # L at 1 A, H\n";
+  if (cc.inductance_2a_h) t += "inductance_2a_h = " + num(*cc.inductance_2a_h) + "  # L at 2 A, H\n";
   const auto& p = b.pr;
   t += "\n[participant_ratio]  # Eq. 5.6-5.11, Table 5.6";
   t += f.pr_identified ? "\n" : ": assumed (thesis values), not identified from the records\n";
@@ -309,6 +269,20 @@ std::string baseline_toml(const BaselineFile& f) {
   t += "frequency_min_hz = " + num(v.frequency_min_hz) + "\n";
   t += "frequency_max_hz = " + num(v.frequency_max_hz) + "\n";
   t += "expected_gap = " + num(b.expected_gap) + "  # largest normalized RMS gap of the calibration records\n";
+  if (f.rating) {
+    t += "\n[rating]  # what the damper is rated for (a closed loop's limits)\n";
+    t += "current_a = " + num(f.rating->current_a) + "\n";
+    t += "force_n = " + num(f.rating->force_n) + "\n";
+    t += "stroke_m = " + num(f.rating->stroke_m) + "  # +- from the centre\n";
+    t += "velocity_m_s = " + num(f.rating->velocity_m_s) + "\n";
+  }
+  if (f.geometry) {
+    t += "\n[geometry]  # the cylinder the fluid settles in (Eq. 5.3)\n";
+    t += "inner_diameter_m = " + num(f.geometry->inner_diameter_m) + "\n";
+    t += "shaft_radius_m = " + num(f.geometry->shaft_radius_m) + "\n";
+    t += "fluid_length_m = " + num(f.geometry->fluid_length_m) + "\n";
+    t += "fluid_volume_m3 = " + num(f.geometry->fluid_volume_m3) + "\n";
+  }
   for (const RecordFit& r : f.fits) {
     t += "\n[[fit]]\n";
     t += "file = " + quoted(r.file) + "\n";
@@ -324,28 +298,19 @@ std::string baseline_toml(const BaselineFile& f) {
 }
 
 BaselineFile parse_baseline_toml(const std::string& text, const std::string& origin) {
-  toml::table root;
-  try {
-    root = toml::parse(text, origin);
-  } catch (const toml::parse_error& e) {
-    throw io::UsageError(origin + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
-  }
+  const toml::table root = parse_toml(text, origin);
   BaselineFile f;
   Baseline& b = f.baseline;
   b = thesis_baseline();
-  for (const auto& [k, v] : root) {
-    const std::string key(k.str());
-    if (key != "model" && key != "yield_n" && key != "viscous_ns_m" && key != "bingham" && key != "bouc_wen" &&
-        key != "lost_motion" && key != "channels" && key != "coil" && key != "participant_ratio" && key != "validity" && key != "fit")
-      fail(origin, v.source(), key,
-           "unknown table (expected model, yield_n, viscous_ns_m, bingham or bouc_wen, lost_motion, channels, coil, "
-           "participant_ratio, validity, fit)");
-  }
+  no_unknown_tables(root,
+                    {"model", "yield_n", "viscous_ns_m", "bingham", "bouc_wen", "lost_motion", "channels", "coil",
+                     "participant_ratio", "validity", "rating", "geometry", "fit"},
+                    origin);
   {
     Table m(table_of(root, "model", origin), "model", origin);
     b.law = law_named(m.string("law"), origin, m.where("law"), "model.law");
     b.name = m.string("name");
-    f.source_records = m.strings("source_records");
+    if (m.has("source_records")) f.source_records = m.strings("source_records");
     m.no_unknown_keys();
   }
   read_law(root, "yield_n", origin, b.yield_n, f.sigma.yield_n, f.yield_fitted, kYieldForceRange);
@@ -358,36 +323,36 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     Table t(table_of(root, own, origin), own, origin);
     if (b.law == BaseLaw::bingham) {
       b.v_tf_m_s = t.in("v_tf_m_s", kVelocityBandRange);
-      f.sigma.v_tf_m_s = t.in("v_tf_m_s_sigma", sigma_range(kVelocityBandRange));
+      f.sigma.v_tf_m_s = sigma_of(t, "v_tf_m_s_sigma", kVelocityBandRange);
       if (t.has("transition")) b.tanh_transition = transition_named(t, origin, "bingham.transition");
       if (t.has("transition_time_s")) {
         b.transition_time_s = t.in("transition_time_s", kTransitionTimeRange);
-        f.sigma.transition_time_s = t.in("transition_time_s_sigma", sigma_range(kTransitionTimeRange));
+        f.sigma.transition_time_s = sigma_of(t, "transition_time_s_sigma", kTransitionTimeRange);
       }
     } else {
       b.yield_disp_m = t.in("yield_disp_m", kYieldDispRange);
-      f.sigma.yield_disp_m = t.in("yield_disp_m_sigma", sigma_range(kYieldDispRange));
+      f.sigma.yield_disp_m = sigma_of(t, "yield_disp_m_sigma", kYieldDispRange);
       b.stiffness_n_m = t.in("stiffness_n_m", kStiffnessRange);
-      f.sigma.stiffness_n_m = t.in("stiffness_n_m_sigma", sigma_range(kStiffnessRange));
+      f.sigma.stiffness_n_m = sigma_of(t, "stiffness_n_m_sigma", kStiffnessRange);
     }
     t.no_unknown_keys();
   }
   if (root.get("lost_motion") != nullptr) {
     Table t(table_of(root, "lost_motion", origin), "lost_motion", origin);
     b.lost_motion_m_per_n = t.in("m_per_n", kPlayRange);
-    f.sigma.lost_motion_m_per_n = t.in("m_per_n_sigma", sigma_range(kPlayRange));
+    f.sigma.lost_motion_m_per_n = sigma_of(t, "m_per_n_sigma", kPlayRange);
     b.lost_motion_share = t.in("share", kShareRange);
-    f.sigma.lost_motion_share = t.in("share_sigma", sigma_range(kShareRange));
+    f.sigma.lost_motion_share = sigma_of(t, "share_sigma", kShareRange);
     if (t.has("band_m_s")) {
       b.lost_motion_band_m_s = t.in("band_m_s", kVelocityBandRange);
-      f.sigma.lost_motion_band_m_s = t.in("band_m_s_sigma", sigma_range(kVelocityBandRange));
+      f.sigma.lost_motion_band_m_s = sigma_of(t, "band_m_s_sigma", kVelocityBandRange);
     }
     t.no_unknown_keys();
   }
-  {
-    Table ch(table_of(root, "channels", origin), "channels", origin);
+  if (const toml::table* channels = optional_table(root, "channels", origin)) {
+    Table ch(*channels, "channels", origin);
     b.force_delay_s = ch.in("force_delay_s", kForceDelayRange);
-    f.sigma.force_delay_s = ch.in("force_delay_s_sigma", sigma_range(kForceDelayRange));
+    f.sigma.force_delay_s = sigma_of(ch, "force_delay_s_sigma", kForceDelayRange);
     ch.no_unknown_keys();
   }
   {
@@ -402,6 +367,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     if (c.has("tau_fast_s_sigma")) f.sigma.coil_tau_fast_s = c.in("tau_fast_s_sigma", tau_sigma);
     if (std::fabs(b.coil.weight_slow + b.coil.weight_fast - 1.0) > 1e-9)
       fail(origin, c.where("weight_fast"), "coil.weight_fast", "expected weight_slow + weight_fast = 1 (unity DC gain)");
+    read_coil_circuit(c, f.coil_circuit);
     c.no_unknown_keys();
   }
   {
@@ -441,6 +407,8 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     order(r.frequency_min_hz, r.frequency_max_hz, "frequency_max_hz", "frequency_min_hz");
     v.no_unknown_keys();
   }
+  if (const toml::table* t = optional_table(root, "rating", origin)) f.rating = read_rating(*t, origin);
+  if (const toml::table* t = optional_table(root, "geometry", origin)) f.geometry = read_geometry(*t, origin);
   if (const toml::node* n = root.get("fit")) {
     const toml::array* a = n->as_array();
     if (!a || !a->is_array_of_tables()) fail(origin, n->source(), "fit", "expected [[fit]] tables");

@@ -1,7 +1,9 @@
 #pragma once
 /// `damper.toml`: a calibrated baseline (baseline.hpp) with its standard
 /// errors, the records it was fitted to and its validity range, written by
-/// `mrd calibrate` and read by `mrd discrepancy --baseline`.
+/// `mrd calibrate` and read by `mrd discrepancy --baseline`; with the tables
+/// a closed loop needs ([rating], [geometry]), the damper file of `--damper`
+/// (host_sim/damper/damper_file.hpp).
 ///
 /// <pre>
 ///   [model]          law ("bingham" | "bouc_wen"), name, source_records
@@ -16,21 +18,34 @@
 ///   [channels]       force_delay_s, force_delay_s_sigma
 ///   [coil]           tau_slow_s, tau_fast_s, weight_slow, weight_fast, identified        Eq. 4.5
 ///                    tau_slow_s_sigma, tau_fast_s_sigma (only when identified)
+///                    resistance_ohm, inductance_1a_h, inductance_2a_h (optional: the coil's
+///                    circuit, which the hardware plant uses; Table 3.1: 4.8 ohm, 5.0 H at 1 A,
+///                    3.0 H at 2 A; the two inductances together or neither)
 ///   [participant_ratio]  Table 5.6 coefficients, flow_area_m2, volume_unit_m3, identified
 ///   [validity]       current_min_a … frequency_max_hz, expected_gap
+///   [rating]         current_a, force_n, stroke_m (± from the centre), velocity_m_s (optional:
+///                    what a closed loop holds the damper to; host_sim/damper derives it from
+///                    [validity] when absent)
+///   [geometry]       inner_diameter_m, shaft_radius_m, fluid_length_m, fluid_volume_m3
+///                    (optional: the cylinder the fluid settles in, Eq. 5.3; Table 3.1, 5.4)
 ///   [[fit]]          file, law, transition ("tanh", when so), transition_time, lost_motion and
 ///                    viscous_lost_motion (when true), gap, samples
 ///                    (one per record and form fitted)
 /// </pre>
 /// Only the table of the model's law ([bingham] or [bouc_wen]) may be present.
+/// A file written by hand may leave out what only a calibration has: the
+/// standard errors (`*_sigma`, 0 when absent), `fitted` (none), `source_records`
+/// (none), [channels] (no lag) and [[fit]].
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "host_sim/discrepancy/baseline.hpp"
 #include "host_sim/discrepancy/calibrate.hpp"
+#include "mrd/physics/mr_damper.hpp"
 
 namespace mrd::discrepancy {
 
@@ -46,6 +61,23 @@ struct RecordFit {
   bool viscous_lost_motion = false;  ///< its lost motion with a viscous force inside the play
 };
 
+/// [geometry]: the cylinder the fluid settles in, Eq. 5.3 (the fields of
+/// physics::SettlingParams that are the damper's; Table 3.1, 5.4 for the
+/// thesis damper).
+struct DamperGeometry {
+  double inner_diameter_m = 0.0;
+  double shaft_radius_m = 0.0;
+  double fluid_length_m = 0.0;
+  double fluid_volume_m3 = 0.0;
+};
+
+/// [coil]'s optional circuit: R and L(i) at 1 A and 2 A (plant/coil.hpp).
+struct CoilCircuit {
+  std::optional<double> resistance_ohm;
+  std::optional<double> inductance_1a_h;
+  std::optional<double> inductance_2a_h;  ///< given with inductance_1a_h, never alone
+};
+
 /// Everything damper.toml holds.
 struct BaselineFile {
   Baseline baseline;
@@ -54,6 +86,9 @@ struct BaselineFile {
   bool pr_identified = false;  ///< the coil's is Baseline::coil_identified
   std::vector<std::string> source_records;
   std::vector<RecordFit> fits;
+  CoilCircuit coil_circuit;                      ///< none from a calibration
+  std::optional<physics::DamperRating> rating;   ///< [rating]; none from a calibration
+  std::optional<DamperGeometry> geometry;        ///< [geometry]; none from a calibration
 };
 
 /// The file's content for a calibration: its chosen fit, and every law's
@@ -73,7 +108,8 @@ inline constexpr std::size_t kMaxBaselineFileBytes = std::size_t{16} << 20;
 /// or key, a wrong type, an unknown law, a non-finite number, a number
 /// outside its physical range (physical_ranges.hpp; the message states the
 /// range), coil weights that do not sum to 1, a range whose minimum exceeds
-/// its maximum.
+/// its maximum, one coil inductance without the other or one that grows with
+/// the current, a shaft as wide as the bore.
 ///
 /// baseline_toml writes a standard error larger than its range's top as that
 /// top (with a comment): such a parameter is not identified, and the file

@@ -109,6 +109,48 @@ inline constexpr PhysicalRange kFlowAreaRange{1e-6, 1.0, "m2", "an area"};
 /// The volume unit of ∫Q dt: from 1 mm³ to 1 m³ (the thesis counts litres).
 inline constexpr PhysicalRange kVolumeUnitRange{1e-9, 1.0, "m3", "a volume"};
 
+// ---- what the damper is rated for ([rating]) -------------------------------------
+
+/// A rated coil current: from 1 mA, below which no coil's field takes up a
+/// damper's fluid (MR dampers are rated 0.5–3 A; the thesis's 2.5 A, §3.1), to
+/// the largest current a record may hold (1000 A).
+inline constexpr PhysicalRange kRatedCurrentRange{1e-3, kMaxMeasuredCurrent_a, "A", "a current"};
+/// A rated force: from 1 N, below the force of any MR damper made (small ones,
+/// for seats and prosthetic knees, give tens to hundreds of newtons), to the
+/// largest force a record may hold (1e8 N; the thesis's 200 kN).
+inline constexpr PhysicalRange kRatedForceRange{1.0, kMaxMeasuredForce_n, "N", "a force"};
+/// A rated half stroke: from 0.1 mm, below any damper's stroke, to the
+/// largest half stroke (the thesis's ±0.2921 m).
+inline constexpr PhysicalRange kRatedStrokeRange{1e-4, kMaxHalfStroke_m, "m", "a half stroke"};
+/// A rated velocity: from 1 µm/s, below any velocity a record resolves, to
+/// the fastest damper (the thesis's 0.2491 m/s, Table 3.1).
+inline constexpr PhysicalRange kRatedVelocityRange{1e-6, kMaxDamperVelocity_m_s, "m/s", "a velocity"};
+
+// ---- the cylinder the fluid settles in ([geometry], Eq. 5.3, Table 3.1, 5.4) ----
+
+/// The cylinder's inner diameter: from 1 mm to 2 m, far beyond the largest
+/// MR dampers' bores (the thesis's 0.2032 m).
+inline constexpr PhysicalRange kBoreDiameterRange{1e-3, 2.0, "m", "a diameter"};
+/// The shaft's radius: 0 (none) to half the largest bore (the thesis's 0.04 m);
+/// the reader also refuses a shaft as wide as the bore.
+inline constexpr PhysicalRange kShaftRadiusRange{0.0, 1.0, "m", "a radius"};
+/// The settling cylinder's length: from 1 mm to 5 m, twice the largest stroke
+/// (2 m) with the piston and the heads (the thesis's 0.5842 m).
+inline constexpr PhysicalRange kFluidLengthRange{1e-3, 5.0, "m", "a length"};
+/// The fluid's volume: from 1 mm³ to 16 m³, the largest cylinder above (2 m
+/// bore, 5 m long: 15.7 m³; the thesis's 0.0166 m³, Table 5.4).
+inline constexpr PhysicalRange kFluidVolumeRange{1e-9, 16.0, "m3", "a volume"};
+
+// ---- the coil's circuit ([coil], optional; the hardware plant) ----------------------
+
+/// The coil's resistance: from 1 mΩ, below the leads of any coil, to 10 kΩ, at
+/// which 1 A would take 10 kV (the thesis's 4.8 Ω, Table 3.1).
+inline constexpr PhysicalRange kCoilResistanceRange{1e-3, 1e4, "ohm", "a resistance"};
+/// The coil's inductance: from 1 µH to 1000 H, whose L/R over the smallest
+/// resistance would pass the coil time constant's top (the thesis's 5.0 H at
+/// 1 A and 3.0 H at 2 A, Table 3.1).
+inline constexpr PhysicalRange kCoilInductanceRange{1e-6, 1e3, "H", "an inductance"};
+
 // ---- what the records cover -------------------------------------------------------
 
 /// Currents a record may hold (the reader's limit, either sign).

@@ -1,0 +1,160 @@
+#include "host_sim/damper/damper_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host_sim/discrepancy/physical_ranges.hpp"
+#include "host_sim/discrepancy/toml_fields.hpp"
+#include "host_sim/io/text.hpp"
+
+namespace mrd::damper {
+namespace {
+
+using discrepancy::BaseLaw;
+using discrepancy::Baseline;
+using discrepancy::BaselineFile;
+using discrepancy::PhysicalRange;
+
+std::string g4(double v) { return io::format_number("%.4g", v); }
+
+physics::ForceLaw force_law(const Baseline& b) {
+  if (b.law == BaseLaw::bouc_wen) return physics::ForceLaw::kBoucWen;
+  return b.has_tanh_transition() ? physics::ForceLaw::kBinghamTanh : physics::ForceLaw::kBingham;
+}
+
+/// Eq. 4.2–4.5 and 5.6–5.9 of the baseline, as physics::MrDamperParams
+/// (without the rating).
+physics::MrDamperParams damper_params(const Baseline& b) {
+  physics::MrDamperParams p;
+  p.bingham.fc_a_n = b.yield_n.at_zero;
+  p.bingham.fc_b_n = b.yield_n.limit;
+  p.bingham.fc_c_per_a = b.yield_n.rate_per_a;
+  p.bingham.c0_a_ns_m = b.viscous_ns_m.at_zero;
+  p.bingham.c0_b_ns_m = b.viscous_ns_m.limit;
+  p.bingham.c0_c_per_a = b.viscous_ns_m.rate_per_a;
+  p.bingham.v_tf_m_s = b.v_tf_m_s;
+  p.coil = b.coil;
+  p.pr = b.pr;
+  p.law = force_law(b);
+  if (b.law == BaseLaw::bouc_wen) p.bouc_wen = {b.yield_disp_m, b.stiffness_n_m};
+  return p;
+}
+
+/// The line of [table] key in `root` (of the table when the key is absent).
+toml::source_region where(const toml::table& root, const char* table, const char* key) {
+  const toml::node* t = root.get(table);
+  if (!t || !t->as_table()) return root.source();
+  const toml::node* n = t->as_table()->get(key);
+  return n ? n->source() : t->source();
+}
+
+/// A rating quantity taken from [validity] `key`: refused naming that key
+/// when it lies outside the rating's range.
+double derived(double value, const PhysicalRange& r, const toml::table& root, const char* key,
+               const std::string& origin) {
+  if (!r.contains(value))
+    discrepancy::fail_at(origin, where(root, "validity", key), std::string("validity.") + key,
+                         "the file has no [rating], and " + discrepancy::toml_number(value) +
+                             " is no rating: expected " + discrepancy::range_text(r) +
+                             " (add a [rating] table with current_a, force_n, stroke_m, velocity_m_s)");
+  return value;
+}
+
+/// [rating] from [validity]: what the records covered.
+physics::DamperRating rating_of_validity(const discrepancy::ValidityRange& v, const toml::table& root,
+                                         const std::string& origin) {
+  physics::DamperRating r;
+  const bool min_larger = std::fabs(v.current_min_a) > std::fabs(v.current_max_a);
+  r.current_a = derived(std::max(std::fabs(v.current_min_a), std::fabs(v.current_max_a)),
+                        discrepancy::kRatedCurrentRange, root, min_larger ? "current_min_a" : "current_max_a",
+                        origin);
+  r.force_n = derived(v.force_peak_n, discrepancy::kRatedForceRange, root, "force_peak_n", origin);
+  r.stroke_m = derived(v.amplitude_max_m, discrepancy::kRatedStrokeRange, root, "amplitude_max_m", origin);
+  r.velocity_m_s = derived(v.velocity_max_m_s, discrepancy::kRatedVelocityRange, root, "velocity_max_m_s", origin);
+  return r;
+}
+
+/// The sentences of DamperFile::warnings.
+std::vector<std::string> warnings_of(const BaselineFile& f, const DamperFile& d) {
+  const Baseline& b = f.baseline;
+  const physics::DamperRating& r = d.params.rating;
+  std::vector<std::string> w;
+  if (!d.rating_given)
+    w.push_back("no [rating]: the closed loop holds the damper to what its records cover ([validity]): " +
+                g4(r.current_a) + " A, " + g4(r.force_n) + " N, stroke +-" + g4(r.stroke_m) + " m, " +
+                g4(r.velocity_m_s) + " m/s; a [rating] table gives the damper's own limits");
+  if (!d.geometry_given) {
+    const discrepancy::DamperGeometry g = thesis_geometry();
+    w.push_back("no [geometry]: the idle-time physics (settled layer and maximum settling time, Eq. 5.3-5.4) uses "
+                "the thesis damper's cylinder (bore " + g4(g.inner_diameter_m) + " m, shaft radius " +
+                g4(g.shaft_radius_m) + " m, length " + g4(g.fluid_length_m) + " m, fluid " + g4(g.fluid_volume_m3) +
+                " m3)");
+  }
+  if (b.has_lost_motion())
+    w.push_back("[lost_motion]: the closed loop does not simulate the lost motion at reversals (m_per_n " +
+                g4(b.lost_motion_m_per_n) + " m/N, share " + g4(b.lost_motion_share) +
+                "): its force is the law's alone");
+  if (b.has_transition_time())
+    w.push_back("bingham.transition_time_s: the closed loop does not simulate the transition time (" +
+                g4(b.transition_time_s) + " s): its band is v_tf_m_s alone");
+  if (b.force_delay_s > 0.0)
+    w.push_back("channels.force_delay_s: the force channel's lag of the test (" + g4(b.force_delay_s) +
+                " s) is the rig's, not the damper's: the closed loop has none");
+  if (!b.coil_identified)
+    w.push_back("coil: identified = false: the coil's time constants (" + g4(b.coil.tau_slow_s) + " s, " +
+                g4(b.coil.tau_fast_s) + " s, Eq. 4.5) are assumed, not this damper's");
+  if (!f.pr_identified)
+    w.push_back("participant_ratio: identified = false: the idle-time coefficients (Table 5.6) are assumed, not "
+                "this damper's (--fluid FILE gives a fluid's)");
+  const discrepancy::ValidityRange& v = b.range;
+  const double covered_a = std::max(std::fabs(v.current_min_a), std::fabs(v.current_max_a));
+  if (d.rating_given && r.current_a > covered_a)
+    w.push_back("rating.current_a: " + g4(r.current_a) + " A is above the " + g4(covered_a) +
+                " A the records cover ([validity]): the current laws are extrapolated above it");
+  if (d.rating_given && r.velocity_m_s > v.velocity_max_m_s)
+    w.push_back("rating.velocity_m_s: " + g4(r.velocity_m_s) + " m/s is above the " + g4(v.velocity_max_m_s) +
+                " m/s the records cover ([validity]): the force is extrapolated above it");
+  return w;
+}
+
+}  // namespace
+
+discrepancy::DamperGeometry thesis_geometry() {
+  const physics::SettlingParams s{};
+  return {s.inner_diameter_m, s.shaft_radius_m, s.fluid_length_m, s.fluid_volume_m3};
+}
+
+DamperFile thesis_damper() {
+  DamperFile d;
+  d.geometry = thesis_geometry();
+  return d;
+}
+
+DamperFile parse_damper_toml(const std::string& text, const std::string& origin) {
+  const BaselineFile f = discrepancy::parse_baseline_toml(text, origin);
+  DamperFile d;
+  d.name = f.baseline.name;
+  d.params = damper_params(f.baseline);
+  d.rating_given = f.rating.has_value();
+  d.params.rating = f.rating ? *f.rating : rating_of_validity(f.baseline.range, discrepancy::parse_toml(text, origin),
+                                                              origin);
+  d.geometry_given = f.geometry.has_value();
+  d.geometry = f.geometry ? *f.geometry : thesis_geometry();
+  d.coil_circuit = f.coil_circuit;
+  d.warnings = warnings_of(f, d);
+  return d;
+}
+
+DamperFile read_damper_file(const std::filesystem::path& path) {
+  return parse_damper_toml(io::read_regular_file(path, discrepancy::kMaxBaselineFileBytes), io::file_label(path));
+}
+
+physics::SettlingParams with_geometry(physics::SettlingParams settling, const discrepancy::DamperGeometry& g) {
+  settling.inner_diameter_m = g.inner_diameter_m;
+  settling.shaft_radius_m = g.shaft_radius_m;
+  settling.fluid_length_m = g.fluid_length_m;
+  settling.fluid_volume_m3 = g.fluid_volume_m3;
+  return settling;
+}
+
+}  // namespace mrd::damper

@@ -1,0 +1,390 @@
+// The damper file of --damper: the shipped thesis file reads to exactly the
+// compiled-in damper (Table 3.1, 4.1, 5.4, 5.6, Eq. 4.5), a baseline maps
+// onto Eq. 4.2–4.4's constants one for one (checked against hand
+// calculations of the force), what the closed loop leaves out is said, and
+// every kind of bad file is refused with "<file>:<line>: <field>: ..." where
+// the line is counted in the test's own text.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "host_sim/damper/damper_file.hpp"
+#include "host_sim/discrepancy/baseline_file.hpp"
+#include "host_sim/io/usage_error.hpp"
+#include "mrd/physics/bingham.hpp"
+
+namespace mrd::damper {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kDampersDir = MRD_DAMPERS_DIR;
+
+std::string file_text(const fs::path& p) {
+  std::ifstream f(p);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+std::string thesis_text() { return file_text(kDampersDir / "thesis-200kn.toml"); }
+
+/// The error of parsing `text` (empty when it parses).
+std::string error_of(const std::string& text) {
+  try {
+    (void)parse_damper_toml(text, "d.toml");
+  } catch (const io::UsageError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+/// `text` with `from` replaced by `to` (once; the test fails when absent).
+std::string edited(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+/// 1-based line of the first line of `text` that starts with `start`.
+int line_of(const std::string& text, const std::string& start) {
+  int line = 1;
+  for (std::size_t pos = 0; pos < text.size(); ++line) {
+    if (text.compare(pos, start.size(), start) == 0) return line;
+    pos = text.find('\n', pos);
+    if (pos == std::string::npos) break;
+    ++pos;
+  }
+  return -1;
+}
+
+/// `text` without the table `[name]` (up to the next table or the end).
+std::string without_table(std::string text, const std::string& name) {
+  const auto at = text.find("\n[" + name + "]");
+  EXPECT_NE(at, std::string::npos) << name;
+  const auto end = text.find("\n[", at + 1);
+  text.erase(at, end == std::string::npos ? std::string::npos : end - at);
+  return text;
+}
+
+TEST(DamperFile, TheThesisFileIsTheCompiledInDamper) {
+  const DamperFile d = read_damper_file(kDampersDir / "thesis-200kn.toml");
+  const physics::MrDamperParams a = d.params;
+  const physics::MrDamperParams b{};
+  EXPECT_EQ(a.bingham.fc_a_n, b.bingham.fc_a_n);
+  EXPECT_EQ(a.bingham.fc_b_n, b.bingham.fc_b_n);
+  EXPECT_EQ(a.bingham.fc_c_per_a, b.bingham.fc_c_per_a);
+  EXPECT_EQ(a.bingham.c0_a_ns_m, b.bingham.c0_a_ns_m);
+  EXPECT_EQ(a.bingham.c0_b_ns_m, b.bingham.c0_b_ns_m);
+  EXPECT_EQ(a.bingham.c0_c_per_a, b.bingham.c0_c_per_a);
+  EXPECT_EQ(a.bingham.v_tf_m_s, b.bingham.v_tf_m_s);
+  EXPECT_EQ(a.coil.tau_slow_s, b.coil.tau_slow_s);
+  EXPECT_EQ(a.coil.tau_fast_s, b.coil.tau_fast_s);
+  EXPECT_EQ(a.coil.weight_slow, b.coil.weight_slow);
+  EXPECT_EQ(a.coil.weight_fast, b.coil.weight_fast);
+  EXPECT_EQ(a.pr.a_initial, b.pr.a_initial);
+  EXPECT_EQ(a.pr.b_initial, b.pr.b_initial);
+  EXPECT_EQ(a.pr.c_initial, b.pr.c_initial);
+  EXPECT_EQ(a.pr.a_final, b.pr.a_final);
+  EXPECT_EQ(a.pr.b_final, b.pr.b_final);
+  EXPECT_EQ(a.pr.c_final, b.pr.c_final);
+  EXPECT_EQ(a.pr.a_rise, b.pr.a_rise);
+  EXPECT_EQ(a.pr.b_rise, b.pr.b_rise);
+  EXPECT_EQ(a.pr.c_rise, b.pr.c_rise);
+  EXPECT_EQ(a.pr.flow_area_m2, b.pr.flow_area_m2);
+  EXPECT_EQ(a.pr.volume_unit_m3, b.pr.volume_unit_m3);
+  EXPECT_EQ(a.law, b.law);
+  EXPECT_EQ(a.bouc_wen.yield_disp_m, b.bouc_wen.yield_disp_m);
+  EXPECT_EQ(a.bouc_wen.stiffness_n_m, b.bouc_wen.stiffness_n_m);
+  EXPECT_EQ(a.rating.current_a, b.rating.current_a);
+  EXPECT_EQ(a.rating.force_n, b.rating.force_n);
+  EXPECT_EQ(a.rating.stroke_m, b.rating.stroke_m);
+  EXPECT_EQ(a.rating.velocity_m_s, b.rating.velocity_m_s);
+  // The geometry: SettlingParams' defaults (Table 3.1, 5.4), also through with_geometry.
+  const physics::SettlingParams s{};
+  EXPECT_EQ(d.geometry.inner_diameter_m, s.inner_diameter_m);
+  EXPECT_EQ(d.geometry.shaft_radius_m, s.shaft_radius_m);
+  EXPECT_EQ(d.geometry.fluid_length_m, s.fluid_length_m);
+  EXPECT_EQ(d.geometry.fluid_volume_m3, s.fluid_volume_m3);
+  const physics::SettlingParams g = with_geometry(physics::SettlingParams{}, d.geometry);
+  EXPECT_EQ(g.inner_diameter_m, s.inner_diameter_m);
+  EXPECT_EQ(g.shaft_radius_m, s.shaft_radius_m);
+  EXPECT_EQ(g.fluid_length_m, s.fluid_length_m);
+  EXPECT_EQ(g.fluid_volume_m3, s.fluid_volume_m3);
+  // The coil's circuit of Table 3.1: 4.8 ohm, 5.0 H at 1 A, 3.0 H at 2 A.
+  EXPECT_EQ(d.coil_circuit.resistance_ohm, 4.8);
+  EXPECT_EQ(d.coil_circuit.inductance_1a_h, 5.0);
+  EXPECT_EQ(d.coil_circuit.inductance_2a_h, 3.0);
+  EXPECT_EQ(d.name, "thesis-200kn");
+  EXPECT_TRUE(d.rating_given);
+  EXPECT_TRUE(d.geometry_given);
+  EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
+  // And the thesis damper without a file is the same.
+  EXPECT_EQ(thesis_damper().geometry.fluid_volume_m3, s.fluid_volume_m3);
+  EXPECT_EQ(thesis_damper().params.rating.force_n, b.rating.force_n);
+}
+
+/// A small damper written by hand: Bingham with the tanh transition, the
+/// optional tables left out.
+const char* kSmallDamper = R"([model]
+law = "bingham"
+name = "small"
+
+[yield_n]
+at_zero = 100.0
+limit = 1500.0
+rate_per_a = 2.0
+
+[viscous_ns_m]
+at_zero = 1000.0
+limit = 3000.0
+rate_per_a = 0.5
+
+[bingham]
+v_tf_m_s = 0.005
+transition = "tanh"
+
+[coil]
+tau_slow_s = 0.05
+tau_fast_s = 0.01
+weight_slow = 0.5
+weight_fast = 0.5
+identified = true
+
+[participant_ratio]
+a_initial = 1.0
+b_initial = 0.1
+c_initial = 7.0
+a_final = 1.0
+b_final = 0.605
+c_final = 4.5
+a_rise = 5.474
+b_rise = 0.0
+c_rise = 3.65
+flow_area_m2 = 0.0005
+volume_unit_m3 = 0.001
+identified = true
+
+[validity]
+current_min_a = 0.0
+current_max_a = 1.0
+velocity_max_m_s = 0.05
+force_peak_n = 1700.0
+amplitude_min_m = 0.002
+amplitude_max_m = 0.025
+frequency_min_hz = 0.25
+frequency_max_hz = 5.0
+expected_gap = 0.15
+
+[rating]
+current_a = 1.0
+force_n = 2000.0
+stroke_m = 0.025
+velocity_m_s = 0.05
+
+[geometry]
+inner_diameter_m = 0.04
+shaft_radius_m = 0.005
+fluid_length_m = 0.1
+fluid_volume_m3 = 0.0001
+)";
+
+// Eq. 4.2 with the file's law, by hand: f_c(1 A) = 1500 + (100 − 1500)·e^−2
+// = 1500 − 1400 · 0.1353352832 = 1310.530603 N; at PR = 0.5 the limit is 750:
+// 750 − 650 · 0.1353352832 = 662.032066 N. Eq. 4.3: c_0(1 A) = 3000 +
+// (1000 − 3000)·e^−0.5 = 3000 − 2000 · 0.6065306597 = 1786.938681 N s/m.
+TEST(DamperFile, CurrentLawsMapOntoEq42To44) {
+  const DamperFile d = parse_damper_toml(kSmallDamper, "small.toml");
+  const physics::BinghamParams& b = d.params.bingham;
+  EXPECT_EQ(b.fc_a_n, 100.0);
+  EXPECT_EQ(b.fc_b_n, 1500.0);
+  EXPECT_EQ(b.fc_c_per_a, 2.0);
+  EXPECT_EQ(b.c0_a_ns_m, 1000.0);
+  EXPECT_EQ(b.c0_b_ns_m, 3000.0);
+  EXPECT_EQ(b.c0_c_per_a, 0.5);
+  EXPECT_EQ(b.v_tf_m_s, 0.005);
+  EXPECT_NEAR(physics::coulomb_force_n(b, 1.0), 1310.530603, 1e-6);
+  EXPECT_NEAR(physics::coulomb_force_n(b, -1.0, 0.5), 662.032066, 1e-6);
+  EXPECT_NEAR(physics::viscous_coeff_ns_m(b, 1.0), 1786.938681, 1e-6);
+  EXPECT_EQ(d.params.law, physics::ForceLaw::kBinghamTanh);
+  EXPECT_EQ(d.params.coil.tau_slow_s, 0.05);
+  EXPECT_EQ(d.params.pr.flow_area_m2, 0.0005);
+  EXPECT_EQ(d.params.rating.current_a, 1.0);
+  EXPECT_EQ(d.params.rating.force_n, 2000.0);
+  EXPECT_EQ(d.params.rating.stroke_m, 0.025);
+  EXPECT_EQ(d.params.rating.velocity_m_s, 0.05);
+  EXPECT_EQ(d.geometry.inner_diameter_m, 0.04);
+  EXPECT_EQ(d.geometry.fluid_volume_m3, 0.0001);
+  EXPECT_FALSE(d.coil_circuit.resistance_ohm.has_value());
+  EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
+  // Eq. 4.4's linear transition is ForceLaw::kBingham, written or left out.
+  const std::string linear = edited(kSmallDamper, "transition = \"tanh\"\n", "transition = \"linear\"\n");
+  EXPECT_EQ(parse_damper_toml(linear, "s.toml").params.law, physics::ForceLaw::kBingham);
+  const std::string plain = edited(kSmallDamper, "transition = \"tanh\"\n", "");
+  EXPECT_EQ(parse_damper_toml(plain, "s.toml").params.law, physics::ForceLaw::kBingham);
+}
+
+TEST(DamperFile, BoucWenMapsItsTwoConstants) {
+  const std::string text = edited(edited(kSmallDamper, "law = \"bingham\"", "law = \"bouc_wen\""),
+                                  "[bingham]\nv_tf_m_s = 0.005\ntransition = \"tanh\"",
+                                  "[bouc_wen]\nyield_disp_m = 0.0004\nstiffness_n_m = 2000.0");
+  const DamperFile d = parse_damper_toml(text, "bw.toml");
+  EXPECT_EQ(d.params.law, physics::ForceLaw::kBoucWen);
+  EXPECT_EQ(d.params.bouc_wen.yield_disp_m, 0.0004);
+  EXPECT_EQ(d.params.bouc_wen.stiffness_n_m, 2000.0);
+  EXPECT_EQ(d.params.bingham.fc_b_n, 1500.0);
+}
+
+// Without [rating] the rating is what the records covered, said in a warning;
+// without [geometry] the thesis damper's cylinder, said too; and each part of
+// a calibration the closed loop does not simulate is named.
+TEST(DamperFile, DerivesWhatIsMissingAndNamesWhatIsLeftOut) {
+  std::string text = without_table(without_table(kSmallDamper, "rating"), "geometry");
+  text = edited(text, "transition = \"tanh\"\n", "transition = \"tanh\"\ntransition_time_s = 0.005\n");
+  text = edited(text, "identified = true\n\n[participant_ratio]", "identified = false\n\n[participant_ratio]");
+  text = edited(text, "flow_area_m2 = 0.0005\nvolume_unit_m3 = 0.001\nidentified = true",
+                "flow_area_m2 = 0.0005\nvolume_unit_m3 = 0.001\nidentified = false");
+  text += "\n[lost_motion]\nm_per_n = 3e-07\nshare = 0.45\n\n[channels]\nforce_delay_s = 0.006\n";
+  const DamperFile d = parse_damper_toml(text, "lab.toml");
+  EXPECT_FALSE(d.rating_given);
+  EXPECT_EQ(d.params.rating.current_a, 1.0);        // current_max_a
+  EXPECT_EQ(d.params.rating.force_n, 1700.0);       // force_peak_n
+  EXPECT_EQ(d.params.rating.stroke_m, 0.025);       // amplitude_max_m
+  EXPECT_EQ(d.params.rating.velocity_m_s, 0.05);    // velocity_max_m_s
+  EXPECT_FALSE(d.geometry_given);
+  EXPECT_EQ(d.geometry.inner_diameter_m, 0.2032);   // Table 3.1
+  EXPECT_EQ(d.geometry.fluid_volume_m3, 0.0166);    // Table 5.4
+  const auto said = [&](const std::string& what) {
+    for (const auto& w : d.warnings)
+      if (w.find(what) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(said("no [rating]")) << ::testing::PrintToString(d.warnings);
+  EXPECT_TRUE(said("1 A, 1700 N, stroke +-0.025 m, 0.05 m/s"));
+  EXPECT_TRUE(said("no [geometry]"));
+  EXPECT_TRUE(said("thesis damper's cylinder"));
+  EXPECT_TRUE(said("[lost_motion]: the closed loop does not simulate the lost motion"));
+  EXPECT_TRUE(said("bingham.transition_time_s: the closed loop does not simulate the transition time (0.005 s)"));
+  EXPECT_TRUE(said("channels.force_delay_s"));
+  EXPECT_TRUE(said("coil: identified = false"));
+  EXPECT_TRUE(said("participant_ratio: identified = false"));
+  EXPECT_EQ(d.warnings.size(), 7u);
+  // A rating above what the records cover: the laws are extrapolated.
+  const DamperFile above = parse_damper_toml(edited(kSmallDamper, "current_a = 1.0", "current_a = 2.0"), "a.toml");
+  ASSERT_EQ(above.warnings.size(), 1u);
+  EXPECT_NE(above.warnings[0].find("rating.current_a: 2 A is above the 1 A the records cover"), std::string::npos);
+}
+
+// `mrd calibrate` writes no [rating], [geometry] or coil circuit; a file that
+// has them reads back to the same values, and the writer writes them.
+TEST(DamperFile, RatingGeometryAndCircuitRoundTrip) {
+  discrepancy::BaselineFile f = discrepancy::parse_baseline_toml(kSmallDamper, "small.toml");
+  f.coil_circuit = {2.5, 0.8, 0.6};
+  const discrepancy::BaselineFile g = discrepancy::parse_baseline_toml(discrepancy::baseline_toml(f), "w.toml");
+  ASSERT_TRUE(g.rating && g.geometry);
+  EXPECT_EQ(g.rating->current_a, 1.0);
+  EXPECT_EQ(g.rating->force_n, 2000.0);
+  EXPECT_EQ(g.rating->stroke_m, 0.025);
+  EXPECT_EQ(g.rating->velocity_m_s, 0.05);
+  EXPECT_EQ(g.geometry->inner_diameter_m, 0.04);
+  EXPECT_EQ(g.geometry->shaft_radius_m, 0.005);
+  EXPECT_EQ(g.geometry->fluid_length_m, 0.1);
+  EXPECT_EQ(g.geometry->fluid_volume_m3, 0.0001);
+  EXPECT_EQ(g.coil_circuit.resistance_ohm, 2.5);
+  EXPECT_EQ(g.coil_circuit.inductance_1a_h, 0.8);
+  EXPECT_EQ(g.coil_circuit.inductance_2a_h, 0.6);
+  // Left out when absent: the text of a calibration has none of them.
+  f.rating.reset();
+  f.geometry.reset();
+  f.coil_circuit = {};
+  const std::string t = discrepancy::baseline_toml(f);
+  EXPECT_EQ(t.find("[rating]"), std::string::npos);
+  EXPECT_EQ(t.find("[geometry]"), std::string::npos);
+  EXPECT_EQ(t.find("resistance_ohm"), std::string::npos);
+}
+
+TEST(DamperFile, AMissingFileIsNamed) {
+  try {
+    (void)read_damper_file(kDampersDir / "no-such-damper.toml");
+    FAIL() << "read a missing file";
+  } catch (const io::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("no-such-damper.toml"), std::string::npos) << e.what();
+  }
+}
+
+// Each kind of bad damper file: the message is "d.toml:LINE: field: ..." with
+// LINE the line the test's text has the key on (or its table's header for a
+// missing key), and names what was expected (the range, for a number).
+TEST(DamperFile, RefusesBadFilesNamingFileLineAndField) {
+  struct Case {
+    const char* kind;
+    std::string text;
+    std::string at;  ///< the start of the line the message names
+    std::string field, problem;
+  };
+  const std::string t = thesis_text();
+  const std::vector<Case> cases = {
+      {"syntax error", edited(t, "force_n = 200000.0", "force_n = = 200000.0"), "force_n = ", "", ""},
+      {"unknown table", t + "\n[ratings]\ncurrent_a = 2.5\n", "[ratings]", "ratings",
+       "unknown table (expected model,"},
+      {"renamed key", edited(t, "velocity_m_s = 0.2491 ", "velocity_max_m_s = 0.2491 "), "[rating]",
+       "rating.velocity_m_s", "missing key"},
+      {"unknown key beside the known", edited(t, "current_a = 2.5 ", "peak_current_a = 3.0\ncurrent_a = 2.5 "),
+       "peak_current_a", "rating.peak_current_a", "unknown key"},
+      {"wrong type", edited(t, "force_n = 200000.0", "force_n = \"200 kN\""), "force_n = ", "rating.force_n",
+       "expected a number"},
+      {"boolean for a number", edited(t, "current_a = 2.5 ", "current_a = true "), "current_a = ",
+       "rating.current_a", "expected a number"},
+      {"non-finite", edited(t, "stroke_m = 0.2921", "stroke_m = nan"), "stroke_m = ", "rating.stroke_m",
+       "expected a finite number"},
+      {"negative rating", edited(t, "force_n = 200000.0", "force_n = -200000.0"), "force_n = ", "rating.force_n",
+       "expected a force in [1, 1e+08] N, got -2e+05"},
+      {"stroke beyond any damper", edited(t, "stroke_m = 0.2921", "stroke_m = 2.921"), "stroke_m = ",
+       "rating.stroke_m", "expected a half stroke in [0.0001, 1] m, got 2.921"},
+      {"zero rated current", edited(t, "current_a = 2.5 ", "current_a = 0.0 "), "current_a = ", "rating.current_a",
+       "expected a current in [0.001, 1000] A, got 0.0"},
+      {"coil weights not summing to 1", edited(t, "weight_fast = 0.5", "weight_fast = 0.6"), "weight_fast = ",
+       "coil.weight_fast", "expected weight_slow + weight_fast = 1"},
+      {"one inductance", edited(t, "inductance_2a_h = 3.0   # L at 2 A\n", ""), "[coil]", "coil.inductance_2a_h",
+       "missing key (inductance_1a_h needs it"},
+      {"inductance growing with current", edited(t, "inductance_2a_h = 3.0", "inductance_2a_h = 6.0"),
+       "inductance_2a_h", "coil.inductance_2a_h", "expected at most inductance_1a_h (5.0 H)"},
+      {"zero resistance", edited(t, "resistance_ohm = 4.8", "resistance_ohm = 0"), "resistance_ohm",
+       "coil.resistance_ohm", "expected a resistance in [0.001, 10000] ohm, got 0.0"},
+      {"shaft as wide as the bore", edited(t, "shaft_radius_m = 0.04", "shaft_radius_m = 0.1016"), "shaft_radius_m",
+       "geometry.shaft_radius_m", "expected less than half inner_diameter_m (0.1016 m)"},
+      {"geometry key missing", edited(t, "fluid_volume_m3 = 0.0166  # Table 5.4 (a), method 1\n", ""), "[geometry]",
+       "geometry.fluid_volume_m3", "missing key"},
+      {"zero bore", edited(t, "inner_diameter_m = 0.2032", "inner_diameter_m = 0.0"), "inner_diameter_m",
+       "geometry.inner_diameter_m", "expected a diameter in [0.001, 2] m, got 0.0"},
+      {"no rating, no amplitude stated", without_table(t, "rating"), "amplitude_max_m",
+       "validity.amplitude_max_m", "the file has no [rating], and 0.0 is no rating: expected a half stroke"},
+      {"no rating, no current", edited(without_table(t, "rating"), "current_max_a = 2.5 ", "current_max_a = 0.0 "),
+       "current_max_a", "validity.current_max_a", "add a [rating] table"},
+      {"unknown law", edited(t, "law = \"bingham\"", "law = \"spring\""), "law = ", "model.law",
+       "expected \"bingham\" or \"bouc_wen\", got \"spring\""},
+      {"unknown transition", edited(t, "transition = \"linear\"", "transition = \"cubic\""), "transition = ",
+       "bingham.transition", "expected \"linear\" or \"tanh\""},
+      {"participant ratio above 1", edited(t, "a_initial = 1.0", "a_initial = 1.5"), "a_initial",
+       "participant_ratio.a_initial", "expected a participant ratio in [0, 1], got 1.5"},
+      {"rating not a table", "rating = 3\n" + without_table(t, "rating"), "rating = 3", "rating",
+       "expected a table [rating]"},
+  };
+  for (const Case& c : cases) {
+    const std::string e = error_of(c.text);
+    const int line = line_of(c.text, c.at);
+    ASSERT_GT(line, 0) << c.kind;
+    EXPECT_EQ(e.rfind("d.toml:" + std::to_string(line) + ": " + (c.field.empty() ? "" : c.field + ": "), 0), 0u)
+        << c.kind << " -> " << e;
+    EXPECT_NE(e.find(c.problem), std::string::npos) << c.kind << " -> " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << c.kind << " -> " << e;
+  }
+  // A missing table is named at line 1.
+  EXPECT_EQ(error_of(without_table(t, "coil")), "d.toml:1: [coil]: missing table");
+}
+
+}  // namespace
+}  // namespace mrd::damper
