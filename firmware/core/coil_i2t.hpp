@@ -20,10 +20,18 @@
 /// the ceiling at 0 A the coil only cools. The estimate starts at ambient
 /// (m = 0) at reset().
 ///
-/// Fixed point: m in Q9.22 A²; each tick adds i²/16, formed as i² in Q13.18
-/// (saturating at 8192 A², far beyond the current sensor's 15 A) read as
-/// Q9.22, so the 16-tick mean cannot leave Q9.22; α = 1.33e−5 in Q2.29 (7158 LSB). Rounding lets m settle up
-/// to 0.5 LSB/α = 9e−3 A² from the exact value, 0.09 K of the 60 K rating.
+/// Units: currents in the controller's s_I A, squares in s_I² A²
+/// (numeric_formats.hpp: s_I puts I_r in (1.77, 3.54] units; 1 for the
+/// thesis's 2.5 A coil). θ/θ_r = m/I_r² does not depend on the unit.
+///
+/// Fixed point: m in Q9.22 s_I² A²; each tick adds i²/16, formed as i² in
+/// Q13.18 (saturating at 8192 s_I² A², i = 90 s_I A, beyond the current
+/// sensor's limit) read as Q9.22, so the 16-tick mean cannot leave Q9.22
+/// (512 s_I² A²: a current held at the command limit, ≤ 22.6 s_I A by
+/// validate_config, fits); α = 1.33e−5 in Q2.29 (7158 LSB). Rounding
+/// lets m settle up to 0.5 LSB/α = 9e−3 s_I² A² from the exact value, 0.09 K
+/// of the thesis's 60 K rating, at most 0.3 % of the rated rise for any
+/// I_r.
 
 #include <cmath>
 #include <cstdint>

@@ -3,6 +3,7 @@
 /// its validation (no exceptions: an error code).
 
 #include <cstdint>
+#include <type_traits>
 
 #include "firmware/core/numeric_formats.hpp"
 #include "mrd/control/io.hpp"
@@ -117,15 +118,121 @@ constexpr bool finite_positive(double v) noexcept { return v > 0.0 && v < 1.0e30
 constexpr bool finite(double v) noexcept { return v > -1.0e300 && v < 1.0e300; }
 }  // namespace detail
 
+/// The largest force the core must hold for `c`, N: the desired-force
+/// limit, the load cell's guard limit or the deadband.
+constexpr double largest_force_n(const ControllerConfig& c) noexcept {
+  double f = c.desired_force_limit_n;
+  if (c.force_limit_n > f) f = c.force_limit_n;
+  if (c.force_deadband_n > f) f = c.force_deadband_n;
+  return f;
+}
+
+/// The unit scales the core runs `c` at (numeric_formats.hpp): s_D from the
+/// stroke limit, s_F from the largest force and kη, s_I from the rated
+/// current; all 1 in float.
+template <class Policy>
+constexpr CoreScales core_scales(const ControllerConfig& c) noexcept {
+  return select_core_scales<Policy>(c.disp_limit_m, largest_force_n(c), c.stiffness_n_m * c.loss_factor,
+                                    c.rated_current_a);
+}
+
+/// Counts of Force the desired-force limit spans at least (2^22: F_d resolved
+/// to 2.4e−7 of its limit). It spans more than 2^30 when it sets s_F, more
+/// than 2^29 under the thesis's load-cell limit of 1.25 times it; fewer only
+/// when kη (kη s_D above about 8192 /m × the limit: F_d would reach its
+/// limit within s_D/8192 of stroke, 37 µm for the thesis) or a load-cell
+/// limit more than 512 times it sets s_F.
+inline constexpr double kMinDesiredForceCounts = 4194304.0;
+
+/// Checks that every constant of `c`, and every intermediate the blocks
+/// document, fits its format of Policy at the scales core_scales<Policy>(c).
+/// nullptr when all fit; otherwise a text naming the first constant that does
+/// not and its format's limit (for error messages: `mrd configure`, board
+/// files). Expects `c` to pass validate_config's other checks.
+template <class Policy>
+constexpr const char* fixed_point_misfit(const ControllerConfig& c) noexcept {
+  using F = Formats<Policy>;
+  constexpr bool kFixed = !std::is_floating_point_v<typename F::Force>;
+  const CoreScales scales = core_scales<Policy>(c);
+  const double sd = scales.disp_m();
+  const double sf = scales.force_n();
+  const double si = scales.current_a();
+  // RILD: |w + x| < 4 max|x| (rild_filter.hpp).
+  if (!representable<typename F::Disp>(4.0 * c.disp_limit_m / sd)) {
+    return "disp_limit_m: the RILD state reaches 4 × disp_limit_m, which must fit Disp Q3.28 at the stroke "
+           "scale s_D ≤ 2^24: disp_limit_m < 2 s_D m";
+  }
+  if (!representable<typename F::Force>(largest_force_n(c) / sf)) {
+    return "desired_force_limit_n/force_limit_n/force_deadband_n: the largest must fit Force Q19.12 at the "
+           "largest force scale, |F| < 524288 × 2^24 N";
+  }
+  if (!representable<typename F::Gain>(c.stiffness_n_m * c.loss_factor * sd / sf)) {
+    return "stiffness_n_m × loss_factor (kη): must fit Gain Q23.8 at the force scale s_F ≤ 2^24, "
+           "kη < 8.39e6 s_F/s_D N/m";
+  }
+  if constexpr (kFixed) {
+    if (c.desired_force_limit_n / sf * 4096.0 < kMinDesiredForceCounts) {
+      // Which constant raised s_F so far: the forces (load cell) or kη.
+      const double sf_forces = pow2(smallest_exp_within(largest_force_n(c), F::Force::max_value()));
+      if (sf_forces >= sf) {
+        return "force_limit_n against desired_force_limit_n: the force scale s_F that fits the load cell's limit "
+               "leaves the desired-force limit fewer than 2^22 counts of Force Q19.12 (2.4e−4 s_F N each): "
+               "force_limit_n must stay below about 512 × desired_force_limit_n";
+      }
+      return "stiffness_n_m × loss_factor (kη) against desired_force_limit_n: the force scale s_F that fits kη in "
+             "Gain Q23.8 (kη s_D/s_F < 8.39e6 N/m) leaves the desired-force limit fewer than 2^22 counts of Force "
+             "Q19.12 (2.4e−4 s_F N each): kη × s_D must stay below about 8192 /m × desired_force_limit_n "
+             "(s_D the stroke scale, 1 for a 0.30 m stroke limit)";
+    }
+  }
+  if (!representable<typename F::Disp>(c.velocity_on_m_s * c.period_s / sd)) {
+    return "velocity_on_m_s: v_on × period_s must fit Disp Q3.28 at the stroke scale s_D (±8 s_D m per tick)";
+  }
+  // A velocity threshold that rounds to zero counts would be no threshold.
+  if (kFixed && c.velocity_on_m_s != 0.0 &&
+      !(num::to_double(num::from_double<typename F::Disp>(c.velocity_on_m_s * c.period_s / sd)) > 0.0)) {
+    return "velocity_on_m_s: v_on × period_s must be at least one count of Disp Q3.28 at the stroke scale "
+           "s_D (the power of two nearest disp_limit_m / 0.30 m): 3.7e−9 s_D m per tick";
+  }
+  // Every current is within the drive's peak (validate_config's order) or the sensor's limit.
+  if (!representable<typename F::Current>(c.drive_peak_limit_a / si)) {
+    return "drive_peak_limit_a: must fit Current Q7.24 at the current scale s_I (the power of two nearest "
+           "rated_current_a / 2.5 A): drive_peak_limit_a < 128 s_I A";
+  }
+  if (!representable<typename F::Current>(c.coil_current_limit_a / si)) {
+    return "coil_current_limit_a: must fit Current Q7.24 at the current scale s_I (the power of two nearest "
+           "rated_current_a / 2.5 A): coil_current_limit_a < 128 s_I A";
+  }
+  // I²t (coil_i2t.hpp): the 16-tick mean of i² of a coil held at the
+  // command limit (≥ I_od ≥ I_r) fits Square; the derating slope fits
+  // Current; α moves m.
+  if (!representable<typename F::Square>(c.command_limit_a * c.command_limit_a / (si * si))) {
+    return "command_limit_a: its square must fit Square Q9.22 at the current scale s_I (the power of two "
+           "nearest rated_current_a / 2.5 A), so that the I²t mean of i² holds a coil driven at the command "
+           "limit: command_limit_a < 22.6 s_I A";
+  }
+  if (!representable<typename F::Current>(si / ((1.0 - c.coil_derate_fraction) * c.rated_current_a))) {
+    return "coil_derate_fraction: the I²t derating slope 1/((1 − f) rated_current_a) must fit Current Q7.24 "
+           "at the current scale s_I: (1 − f) rated_current_a > s_I / 128";
+  }
+  // α = 1 − exp(−x) with x = 16 T/τ; for tiny x, α ≈ x: one count of Coef is 2^−29.
+  if (kFixed && !(16.0 * c.period_s / c.coil_thermal_time_constant_s >= 1.0 / 536870912.0)) {
+    return "coil_thermal_time_constant_s: the I²t rate 1 − exp(−16 period_s/τ) must be at least one count "
+           "of Coef Q2.29 (1.9e−9): τ ≤ 8.6e6 s at a 1 ms period";
+  }
+  return nullptr;
+}
+
 /// Checks a configuration for the numeric policy; kNone when usable.
 /// Current levels must satisfy
 ///   0 < I_nom ≤ I_od ≤ I_cmd ≤ I_cont ≤ I_peak,  0 < I_r ≤ I_od,
 ///   −I_cmd ≤ I_bd < 0,  0 < I_band < I_r,  0 ≤ I_fallback ≤ I_cmd,
 /// so over-drive never exceeds the drive's command range nor its continuous
-/// rating.
+/// rating. Then every constant must fit its format at the unit scales of
+/// core_scales<Policy>(c), or kFixedPointRange (fixed_point_misfit names the
+/// first that does not).
 template <class Policy>
 constexpr ConfigError validate_config(const ControllerConfig& c) noexcept {
-  using F = Formats<Policy>;
   if (!(c.period_s >= 1.0e-5 && c.period_s <= 0.1)) return ConfigError::kPeriod;
   if (c.mode != control::ControlMode::kPassiveOff && c.mode != control::ControlMode::kPassiveOn &&
       c.mode != control::ControlMode::kSemiActive) {
@@ -164,21 +271,7 @@ constexpr ConfigError validate_config(const ControllerConfig& c) noexcept {
     return ConfigError::kSensorLimits;
   }
   // Fixed point: every constant and every intermediate the blocks document.
-  const bool fits =
-      representable<typename F::Gain>(c.stiffness_n_m * c.loss_factor) &&
-      representable<typename F::Disp>(4.0 * c.disp_limit_m) &&  // RILD: |w + x| < 4 max|x|
-      representable<typename F::Force>(c.desired_force_limit_n) &&
-      representable<typename F::Force>(c.force_limit_n) && representable<typename F::Force>(c.force_deadband_n) &&
-      representable<typename F::Current>(c.coil_current_limit_a) &&
-      representable<typename F::Current>(c.drive_peak_limit_a) &&
-      representable<typename F::Disp>(c.velocity_on_m_s * c.period_s) &&
-      // a velocity threshold that rounds to zero counts would be no threshold
-      (c.velocity_on_m_s == 0.0 ||
-       num::to_double(num::from_double<typename F::Disp>(c.velocity_on_m_s * c.period_s)) > 0.0) &&
-      // I²t: I_r² and the derating slope 1/((1 − f) I_r) in their formats
-      representable<typename F::Square>(c.rated_current_a * c.rated_current_a) &&
-      representable<typename F::Current>(1.0 / ((1.0 - c.coil_derate_fraction) * c.rated_current_a));
-  if (!fits) return ConfigError::kFixedPointRange;
+  if (fixed_point_misfit<Policy>(c) != nullptr) return ConfigError::kFixedPointRange;
   return ConfigError::kNone;
 }
 

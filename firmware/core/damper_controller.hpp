@@ -8,6 +8,17 @@
 /// `reset()`. No heap, no exceptions, no I/O, no logging. One source builds
 /// in float (`num::Float32Policy`) and in fixed point (`num::Fixed32Policy`).
 ///
+/// Units: inputs and outputs are SI. Inside, strokes count in units of
+/// s_D m, forces in units of s_F N and currents in units of s_I A, the
+/// powers of two `init()` chooses from the configuration (core_scales,
+/// numeric_formats.hpp), so that a 1 kN damper with a 25 mm stroke and a
+/// 2 MN damper, a 0.5 A and a 10 A coil all fit the fixed-point formats
+/// with the thesis's relative resolution: the measured stroke, force and
+/// coil current are multiplied by 1/s_D, 1/s_F and 1/s_I as they enter
+/// (exact in float), every configured length, force, gain and current is
+/// divided by its scale at `init()`, and the command leaves multiplied by
+/// s_I (F_d by s_F). The float build runs at s_D = s_F = s_I = 1.
+///
 /// One tick, in order:
 ///  1. input guard (input_guard.hpp): each signal's fault; the sample is
 ///     stale when its tick is not newer than the last sample's, lies in the
@@ -101,10 +112,17 @@ class DamperController {
   control::ControllerOutput step(const control::ControllerInput& in) noexcept;
 
   const DamperControllerStatus& status() const noexcept { return status_; }
-  /// The coil I²t estimate (its ceiling and heating).
+  /// The coil I²t estimate (its ceiling and heating); currents in units of
+  /// current_scale_a(), squares in its square.
   const CoilI2t<Policy>& coil_i2t() const noexcept { return i2t_; }
-  /// The ODBDCO law's state (direction, target).
+  /// The ODBDCO law's state (direction, target); currents in units of current_scale_a().
   const Odbdco<Policy>& law() const noexcept { return law_; }
+  /// s_D: one unit of the core's strokes, m (the last successful init()'s; 1 before).
+  double disp_scale_m() const noexcept { return scales_.disp_m(); }
+  /// s_F: one unit of the core's forces, N (the last successful init()'s; 1 before).
+  double force_scale_n() const noexcept { return scales_.force_n(); }
+  /// s_I: one unit of the core's currents, A (the last successful init()'s; 1 before).
+  double current_scale_a() const noexcept { return scales_.current_a(); }
   const ControllerConfig& config() const noexcept { return config_; }
   bool initialized() const noexcept { return initialized_; }
 
@@ -122,6 +140,12 @@ class DamperController {
   Force desired_limit_n_{};
   Current nominal_a_{};
   Current fallback_a_{};
+  CoreScales scales_{};
+  float disp_in_ = 1.0f;      ///< 1/s_D, exact (a power of two)
+  float force_in_ = 1.0f;     ///< 1/s_F
+  float force_out_ = 1.0f;    ///< s_F
+  float current_in_ = 1.0f;   ///< 1/s_I
+  float current_out_ = 1.0f;  ///< s_I
 
   std::uint64_t ticks_ = 0;
   bool have_sample_ = false;
@@ -161,7 +185,18 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
   }
   config_ = config;
   mode_ = config.mode;
-  rild_.init(config.stiffness_n_m, config.loss_factor, config.filter_freq_rad_s, config.period_s);
+  // Unit scales: powers of two, so every division below and every float
+  // product with disp_in_ … current_out_ is exact.
+  scales_ = core_scales<Policy>(config);
+  const double sd = scales_.disp_m();
+  const double sf = scales_.force_n();
+  const double si = scales_.current_a();
+  disp_in_ = static_cast<float>(1.0 / sd);
+  force_in_ = static_cast<float>(1.0 / sf);
+  force_out_ = static_cast<float>(sf);
+  current_in_ = static_cast<float>(1.0 / si);
+  current_out_ = static_cast<float>(si);
+  rild_.init(config.stiffness_n_m * sd / sf, config.loss_factor, config.filter_freq_rad_s, config.period_s);
   velocity_.init(config.velocity_cutoff_hz, config.period_s);
   InputGuardLimits limits;
   limits.disp_limit_m = static_cast<float>(config.disp_limit_m);
@@ -171,19 +206,19 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
   limits.stuck_ticks = config.stuck_ticks;
   limits.shaking_threshold_m_s2 = static_cast<float>(config.shaking_threshold_m_s2);
   guard_.init(limits);
-  odbdco_.overdrive_a = num::from_double<Current>(config.overdrive_current_a);
-  odbdco_.backdrive_a = num::from_double<Current>(config.backdrive_current_a);
-  odbdco_.band_a = num::from_double<Current>(config.current_band_a);
-  odbdco_.deadband_n = num::from_double<Force>(config.force_deadband_n);
-  odbdco_.velocity_on_m = num::from_double<Disp>(config.velocity_on_m_s * config.period_s);
-  odbdco_.velocity_off_m = num::from_double<Disp>(config.velocity_off_m_s * config.period_s);
+  odbdco_.overdrive_a = num::from_double<Current>(config.overdrive_current_a / si);
+  odbdco_.backdrive_a = num::from_double<Current>(config.backdrive_current_a / si);
+  odbdco_.band_a = num::from_double<Current>(config.current_band_a / si);
+  odbdco_.deadband_n = num::from_double<Force>(config.force_deadband_n / sf);
+  odbdco_.velocity_on_m = num::from_double<Disp>(config.velocity_on_m_s * config.period_s / sd);
+  odbdco_.velocity_off_m = num::from_double<Disp>(config.velocity_off_m_s * config.period_s / sd);
   odbdco_.dwell_ticks = static_cast<std::uint32_t>(config.target_dwell_s / config.period_s + 0.5);
   odbdco_.rest_ticks = static_cast<std::uint32_t>(config.rest_release_s / config.period_s + 0.5);
-  i2t_.init(config.coil_thermal_time_constant_s, config.period_s, config.rated_current_a,
+  i2t_.init(config.coil_thermal_time_constant_s, config.period_s, config.rated_current_a / si,
             config.coil_derate_fraction);
-  desired_limit_n_ = num::from_double<Force>(config.desired_force_limit_n);
-  nominal_a_ = num::from_double<Current>(config.nominal_current_a);
-  fallback_a_ = num::from_double<Current>(config.fallback_current_a);
+  desired_limit_n_ = num::from_double<Force>(config.desired_force_limit_n / sf);
+  nominal_a_ = num::from_double<Current>(config.nominal_current_a / si);
+  fallback_a_ = num::from_double<Current>(config.fallback_current_a / si);
   initialized_ = true;
   status_.config_error = ConfigError::kNone;
   reset();
@@ -254,7 +289,7 @@ control::ControllerOutput DamperController<Policy>::step(const control::Controll
   } else {
     const Current command = step_law(in, faults, disp_ok, out);
     last_command_a_ = command;
-    out.current_command_a = num::to_float(command);
+    out.current_command_a = num::to_float(command) * current_out_;
     out.drive_enable = true;
     return out;
   }
@@ -290,7 +325,7 @@ inline bool DamperController<Policy>::step_guard(const control::ControllerInput&
 template <class Policy>
 inline void DamperController<Policy>::step_filters(const control::ControllerInput& in, bool disp_ok) noexcept {
   if (disp_ok) {
-    const Disp x = num::from_float<Disp>(in.damper_disp_m);
+    const Disp x = num::from_float<Disp>(in.damper_disp_m * disp_in_);
     if (!primed_) {
       rild_.prime(x);
       velocity_.prime(x);
@@ -314,19 +349,19 @@ inline typename DamperController<Policy>::Current DamperController<Policy>::step
                                                                              control::ControllerOutput& out) noexcept {
   const bool coil_ok = faults[InputGuard::idx(InputSignal::kCoilCurrent)] == InputFault::kNone;
   const bool usable = disp_ok && coil_ok && faults[InputGuard::idx(InputSignal::kForce)] == InputFault::kNone;
-  const Current coil_a = num::from_float<Current>(in.coil_current_a);
+  const Current coil_a = num::from_float<Current>(in.coil_current_a * current_in_);
   if (coil_ok) i2t_.step(coil_a);
   OdbdcoDecision<Policy> d;
   if (usable) {
-    d = law_.step(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n), coil_a, velocity_.per_tick_m(),
-                  i2t_.ceiling_a());
+    d = law_.step(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n * force_in_), coil_a,
+                  velocity_.per_tick_m(), i2t_.ceiling_a());
   }
   if (mode_ == control::ControlMode::kPassiveOn) return nominal_a_;
   if (mode_ != control::ControlMode::kSemiActive) return Current{};  // passive-off
   if (usable) {
     bad_run_ = 0;
     bump(status_.branch_ticks[static_cast<int>(d.branch)]);
-    out.desired_force_n = num::to_float(desired_n_);
+    out.desired_force_n = num::to_float(desired_n_) * force_out_;
     return d.command_a;
   }
   // SAFE-2

@@ -1,27 +1,85 @@
 #pragma once
-/// The number formats of the control core, per numeric policy.
+/// The number formats of the control core, per numeric policy, and the
+/// scales of its units.
 ///
 /// Every block of the core is a template on a policy of `mrd/num/policy.hpp`
-/// and names its numbers by physical role through `Formats<Policy>`. Units are
-/// SI in both builds (m, N, A), so the same source converts sensor values the
-/// same way; only the representation differs.
+/// and names its numbers by physical role through `Formats<Policy>`. Sensor
+/// values arrive in SI (m, N, A) in both builds; the controller
+/// (damper_controller.hpp) multiplies strokes by 1/s_D, forces by 1/s_F and
+/// currents by 1/s_I at its input and its command by s_I at its output, so
+/// that inside the core a stroke is counted in units of s_D metres, a force
+/// in units of s_F newtons and a current in units of s_I amperes
+/// (`CoreScales`, chosen at init from the configuration, below). The float
+/// build keeps s_D = s_F = s_I = 1.
 ///
 /// Fixed point (`num::Fixed32Policy`), all 32-bit, saturating, never wrapping:
 ///
-/// | role    | unit           | format | range               | resolution  | why this range                         |
-/// |---------|----------------|--------|---------------------|-------------|----------------------------------------|
-/// | Disp    | m (and m/tick) | Q3.28  | [−8, 8) m           | 3.7e−9 m    | stroke ±0.292 m; RILD state ≤ 3× input |
-/// | Force   | N              | Q19.12 | [−524 288, 524 288) | 2.4e−4 N    | damper ≤ 200 kN; load cell ≤ 500 kN    |
-/// | Current | A              | Q7.24  | [−128, 128) A       | 6.0e−8 A    | command ±10 A, drive peak 30 A         |
-/// | Coef    | 1              | Q2.29  | [−4, 4)             | 1.9e−9      | filter poles and gains in (−1, 1)      |
-/// | Gain    | N/m            | Q23.8  | [−8.39e6, 8.39e6)   | 3.9e−3 N/m  | kη = 2.63e6 N/m (Eq. 6.1)              |
-/// | Square  | A²             | Q9.22  | [−512, 512) A²      | 2.4e−7 A²   | i² ≤ 225 A² at the sensor's 15 A       |
+/// | role    | unit (scaled)  | format | range (units)       | resolution (units) | holds                                 |
+/// |---------|----------------|--------|---------------------|--------------------|---------------------------------------|
+/// | Disp    | s_D m (/tick)  | Q3.28  | [−8, 8)             | 3.7e−9             | stroke limit ≤ 0.42; RILD ≤ 4× it     |
+/// | Force   | s_F N          | Q19.12 | [−524 288, 524 288) | 2.4e−4             | F_d, load-cell and F_db limits        |
+/// | Current | s_I A          | Q7.24  | [−128, 128)         | 6.0e−8             | drive peak and sensor limit           |
+/// | Coef    | 1              | Q2.29  | [−4, 4)             | 1.9e−9             | filter poles and gains in (−1, 1)     |
+/// | Gain    | s_F/s_D N/m    | Q23.8  | [−8.39e6, 8.39e6)   | 3.9e−3             | kη (Eq. 6.1)                          |
+/// | Square  | s_I² A²        | Q9.22  | [−512, 512)         | 2.4e−7             | I_r² and I_cmd² (I_cmd ≤ 22.6 units)  |
+///
+/// A value in units is the SI value divided by its scale: at s_F = 2^−7 the
+/// Force format spans ±4096 N at 1.9e−6 N.
+///
+/// At s_D = s_F = s_I = 1 (the thesis's 200 kN damper, its ±0.2921 m stroke
+/// and 2.5 A coil) the table reads in m, N and A: Disp ±8 m for the 0.30 m
+/// stroke limit, Force ±524 kN for its 400 kN desired-force limit and
+/// 500 kN load cell, Gain ±8.39e6 N/m for kη = 2.63e6 N/m, Current ±128 A
+/// for ±10 A commands and a 30 A drive peak, Square 512 A² for the ±10 A
+/// command limit's 100 A².
 ///
 /// Products (`num::mul<Out>`) form the exact 64-bit product of the two raw
 /// values, round once to the output's resolution and saturate to its range.
 /// Sums saturate. Sensor floats convert with `num::from_float` (round,
 /// saturate, NaN → 0; the input guard rejects NaN before that). `init()`
-/// checks that every configured constant is representable.
+/// checks that every configured constant is representable
+/// (validate_config, controller_config.hpp, names what does not fit).
+///
+/// Choosing the scales (`select_core_scales`, fixed point only; each a power
+/// of two in 2^−24 … 2^24):
+/// - s_D is the power of two nearest to d_lim / 0.30 m in the log (d_lim the
+///   input guard's stroke limit), the one that puts d_lim in (0.21, 0.42]
+///   units, around the thesis's 0.30 m for which Disp was sized: the RILD
+///   state (< 4 d_lim ≤ 1.7 units) always fits, and strokes, the velocity
+///   thresholds in m per tick and the filters' rounding keep the thesis's
+///   resolution relative to the stroke. Thesis 0.30 m → s_D = 1; a lab
+///   damper's 30 mm → 1/8 (0.24 units); a 2 m stroke → 8.
+/// - s_F is the smallest power of two for which the largest configured
+///   force (desired-force limit, load-cell limit, deadband) fits Force and
+///   kη fits Gain: max(F)/s_F ≤ 524 288 and kη s_D/s_F ≤ 8.39e6. The force
+///   format then always holds the limits the input guard and the clamp of
+///   F_d enforce, and when the forces set s_F its resolution is the finest
+///   that does: the largest force spans more than 2^30 counts (1e−9 of it).
+///   Thesis: 500 kN, kη = 2.63e6 N/m → s_F = 1. A 1 kN damper (limits 2 and
+///   2.5 kN) → s_F = 2^−7 (2.5 kN is 320 000 units); a 2 MN damper (limits
+///   4 and 5 MN) → s_F = 16. A stiff isolation layer raises s_F until kη
+///   fits: the 1 kN damper with kη = 2e6 N/m at s_D = 1 → s_F = 1/4.
+/// - s_I is the power of two nearest to I_r / 2.5 A in the log, i.e. the
+///   one that puts the rated current I_r in (1.77, 3.54] units, around the
+///   thesis's 2.5 A for which the current formats were sized: 0.5 A →
+///   s_I = 1/4 (2 units), 1 A → 1/2, 2.5 A → 1, 5 A → 2, 10 A → 4
+///   (2.5 units). The current formats' range and resolution follow the
+///   coil's rating: I²t's m settles within 0.5 LSB/α ≈ 9e−3 s_I² A² of the
+///   exact value (τ = 20 min, T = 1 ms), 0.14 % of the thesis's I_r² and at
+///   most 0.3 % of any I_r² (a Q9.22 in A² would leave 3.6 % of a 0.5 A
+///   coil's 0.25 A²), and the command limit of a 10 A coil's drive (4 I_r
+///   as the thesis's, 40 A) keeps its square inside Square.
+/// - Powers of two make the scaling exact: a float sensor value times 2^−k
+///   is the same value with another exponent, and in fixed point a scaled
+///   quantity is the unscaled one with its binary point moved. Scale 1 is
+///   the identity, so the thesis's outputs are the unscaled ones bit for
+///   bit. The scale is not a compile-time format choice: one binary holds
+///   dampers from 1 kN to 2 MN and coils from 0.5 to 10 A.
+/// What no scale can hold is refused by validate_config with
+/// ConfigError::kFixedPointRange, and `fixed_point_misfit()` names the
+/// constant and its format's limit (a velocity threshold below one count
+/// per tick, drive currents beyond 128 s_I, a stiffness so far above the
+/// forces that F_d loses its resolution, …).
 
 #include <cstdint>
 #include <type_traits>
@@ -60,6 +118,65 @@ struct Formats<num::Fixed32Policy> {
 struct Float64Policy {
   static constexpr const char* kName = "double";
 };
+
+/// 2^e, exactly (|e| ≤ 1000), in constant expressions too.
+constexpr double pow2(int e) noexcept {
+  double v = 1.0;
+  for (; e > 0; --e) v *= 2.0;
+  for (; e < 0; ++e) v *= 0.5;
+  return v;
+}
+
+/// Exponents of the core's unit scales: strokes in s_D = 2^disp_exp m,
+/// forces in s_F = 2^force_exp N (gains in s_F/s_D N/m), currents in
+/// s_I = 2^current_exp A (mean squares in s_I² A²).
+struct CoreScales {
+  int disp_exp = 0;
+  int force_exp = 0;
+  int current_exp = 0;
+  constexpr double disp_m() const noexcept { return pow2(disp_exp); }
+  constexpr double force_n() const noexcept { return pow2(force_exp); }
+  constexpr double current_a() const noexcept { return pow2(current_exp); }
+};
+
+/// Bounds of the scale exponents: s_D, s_F, s_I ∈ [2^−24, 2^24].
+inline constexpr int kMaxScaleExp = 24;
+/// The stroke limit and the rated current the formats were sized for (the
+/// thesis's damper and coil).
+inline constexpr double kScaleReferenceStroke_m = 0.30;
+inline constexpr double kScaleReferenceCurrent_a = 2.5;
+
+/// The smallest e in [−kMaxScaleExp, kMaxScaleExp] with v ≤ top·2^e.
+constexpr int smallest_exp_within(double v, double top) noexcept {
+  int e = -kMaxScaleExp;
+  while (e < kMaxScaleExp && !(v <= top * pow2(e))) ++e;
+  return e;
+}
+
+/// The scales for a configuration whose input guard's stroke limit is
+/// `disp_limit_m`, whose largest force is `force_bound_n`, whose RILD gain is
+/// `gain_n_m` (kη) and whose coil is rated `rated_current_a` (rules above).
+/// Float: s_D = s_F = s_I = 1.
+template <class Policy>
+constexpr CoreScales select_core_scales(double disp_limit_m, double force_bound_n, double gain_n_m,
+                                        double rated_current_a) noexcept {
+  using F = Formats<Policy>;
+  constexpr double kSqrt2 = 1.4142135623730951;
+  CoreScales s;
+  if constexpr (std::is_floating_point_v<typename F::Force>) {
+    return s;
+  } else {
+    // d_lim / s_D ≤ 0.30 m · √2: the smallest such exponent puts it in (0.21, 0.42].
+    s.disp_exp = smallest_exp_within(disp_limit_m, kScaleReferenceStroke_m * kSqrt2);
+    // max(F)/s_F ≤ Force's end and kη s_D/s_F ≤ Gain's end: the larger exponent.
+    const int by_force = smallest_exp_within(force_bound_n, F::Force::max_value());
+    const int by_gain = smallest_exp_within(gain_n_m * s.disp_m(), F::Gain::max_value());
+    s.force_exp = by_force > by_gain ? by_force : by_gain;
+    // I_r / s_I ≤ 2.5 A · √2: the smallest such exponent puts I_r / s_I in (1.77, 3.54].
+    s.current_exp = smallest_exp_within(rated_current_a, kScaleReferenceCurrent_a * kSqrt2);
+    return s;
+  }
+}
 
 /// True when `v` lies in the range of T (float: finite and within ±FLT_MAX).
 template <class T>

@@ -73,10 +73,15 @@
 /// away from the target, so a current-sensor bias below I_band cannot walk
 /// the current; at rest (s = 0) nothing is latched at all.
 ///
-/// Fixed point: forces Q19.12 N, currents Q7.24 A, velocity Q3.28 m/tick.
-/// s·F_d − s·F_m saturates at ±524 kN; only its sign against F_db matters,
-/// and saturation keeps the sign. The command is I_od, I_bd, 0 or the
-/// target I_t ∈ [0, I_c] ⊂ [0, I_r], so it can never leave [I_bd, I_od].
+/// Units: strokes in the controller's s_D m, forces in its s_F N, currents
+/// in its s_I A (numeric_formats.hpp; all 1 for the thesis's damper), so
+/// every level above is the configured one divided by its scale.
+///
+/// Fixed point: forces Q19.12 s_F N, currents Q7.24 s_I A, velocity Q3.28
+/// s_D m/tick. s·F_d − s·F_m saturates at ±524 288 s_F N; only its sign against
+/// F_db matters, and saturation keeps the sign. The command is I_od, I_bd,
+/// 0 or the target I_t ∈ [0, I_c] ⊂ [0, I_r], so it can never leave
+/// [I_bd, I_od], whose ends fit Current by validate_config.
 
 #include <cstdint>
 

@@ -24,13 +24,20 @@
 /// denominator share the same stored `a`, so quantizing a moves the pole but
 /// cannot break |W/X| = 1.
 ///
-/// Fixed point (Formats<Fixed32Policy>): x, w in Q3.28 m, a in Q2.29, kη in
-/// Q23.8 N/m, F_d in Q19.12 N. w + x is a saturating Q3.28 sum; a·(w + x)
-/// rounds the 64-bit product once to Q3.28; kη·w rounds once to Q19.12 and
-/// saturates at ±524 kN. For a first-order all-pass Σ|h[n]| = a + (1 + a) < 3,
-/// so |w| < 3 max|x|: with the input guard's 0.3 m limit |w| < 0.9 m and
-/// |w + x| < 1.2 m, far inside Q3.28. The worst-case accumulated rounding
-/// error of w is 2^−29 / (1 − a) ≈ 1.2e−6 m at 1 kHz (≈ 3 N of force).
+/// Strokes are in the controller's unit s_D m and forces in its s_F N
+/// (numeric_formats.hpp; `init` takes k·s_D/s_F, k itself for the thesis),
+/// so the filter is the same for any damper.
+///
+/// Fixed point (Formats<Fixed32Policy>): x, w in Q3.28 s_D m, a in Q2.29,
+/// kη in Q23.8 s_F/s_D N/m, F_d in Q19.12 s_F N. w + x is a saturating
+/// Q3.28 sum; a·(w + x) rounds the 64-bit product once to Q3.28; kη·w
+/// rounds once to Q19.12 and saturates at ±524 288 s_F N (the controller
+/// then clamps it to the desired-force limit, which s_F makes fit). For a
+/// first-order all-pass Σ|h[n]| = a + (1 + a) < 3, so |w| < 3 max|x|: with
+/// the input guard's stroke limit at most 0.42 s_D, |w| < 1.3 and
+/// |w + x| < 1.7 units, far inside Q3.28 (the thesis: 0.3 m, 0.9 m, 1.2 m).
+/// The worst-case accumulated rounding error of w is 2^−29 / (1 − a) units,
+/// ≈ 1.2e−6 m at 1 kHz and the thesis's ω_f = 1.58 rad/s (≈ 3 N of force).
 
 #include <cmath>
 

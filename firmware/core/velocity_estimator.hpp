@@ -10,11 +10,13 @@
 /// can produce the desired force at all. At 30 Hz and 1 kHz the estimate lags
 /// the true velocity by about 5 ms at the structure's 0.25 Hz.
 ///
-/// Fixed point: x, d in Q3.28 m (m per tick for d), β in Q2.29. The
-/// difference of two inputs within ±0.3 m cannot leave Q3.28; β·(…) rounds
-/// once to Q3.28 (3.7e−9 m per tick = 3.7e−6 m/s). Rounding lets d settle up
-/// to ±0.5/β LSB (±1.6e−8 m per tick, 1.6e−5 m/s) from the exact value, far
-/// below the 1 mm/s deadband.
+/// Fixed point: x, d in Q3.28 in the controller's stroke unit s_D m (per
+/// tick for d; numeric_formats.hpp, 1 for the thesis), β in Q2.29. The
+/// difference of two inputs within the stroke limit (≤ 0.42 s_D) cannot
+/// leave Q3.28; β·(…) rounds once to Q3.28 (3.7e−9 s_D m per tick, 3.7e−6
+/// m/s for the thesis). Rounding lets d settle up to ±0.5/β LSB (±1.6e−8 m
+/// per tick, 1.6e−5 m/s, for the thesis) from the exact value, far below the
+/// 6 mm/s direction threshold.
 
 #include <cmath>
 

@@ -32,6 +32,19 @@ NumericKind parse_numeric_kind(const std::string& text) {
 
 namespace {
 template <class Policy>
+std::unique_ptr<Controller> make_configured(const fw::ControllerConfig& c) {
+  auto controller = std::make_unique<FirmwareController<Policy>>(c);
+  const fw::ConfigError e = controller->init_error();
+  if (e == fw::ConfigError::kNone) return controller;
+  std::string why = fw::config_error_name(e);
+  if (e == fw::ConfigError::kFixedPointRange) {
+    if (const char* misfit = fw::fixed_point_misfit<Policy>(c)) why = misfit;
+  }
+  throw io::UsageError(std::string("controller: the ") + Policy::kName +
+                       " firmware control core rejects its configuration: " + why);
+}
+
+template <class Policy>
 std::unique_ptr<Controller> make_firmware(const fw::ControllerConfig& c) {
   auto controller = std::make_unique<FirmwareController<Policy>>(c);
   if (controller->init_error() != fw::ConfigError::kNone) {
@@ -50,6 +63,11 @@ std::unique_ptr<Controller> make_controller(control::ControlMode mode, double pe
   const fw::ControllerConfig c = fw::default_controller_config(mode, period_s);
   if (numeric == NumericKind::kFixed) return make_firmware<num::Fixed32Policy>(c);
   return make_firmware<num::Float32Policy>(c);
+}
+
+std::unique_ptr<Controller> make_configured_controller(const fw::ControllerConfig& config, NumericKind numeric) {
+  if (numeric == NumericKind::kFixed) return make_configured<num::Fixed32Policy>(config);
+  return make_configured<num::Float32Policy>(config);
 }
 
 }  // namespace mrd::run

@@ -75,4 +75,11 @@ std::vector<control::ControlMode> available_modes();
 std::unique_ptr<Controller> make_controller(control::ControlMode mode, double period_s,
                                             NumericKind numeric = NumericKind::kFloat);
 
+/// The firmware control core in the chosen numeric build with `config` as
+/// given (another damper's or building's, e.g. from a board file). Throws
+/// io::UsageError when the core rejects it, naming the rule; for the
+/// fixed-point build's kFixedPointRange, the constant that does not fit and
+/// its format's limit (fw::fixed_point_misfit).
+std::unique_ptr<Controller> make_configured_controller(const fw::ControllerConfig& config, NumericKind numeric);
+
 }  // namespace mrd::run

@@ -114,14 +114,18 @@ TYPED_TEST(DamperControllerTest, AGoodInitAfterABadOneRuns) {
 }
 
 TEST(DamperControllerConfig, FixedPointRefusesConstantsOutsideItsFormats) {
-  // kη = 1e7 N/m does not fit Q23.8 (±8.39e6); float takes it.
+  // kη = 1e10 N/m fits Q23.8 (±8.39e6 s_F N/m) only at s_F = 2^11, where the
+  // 400 kN desired-force limit spans 400e3 / 2^11 · 2^12 = 8e5 counts, fewer
+  // than the 2^22 the fixed-point build asks (numeric_formats.hpp); float takes it.
   ControllerConfig c;
-  c.stiffness_n_m = 12.5e6;
+  c.stiffness_n_m = 1.25e10;
   EXPECT_EQ(validate_config<num::Float32Policy>(c), ConfigError::kNone);
   EXPECT_EQ(validate_config<num::Fixed32Policy>(c), ConfigError::kFixedPointRange);
-  // A 3 m stroke limit would let the RILD state leave Q3.28 (4 × 3 m > 8 m).
+  // A direction threshold of 1 µm/s is 1e−9 m per tick, under half a count
+  // of Q3.28 (3.7e−9 m) at the stroke scale of a 0.30 m stroke limit.
   ControllerConfig d;
-  d.disp_limit_m = 3.0;
+  d.velocity_on_m_s = 1.0e-6;
+  d.velocity_off_m_s = 0.5e-6;
   EXPECT_EQ(validate_config<num::Fixed32Policy>(d), ConfigError::kFixedPointRange);
 }
 
