@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "host_sim/cli/building_option.hpp"
+#include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/excitation/record_folder.hpp"
@@ -59,6 +61,10 @@ Building: --building FILE (README "Your building"; default the thesis building o
 buildings/thesis-6dof.toml, whose files are the same bytes with or without it). For another
 building, "base displacement" is DOF 0 relative to the ground and "floors" its superstructure
 (every DOF of a fixed-base building).
+Damper and fluid: --damper FILE and --fluid FILE (README "Your damper and fluid"; defaults
+dampers/thesis-200kn.toml and fluids/thesis-model-fluid.toml, the same bytes with or without
+them): the stroke limit state and the warnings then take the damper's [rating] (stroke, force),
+and the idle times settle the fluid in the damper's cylinder.
 Parallel: threads (--threads, default the cores over the ranks on the node) and, under mpirun or
 srun, MPI ranks: the runs are numbered (control, idle, PGA, record; record fastest), cut in chunks
 of 8 and chunk c goes to rank c mod N; rank 0 gathers and writes. runs.csv is the same bytes for
@@ -108,6 +114,8 @@ struct FragilityOptions {
   double floor_accel_g = risk::kDefaultFloorAccel_g;
   std::optional<double> drift_m;  ///< --drift-m: the opt-in story_drift limit state
   std::string building;
+  std::string damper;
+  std::string fluid;
   double step_s = 1.0e-3;
   unsigned threads = 0;
   std::string journal;
@@ -141,6 +149,9 @@ risk::FragilityPlan plan_options(const FragilityOptions& o) {
   plan.seed = o.seed;
   plan.base.step_s = o.step_s;
   plan.base.building = load_building(o.building);
+  const DamperAndFluid d = load_damper_and_fluid("fragility", o.damper, o.fluid);
+  plan.base.damper = d.params;
+  plan.base.settling = d.settling;
   if (o.controls.empty()) {
     plan.modes = run::available_modes();
   } else {
@@ -246,6 +257,8 @@ void add_options(CLI::App& app, FragilityOptions& o) {
                  "Adds the story_drift limit state at this peak story drift, m (no default: a drift limit depends on "
                  "the story heights, which the building file does not hold)");
   add_building_option(app, o.building);
+  add_damper_option(app, o.damper);
+  add_fluid_option(app, o.fluid);
   add_step_s_option(app, o.step_s, "Simulation step, s");
   add_threads_option(app, o.threads, "Worker threads per rank (0: the node's cores over its ranks)");
   app.add_option("--journal", o.journal, "Resume journal folder (default: DIR.journal beside --out)");
@@ -396,6 +409,9 @@ void execute(const FragilityOptions& o) {
     throw io::UsageError("the study has " + std::to_string(plan.run_count()) + " runs; at most 1e8 are allowed");
   }
   auto limit_states = risk::default_limit_states(o.gap_m, o.floor_accel_g);
+  for (auto& l : limit_states) {
+    if (l.name == "stroke") l.threshold = plan.base.damper.rating.stroke_m;  // the damper's (thesis: 0.2921 m)
+  }
   if (o.drift_m) limit_states.push_back(risk::story_drift_limit_state(*o.drift_m));
   if (announce_cost(o, plan, synthetic, limit_states, journal_folder(o), cluster, threads)) return;
   std::filesystem::path out;
@@ -441,7 +457,7 @@ void execute(const FragilityOptions& o) {
   session.threads_per_rank = ro.threads;
   session.bootstrap = o.bootstrap;
   session.synthetic = synthetic;
-  session.warnings = risk::fragility_warnings(result.runs);
+  session.warnings = risk::fragility_warnings(result.runs, plan.base.damper.rating);
   const auto problems = risk::write_fragility_outputs(out, plan, result.runs, limit_states, curves, session);
   commit_out_dir();
   warn_plots_not_written("fragility", problems);

@@ -3,6 +3,8 @@
 #include <string>
 
 #include "host_sim/cli/command.hpp"
+#include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/cli/schedule_world_options.hpp"
 #include "host_sim/io/usage_error.hpp"
@@ -32,6 +34,13 @@ estimator policy runs (double, the reference, by default; float and fixed point 
 for a single-precision microcontroller).
 Capacity: damper force at 2.5 A and 0.1 m/s with the present participant ratio over the same
 force fully mixed (Eq. 5.10-5.12).
+--damper FILE and --fluid FILE put another damper and MR fluid into the world (README "Your damper
+and fluid"; defaults dampers/thesis-200kn.toml and fluids/thesis-model-fluid.toml, the same bytes
+with or without them): T_max is the fluid's in the damper's cylinder (Eq. 5.4, or the fluid's
+measured max_settling_time_s), the participant ratio follows the fluid's Table 5.6 coefficients
+(else the damper file's), the capacity is taken at the damper's rated current with its current laws
+(Eq. 5.10-5.11 with Eq. 4.4's Bingham form), and the mixing cycle stays within the damper's rated
+stroke and velocity.
 
 Fields of DIR/summary.json:
   years, seed, threshold, actuator, earthquakes_per_year, ambient_median_litres_per_day,
@@ -64,6 +73,8 @@ struct ScheduleCliOptions {
   double maintenance_days = 7.0;
   double lead_hours = 2.0;
   std::string numeric = "double";
+  std::string damper;
+  std::string fluid;
   std::string out_dir;
 };
 
@@ -110,6 +121,9 @@ schedule::ScheduleOptions schedule_options(const ScheduleCliOptions& o) {
   so.maintenance_days = o.maintenance_days;
   so.lead_hours = o.lead_hours;
   so.numeric = schedule::parse_numeric_build(o.numeric);
+  const DamperAndFluid d = load_damper_and_fluid("schedule", o.damper, o.fluid);
+  so.damper = d.params;
+  so.settling = d.settling;
   return so;
 }
 
@@ -133,6 +147,8 @@ void add_options(CLI::App& app, ScheduleCliOptions& o) {
   app.add_option("--numeric", o.numeric,
                   "Numeric build of the estimator and scheduler: double | float | fixed")
       ->capture_default_str();
+  add_damper_option(app, o.damper);
+  add_fluid_option(app, o.fluid);
   add_out_option(app, o.out_dir, "Folder for summary.json, capacity.csv, earthquakes.csv, capacity.png");
 }
 

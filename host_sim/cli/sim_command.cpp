@@ -1,10 +1,14 @@
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <string>
 
 #include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
+#include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/io/text.hpp"
 #include "mrd/units.hpp"
 #include "host_sim/run/controller.hpp"
 #include "host_sim/run/run_outputs.hpp"
@@ -32,6 +36,14 @@ without ground motion (zero acceleration) for --duration-s.
 2 um RMS), load cell (+-250 kN, 16 bit, 250 N RMS) and coil-current sensor (+-15 A, 12 bit,
 5 mA RMS), noise seeded by --sensor-seed; the damper parked --offset-mm off its stroke centre
 (the LVDT reads it; the building is at rest). See host_sim/plant/README.md.
+
+--damper FILE runs another damper (its force law, current laws, coil, participant ratio, rating and
+cylinder; README "Your damper and fluid"; default dampers/thesis-200kn.toml), --fluid FILE another
+MR fluid (Table 5.3's quantities or a measured maximum settling time, Table 5.6's coefficients;
+default fluids/thesis-model-fluid.toml); with the default files the outputs are the same bytes as
+without them. The warnings' limits are the damper's [rating]; the hardware plant's coil is the
+damper file's resistance_ohm, inductance_1a_h and inductance_2a_h when it has them (else Table
+3.1's). The controller is the thesis's (fw::ControllerConfig; `mrd configure` derives one).
 
 Fields of DIR/summary.json:
   peak_base_displacement_m        max |base (DOF 0) displacement relative to the ground|, m
@@ -78,6 +90,8 @@ struct SimOptions {
   std::uint64_t sensor_seed = 1;
   double offset_mm = 3.0;
   std::string building;
+  std::string damper;
+  std::string fluid;
   std::string out_dir;
 };
 
@@ -111,6 +125,21 @@ run::SimSpec sim_spec(const SimOptions& o) {
   spec.seed = o.seed;
   spec.keep_record = !o.out_dir.empty();
   spec.building = load_building(o.building);
+  const DamperAndFluid d = load_damper_and_fluid("sim", o.damper, o.fluid);
+  spec.damper = d.params;
+  spec.settling = d.settling;
+  const discrepancy::CoilCircuit& circuit = d.damper.coil_circuit;
+  if (circuit.resistance_ohm) spec.hardware_coil.resistance_ohm = *circuit.resistance_ohm;
+  if (circuit.inductance_1a_h) {
+    spec.hardware_coil.inductance_1a_h = *circuit.inductance_1a_h;
+    spec.hardware_coil.inductance_2a_h = *circuit.inductance_2a_h;
+    // The saturated floor (an assumption, plant/coil.hpp) stays below the coil's own L(2 A).
+    spec.hardware_coil.min_inductance_h = std::min(spec.hardware_coil.min_inductance_h, *circuit.inductance_2a_h);
+  }
+  if (spec.plant == plant::PlantKind::kHardware && !o.damper.empty() &&
+      (!circuit.resistance_ohm || !circuit.inductance_1a_h))
+    print_warnings("sim", {io::file_label(o.damper) + ": the hardware plant's coil is the thesis's (Table 3.1) where "
+                           "the file's [coil] has no resistance_ohm or inductance_1a_h/inductance_2a_h"});
   return spec;
 }
 
@@ -133,7 +162,8 @@ void print_summary(const run::SimRun& r) {
     std::printf("  parking offset               %10.4f mm\n", r.spec.stroke_offset_m * 1e3);
   }
   std::printf("  rms coil current             %10.4f A\n", c.rms_coil_current_a);
-  std::printf("  time above rated 2.5 A       %10.3f s\n", c.time_above_rated_s);
+  const std::string above = "time above rated " + io::format_number("%g", r.spec.damper.rating.current_a) + " A";
+  std::printf("  %-29s%10.3f s\n", above.c_str(), c.time_above_rated_s);
   std::printf("  command changes              %10.2f per s\n", c.command_changes_per_s);
   std::printf("  peak coil temperature rise   %10.4f K\n", c.peak_coil_temperature_rise_k);
   std::fflush(stdout);
@@ -155,6 +185,8 @@ void add_options(CLI::App& app, SimOptions& o) {
   add_seed_option(app, o.seed, "Seed of the synthetic motion (without --record)");
   app.add_option("--plant", o.plant, "thesis | hardware")->capture_default_str();
   add_building_option(app, o.building);
+  add_damper_option(app, o.damper);
+  add_fluid_option(app, o.fluid);
   add_seed_option(app, o.sensor_seed, "Seed of the hardware plant's sensor noise", "--sensor-seed");
   app.add_option("--offset-mm", o.offset_mm, "Hardware plant: damper parked this far off its stroke centre, mm")
       ->capture_default_str();

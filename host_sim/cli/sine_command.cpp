@@ -5,7 +5,10 @@
 #include <vector>
 
 #include "host_sim/cli/command.hpp"
+#include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/io/usage_error.hpp"
 #include "mrd/units.hpp"
 #include "host_sim/run/mixing_calibration.hpp"
 #include "host_sim/run/sine_cases.hpp"
@@ -35,7 +38,12 @@ step), DIR/force_time.png and DIR/force_displacement.png.
 --thesis-cases runs the three cases of Table 5.1 and prints model against measured (Table 5.2)
 with the errors; with --out it writes DIR/thesis_cases.md and DIR/summary.json.
 --calibrate refits the effective mixing area behind the integral of Q dt (Eq. 5.9) to the six rise
-times of Table 5.2 and prints it.)"};
+times of Table 5.2 and prints it.
+--damper FILE tests another damper (README "Your damper and fluid"; default the thesis damper,
+dampers/thesis-200kn.toml, whose outputs are the same bytes with or without the file): its force
+law, current laws, coil and participant ratio, its [geometry] for the settling time (with the
+thesis's model fluid), and its [rating] for the warnings. --thesis-cases and --calibrate are the
+thesis damper's (Table 5.2 was measured on it) and refuse --damper.)"};
 
 struct SineOptions {
   double amplitude_mm = 25.4;
@@ -46,6 +54,7 @@ struct SineOptions {
   double step_s = 1.0e-3;
   bool thesis_cases = false;
   bool calibrate = false;
+  std::string damper;
   std::string out_dir;
 };
 
@@ -95,9 +104,10 @@ void print_single(const run::SineRun& r) {
   std::printf("  rise time to 90 %%   %9.3f s\n  rise time to 95 %%   %9.3f s\n", m.rise_time_90_s, m.rise_time_95_s);
 }
 
-void run_single(const SineOptions& o, const run::SineRigSpec& spec, const std::optional<std::filesystem::path>& out) {
-  run::SineRun r{o.amplitude_mm, o.idle_years, spec, {}, {}};
-  r.metrics = run::run_sine_rig(spec, {}, {}, out ? &r.record : nullptr);
+void run_single(const SineOptions& o, const run::SineRigSpec& spec, const DamperAndFluid& d,
+                const std::optional<std::filesystem::path>& out) {
+  run::SineRun r{o.amplitude_mm, o.idle_years, spec, {}, {}, d.params.rating};
+  r.metrics = run::run_sine_rig(spec, d.params, d.settling, out ? &r.record : nullptr);
   print_single(r);
   std::fflush(stdout);
   print_warnings("sine", run::sine_warnings(r));
@@ -118,15 +128,20 @@ void add_options(CLI::App& app, SineOptions& o) {
   add_step_s_option(app, o.step_s, "Simulation step, s");
   app.add_flag("--thesis-cases", o.thesis_cases, "Run the three cases of Table 5.1 against Table 5.2");
   app.add_flag("--calibrate", o.calibrate, "Refit the mixing area of Eq. 5.9 to the Table 5.2 rise times");
+  add_damper_option(app, o.damper);
   add_out_option(app, o.out_dir, "Folder for summary.json, sine.csv and plots");
 }
 
 void execute(const SineOptions& o) {
   const run::SineRigSpec spec = sine_spec(o);
+  if (!o.damper.empty() && (o.thesis_cases || o.calibrate))
+    throw io::UsageError(std::string("--damper: ") + (o.thesis_cases ? "--thesis-cases" : "--calibrate") +
+                         " is the thesis damper's (Table 5.2 was measured on it); leave out one of the two");
+  const DamperAndFluid d = load_damper_and_fluid("sine", o.damper, "");
   const auto out = open_optional_out_dir(o.out_dir);
   if (o.calibrate) run_calibration();
   if (o.thesis_cases) run_thesis_cases(out);
-  if (!o.calibrate && !o.thesis_cases) run_single(o, spec, out);
+  if (!o.calibrate && !o.thesis_cases) run_single(o, spec, d, out);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "host_sim/cli/building_option.hpp"
+#include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/io/text.hpp"
@@ -36,7 +38,11 @@ control mode this build has, idle 0 to 1 year every 0.05 year. Past the maximum 
 buildings/thesis-6dof.toml, whose outputs are the same bytes with or without the file). For any
 other building sweep.csv appends two columns, peak_isolator_force_kn (the isolators' summed force,
 0 without isolators) and peak_story_drift_m (max |element deformation| over the stories), and the
-plots name the building instead of the thesis figure.)"};
+plots name the building instead of the thesis figure.
+--damper FILE and --fluid FILE sweep another damper and MR fluid (README "Your damper and fluid";
+defaults dampers/thesis-200kn.toml and fluids/thesis-model-fluid.toml, the same bytes with or
+without them): the settling time is then the fluid's in the damper's cylinder, and the warnings'
+limits are the damper's [rating].)"};
 
 /// Most idle times one sweep runs.
 constexpr int kMaxIdlePoints = 10000;
@@ -51,6 +57,8 @@ struct SweepOptions {
   double step_s = 1.0e-3;
   unsigned threads = 0;
   std::string building;
+  std::string damper;
+  std::string fluid;
   std::string out_dir = "out/sweep";
 };
 
@@ -71,6 +79,9 @@ run::SweepSpec sweep_spec(const SweepOptions& o) {
   run::SweepSpec spec;
   spec.base.step_s = o.step_s;
   spec.base.building = load_building(o.building);
+  const DamperAndFluid d = load_damper_and_fluid("sweep", o.damper, o.fluid);
+  spec.base.damper = d.params;
+  spec.base.settling = d.settling;
   spec.threads = o.threads;
   spec.idle_years = run::idle_grid(o.idle_from, o.idle_to, o.idle_step);
   if (o.controls.empty()) {
@@ -131,6 +142,8 @@ void add_options(CLI::App& app, SweepOptions& o) {
   add_step_s_option(app, o.step_s, "Simulation step, s");
   add_threads_option(app, o.threads, "Worker threads (0: all cores)");
   add_building_option(app, o.building);
+  add_damper_option(app, o.damper);
+  add_fluid_option(app, o.fluid);
   add_out_option(app, o.out_dir, "Output folder")->capture_default_str();
 }
 
@@ -143,7 +156,7 @@ void execute(const SweepOptions& o) {
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   print_timing(spec, rows, wall_s);
   std::fflush(stdout);
-  print_warnings("sweep", run::sweep_warnings(rows));
+  print_warnings("sweep", run::sweep_warnings(rows, spec.base.damper.rating));
   std::vector<std::string> pngs;
   const auto problems = run::write_sweep_report(out, spec, rows, wall_s, &pngs);
   commit_out_dir();

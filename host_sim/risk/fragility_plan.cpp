@@ -70,6 +70,29 @@ void hash_building(Fnv1a& h, const structure::BuildingParams& b) {
   }
 }
 
+/// Everything of the damper (a damper file's) and of the idle-time physics
+/// (a fluid file's in the damper's cylinder) that decides a run's result.
+void hash_damper_and_fluid(Fnv1a& h, const physics::MrDamperParams& d, const physics::SettlingParams& s) {
+  const physics::BinghamParams& b = d.bingham;
+  for (double x : {b.fc_a_n, b.fc_b_n, b.fc_c_per_a, b.c0_a_ns_m, b.c0_b_ns_m, b.c0_c_per_a, b.v_tf_m_s}) h.number(x);
+  for (double x : {d.coil.tau_slow_s, d.coil.tau_fast_s, d.coil.weight_slow, d.coil.weight_fast}) h.number(x);
+  const physics::ParticipantRatioParams& p = d.pr;
+  for (double x : {p.a_initial, p.b_initial, p.c_initial, p.a_final, p.b_final, p.c_final, p.a_rise, p.b_rise,
+                   p.c_rise, p.flow_area_m2, p.volume_unit_m3}) {
+    h.number(x);
+  }
+  h.count(static_cast<std::uint64_t>(d.law));
+  h.number(d.bouc_wen.yield_disp_m);
+  h.number(d.bouc_wen.stiffness_n_m);
+  const physics::DamperRating& r = d.rating;
+  for (double x : {r.current_a, r.force_n, r.stroke_m, r.velocity_m_s}) h.number(x);
+  for (double x : {s.gravity_m_s2, s.particle_diameter_m, s.solid_density_kg_m3, s.liquid_density_kg_m3,
+                   s.viscosity_pa_s, s.solid_fraction, s.hindered_exponent, s.inner_diameter_m, s.shaft_radius_m,
+                   s.fluid_length_m, s.fluid_volume_m3, s.measured_max_settling_time_s}) {
+    h.number(x);
+  }
+}
+
 /// One closed-loop run: run::closed_loop_tick with the peak story drift
 /// taken after each advance.
 RunMetrics simulate_one(const FragilityPlan& plan, const RunKey& k, run::Controller& controller,
@@ -125,6 +148,7 @@ std::uint64_t FragilityPlan::fingerprint() const {
   h.number(base.step_s);
   h.count(static_cast<std::uint64_t>(base.kind));
   hash_building(h, base.building);
+  hash_damper_and_fluid(h, base.damper, base.settling);
   h.count(seed);
   return h.value();
 }

@@ -54,8 +54,9 @@ struct FragilityPlan {
   RunKey key(std::size_t run) const noexcept;
   std::size_t index(const RunKey& k) const noexcept;
   /// FNV-1a hash of everything that decides the runs' results (the records'
-  /// samples, levels, idle times, modes, step, plant kind, the building's
-  /// values, seed): a journal kept for another study is not reused.
+  /// samples, levels, idle times, modes, step, plant kind, the building's,
+  /// damper's and fluid's values, seed): a journal kept for another study is
+  /// not reused.
   std::uint64_t fingerprint() const;
 };
 

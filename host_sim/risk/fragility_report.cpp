@@ -27,7 +27,7 @@ nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 
 }  // namespace
 
-std::vector<std::string> fragility_warnings(const std::vector<RunMetrics>& runs) {
+std::vector<std::string> fragility_warnings(const std::vector<RunMetrics>& runs, const physics::DamperRating& rating) {
   std::vector<run::ValidityPeaks> peaks;
   peaks.reserve(runs.size());
   for (const RunMetrics& m : runs) {
@@ -36,7 +36,7 @@ std::vector<std::string> fragility_warnings(const std::vector<RunMetrics>& runs)
     p.force_n = m.peak_damper_force_n;  // velocity and current: not recorded, left at 0
     peaks.push_back(p);
   }
-  return run::validity_warnings(peaks);
+  return run::validity_warnings(peaks, rating);
 }
 
 std::string runs_csv(const FragilityPlan& plan, const std::vector<RunMetrics>& runs) {

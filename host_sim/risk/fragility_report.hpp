@@ -48,7 +48,8 @@ struct FragilitySession {
 /// peak. The runs keep the peak stroke (base displacement) and damper force;
 /// the velocity and coil current are not recorded per run, so those limits
 /// are not checked here.
-std::vector<std::string> fragility_warnings(const std::vector<RunMetrics>& runs);
+std::vector<std::string> fragility_warnings(const std::vector<RunMetrics>& runs,
+                                           const physics::DamperRating& rating = {});
 
 nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<LimitState>& limit_states,
                                  const std::vector<FragilityCurve>& curves, const FragilitySession& session);

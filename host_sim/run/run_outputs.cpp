@@ -123,7 +123,7 @@ nlohmann::json closed_loop_summary_json(const plant::PlantSummary& s) {
 }
 
 std::vector<std::string> sim_warnings(const SimRun& run) {
-  std::vector<std::string> w = validity_warnings(validity_peaks(run.summary));
+  std::vector<std::string> w = validity_warnings(validity_peaks(run.summary), run.spec.damper.rating);
   structure::IsolatorBank bank;
   bank.init(run.spec.building);
   const double capacity_m = bank.displacement_capacity_m();

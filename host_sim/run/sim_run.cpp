@@ -27,6 +27,9 @@ SimRun run_sim(const SimSpec& spec, Controller& controller) {
   loop.idle_time_s = units::years_to_s(spec.idle_years);
   loop.kind = spec.plant;
   loop.building = spec.building;
+  loop.damper = spec.damper;
+  loop.settling = spec.settling;
+  loop.hardware.coil = spec.hardware_coil;
   loop.hardware.sensors.seed = spec.sensor_seed;
   loop.hardware.stroke_offset_m = spec.stroke_offset_m;
   run.summary = run_closed_loop(loop, run.motion.accel_m_s2, controller, spec.keep_record ? &run.record : nullptr);

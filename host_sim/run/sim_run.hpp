@@ -30,6 +30,9 @@ struct SimSpec {
   std::uint64_t sensor_seed = 1;   ///< of the hardware plant's sensor noise
   double stroke_offset_m = 0.003;  ///< where the hardware plant's damper is parked off centre, m
   structure::BuildingParams building{};  ///< the thesis building unless a building file is given
+  physics::MrDamperParams damper{};      ///< the thesis damper unless a damper file is given
+  physics::SettlingParams settling{};    ///< the thesis fluid in the thesis damper unless files are given
+  plant::CoilParams hardware_coil{};     ///< the hardware plant's coil circuit (Table 3.1 unless a damper file's)
 };
 
 struct SimRun {

@@ -36,7 +36,8 @@ nlohmann::json metrics_json(double fully_mixed_force_kn, double initial_force_kn
 std::vector<std::string> sine_warnings(const SineRun& run) {
   const double a_m = run.spec.amplitude_m;
   return validity_warnings(ValidityPeaks{a_m, 2.0 * std::numbers::pi * run.spec.frequency_hz * a_m,
-                                         std::abs(run.spec.current_a), run.metrics.max_force_n});
+                                         std::abs(run.spec.current_a), run.metrics.max_force_n},
+                           run.rating);
 }
 
 nlohmann::json sine_summary_json(const SineRun& run) {

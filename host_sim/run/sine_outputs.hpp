@@ -20,6 +20,7 @@ struct SineRun {
   SineRigSpec spec;
   SineMetrics metrics;
   SineRecord record;
+  physics::DamperRating rating{};  ///< the damper's (its validity limits)
 };
 
 /// Where the test leaves the model's validity (validity_warnings): stroke the

@@ -16,6 +16,8 @@ StudyRow run_pair(const StudyMotion& m, control::ControlMode mode, const StudyOp
   plant::PlantSpec spec;
   spec.step_s = o.step_s;
   spec.building = o.building;
+  spec.damper = o.damper;
+  spec.settling = o.settling;
   auto mixed_controller = make_controller(mode, o.step_s);
   row.fully_mixed = run_closed_loop(spec, m.accel_m_s2, *mixed_controller, &row.fully_mixed_record);
   spec.idle_time_s = units::years_to_s(o.idle_years);
@@ -32,6 +34,8 @@ StudySweep run_study_sweep(const std::vector<StudyMotion>& motions, const std::v
   sweep.spec.idle_years = idle_grid(0.0, 1.0, 0.05);
   sweep.spec.base.step_s = o.step_s;
   sweep.spec.base.building = o.building;
+  sweep.spec.base.damper = o.damper;
+  sweep.spec.base.settling = o.settling;
   sweep.spec.threads = o.threads;
   const auto t0 = std::chrono::steady_clock::now();
   sweep.rows = run_sweep(sweep.spec);
@@ -48,7 +52,7 @@ StudyResult run_study(const StudyOptions& o) {
   result.synthetic_motions = !motions.empty() && motions.front().synthetic;
   const auto modes = available_modes();
   result.modal = structure::modal_analysis(o.building);
-  result.max_settling_time_years = units::s_to_years(physics::max_settling_time_s({}));
+  result.max_settling_time_years = units::s_to_years(physics::max_settling_time_s(o.settling));
   result.sine_cases = run_thesis_sine_cases();
   for (const auto& m : motions) {
     for (auto mode : modes) result.rows.push_back(run_pair(m, mode, o));

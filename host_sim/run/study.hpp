@@ -25,6 +25,10 @@ struct StudyOptions {
   bool with_sweep = true;
   unsigned threads = 0;
   structure::BuildingParams building{};  ///< the thesis building unless a building file is given
+  physics::MrDamperParams damper{};      ///< the thesis damper unless a damper file is given
+  physics::SettlingParams settling{};    ///< the thesis fluid in the thesis damper unless files are given
+  std::string damper_name;               ///< the damper file's damper ("": the thesis damper, no file)
+  std::string fluid_name;                ///< the fluid file's fluid ("": the thesis's model fluid, no file)
 };
 
 /// One record in one control mode, fully mixed and after the idle time.

@@ -32,6 +32,11 @@ std::string comparison_png(const StudyRow& row) {
 
 bool thesis_building(const StudyResult& r) { return is_thesis_building(r.options.building); }
 
+/// A damper or fluid file was given.
+bool own_damper_or_fluid(const StudyResult& r) {
+  return !r.options.damper_name.empty() || !r.options.fluid_name.empty();
+}
+
 void write_title(std::ostream& md, const StudyResult& r) {
   if (thesis_building(r)) {
     md << "# Chapter-6 study: idle time and the seismic performance of a base-isolated building\n\n";
@@ -40,8 +45,16 @@ void write_title(std::ostream& md, const StudyResult& r) {
     md << "# Chapter-6 study on " << b.name << ": idle time and the seismic performance of the building\n\n"
        << "Building: " << b.name << " (building file), " << b.dofs() << " degrees of freedom, "
        << (b.base == structure::BaseKind::kFixed ? "fixed base" : "isolated base") << ", " << b.isolators.size()
-       << " isolator group(s), " << b.dampers.size() << " damper placement(s). The damper records, the sine "
-       << "tests and the settling time are the thesis damper's.\n\n";
+       << " isolator group(s), " << b.dampers.size() << " damper placement(s).";
+    if (!own_damper_or_fluid(r)) md << " The damper records, the sine tests and the settling time are the thesis damper's.";
+    md << "\n\n";
+  }
+  if (own_damper_or_fluid(r)) {
+    const std::string& d = r.options.damper_name;
+    const std::string& f = r.options.fluid_name;
+    md << "Damper: " << (d.empty() ? "the thesis's 200 kN damper" : d + " (damper file)") << "; MR fluid: "
+       << (f.empty() ? "the thesis's model fluid" : f + " (fluid file)")
+       << ". The sine tests of Table 5.1 below check the thesis damper's model against Table 5.2.\n\n";
   }
   if (r.synthetic_motions) {
     md << "> The four records of Table 6.2 were not found (no shared data folder): this report uses four "
@@ -69,10 +82,18 @@ void write_structure(std::ostream& md, const StudyResult& r) {
 
 /// §5.3: settling time and the sine tests of Table 5.1.
 void write_idle_model(std::ostream& md, const StudyResult& r) {
-  md << "## Damper after idle time (§5.3)\n\nMaximum settling time (Eq. 5.4): "
+  const bool measured = r.options.settling.measured_max_settling_time_s > 0.0;
+  md << "## Damper after idle time (§5.3)\n\nMaximum settling time ("
+     << (measured ? "measured, fluid file" : "Eq. 5.4") << "): "
      << format_number("%.4f", r.max_settling_time_years)
-     << " years (thesis 0.8531). Past it the settling quotient saturates at 1, so " << r.options.idle_years
-     << " years idle is a fully settled damper.\n\n";
+     << " years (thesis 0.8531). ";
+  if (r.options.idle_years >= r.max_settling_time_years) {
+    md << "Past it the settling quotient saturates at 1, so " << r.options.idle_years
+       << " years idle is a fully settled damper.\n\n";
+  } else {
+    md << r.options.idle_years << " years idle is a settling quotient of "
+       << format_number("%.4f", r.options.idle_years / r.max_settling_time_years) << " (Eq. 5.5).\n\n";
+  }
   md << "Sine tests of Table 5.1, model against Table 5.2 (a):\n\n| case | initial force | max force | rise to 90 % | "
         "rise to 95 % |\n|---|---:|---:|---:|---:|\n";
   for (const auto& [c, m] : r.sine_cases) {
@@ -132,7 +153,8 @@ void write_sweep_section(std::ostream& md, const StudyResult& r, const std::vect
   md << "## Idle-time sweep, 0 to 1 year every 0.05 year (Fig. 6.12-6.20)\n\n"
      << r.sweep->rows.size() << " closed-loop runs in " << format_number("%.2f", r.sweep->wall_s)
      << " s. The curves flatten past the maximum settling time, " << format_number("%.3f", r.max_settling_time_years)
-     << " years. Data: [sweep/sweep.csv](sweep/sweep.csv).\n\n";
+     << (r.max_settling_time_years > 1.0 ? " years, beyond the sweep's last idle time" : " years")
+     << ". Data: [sweep/sweep.csv](sweep/sweep.csv).\n\n";
   for (const auto& p : pngs) md << "![" << p << "](sweep/" << p << ")\n\n";
 }
 
@@ -176,7 +198,7 @@ std::vector<std::string> study_warnings(const StudyResult& r) {
   if (r.sweep) {
     for (const auto& row : r.sweep->rows) peaks.push_back(validity_peaks(row.summary));
   }
-  return validity_warnings(peaks);
+  return validity_warnings(peaks, r.options.damper.rating);
 }
 
 namespace {

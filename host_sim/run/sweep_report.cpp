@@ -108,10 +108,10 @@ double simulated_seconds(const std::vector<SweepRow>& rows) {
   return simulated_s;
 }
 
-std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows) {
+std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows, const physics::DamperRating& rating) {
   std::vector<ValidityPeaks> peaks;
   for (const auto& r : rows) peaks.push_back(validity_peaks(r.summary));
-  return validity_warnings(peaks);
+  return validity_warnings(peaks, rating);
 }
 
 nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<SweepRow>& rows, double wall_s,
@@ -128,7 +128,7 @@ nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<Sweep
                         {"simulated_s", simulated_s},     {"real_time_factor", simulated_s / wall_s},
                         {"motions", motions},            {"controls", modes},
                         {"idle_years", spec.idle_years}, {"csv", "sweep.csv"},
-                        {"plots", pngs},                {"warnings", sweep_warnings(rows)},
+                        {"plots", pngs},                {"warnings", sweep_warnings(rows, spec.base.damper.rating)},
                         {"building", spec.base.building.name}, {"dofs", spec.base.building.dofs()}};
 }
 

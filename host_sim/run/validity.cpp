@@ -15,27 +15,44 @@ constexpr double kCurrentTolerance_a = 0.05;
 
 struct Limit {
   double ValidityPeaks::*peak;
-  double limit;
-  double tolerance;
-  const char* format;  ///< printf with the peak, then the limit
+  double physics::DamperRating::*limit;
+  const char* thesis_format;  ///< printf with the peak, then the limit: the thesis damper's rating
+  const char* rated_format;   ///< the same for another damper's rating
 };
 
 constexpr Limit kLimits[] = {
-    {&ValidityPeaks::stroke_m, kDamperHalfStroke_m, 0.0,
+    {&ValidityPeaks::stroke_m, &physics::DamperRating::stroke_m,
      "peak stroke %.4g m exceeds the damper's +-%.4g m (Table 3.1): the damper and isolators would reach their "
-     "stops, which the model does not have"},
-    {&ValidityPeaks::velocity_m_s, kMaxModelVelocity_m_s, 0.0,
+     "stops, which the model does not have",
+     "peak stroke %.4g m exceeds the damper's rated +-%.4g m: the damper would reach its stops, which the model "
+     "does not have"},
+    {&ValidityPeaks::velocity_m_s, &physics::DamperRating::velocity_m_s,
      "peak damper velocity %.4g m/s exceeds the %.4g m/s of the tests the model was fitted to (Table 3.1): the force "
-     "is extrapolated"},
-    {&ValidityPeaks::current_a, kMaxFittedCurrent_a, kCurrentTolerance_a,
-     "peak coil current %.4g A exceeds the fitted range 0 to %.4g A (Table 4.1): the force is extrapolated"},
-    {&ValidityPeaks::force_n, kDamperCapacity_n, 0.0,
+     "is extrapolated",
+     "peak damper velocity %.4g m/s exceeds the damper's rated %.4g m/s: the force is extrapolated"},
+    {&ValidityPeaks::current_a, &physics::DamperRating::current_a,
+     "peak coil current %.4g A exceeds the fitted range 0 to %.4g A (Table 4.1): the force is extrapolated",
+     "peak coil current %.4g A exceeds the damper's rated %.4g A: the force is extrapolated"},
+    {&ValidityPeaks::force_n, &physics::DamperRating::force_n,
+     "peak damper force %.4g N exceeds the damper's %.4g N capacity",
      "peak damper force %.4g N exceeds the damper's %.4g N capacity"},
 };
 
-std::string sentence(const Limit& l, double peak) {
+bool is_thesis_rating(const physics::DamperRating& r) {
+  return r.current_a == kMaxFittedCurrent_a && r.force_n == kDamperCapacity_n && r.stroke_m == kDamperHalfStroke_m &&
+         r.velocity_m_s == kMaxModelVelocity_m_s;
+}
+
+/// The current's tolerance: kCurrentTolerance_a for the thesis's 2.5 A, the
+/// same 2 % of another rating.
+double tolerance(const Limit& l, const physics::DamperRating& r) {
+  if (l.limit != &physics::DamperRating::current_a) return 0.0;
+  return is_thesis_rating(r) ? kCurrentTolerance_a : 0.02 * r.current_a;
+}
+
+std::string sentence(const Limit& l, const physics::DamperRating& r, double peak) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, l.format, peak, l.limit);
+  std::snprintf(buf, sizeof buf, is_thesis_rating(r) ? l.thesis_format : l.rated_format, peak, r.*l.limit);
   return buf;
 }
 
@@ -45,29 +62,31 @@ ValidityPeaks validity_peaks(const plant::PlantSummary& s) {
   return {s.peak_damper_stroke_m, s.peak_base_velocity_m_s, s.peak_current_a, s.peak_damper_force_n};
 }
 
-std::vector<std::string> validity_warnings(const ValidityPeaks& p) {
+std::vector<std::string> validity_warnings(const ValidityPeaks& p, const physics::DamperRating& rating) {
   std::vector<std::string> out;
   for (const Limit& l : kLimits) {
     const double peak = p.*l.peak;
-    if (!(peak <= l.limit + l.tolerance)) out.push_back(sentence(l, peak));
+    if (!(peak <= rating.*l.limit + tolerance(l, rating))) out.push_back(sentence(l, rating, peak));
   }
   return out;
 }
 
-std::vector<std::string> validity_warnings(const std::vector<ValidityPeaks>& runs) {
+std::vector<std::string> validity_warnings(const std::vector<ValidityPeaks>& runs,
+                                           const physics::DamperRating& rating) {
   std::vector<std::string> out;
   for (const Limit& l : kLimits) {
     std::size_t over = 0;
     double worst = 0.0;
     for (const ValidityPeaks& p : runs) {
       const double peak = p.*l.peak;
-      if (!(peak <= l.limit + l.tolerance)) {
+      if (!(peak <= rating.*l.limit + tolerance(l, rating))) {
         ++over;
         worst = std::max(worst, peak);
       }
     }
     if (over == 0) continue;
-    out.push_back("in " + std::to_string(over) + " of " + std::to_string(runs.size()) + " runs: " + sentence(l, worst));
+    out.push_back("in " + std::to_string(over) + " of " + std::to_string(runs.size()) +
+                  " runs: " + sentence(l, rating, worst));
   }
   return out;
 }

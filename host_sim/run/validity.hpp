@@ -32,11 +32,14 @@ struct ValidityPeaks {
 ValidityPeaks validity_peaks(const plant::PlantSummary& s);
 
 /// One sentence per limit the run exceeds, naming the peak and the limit;
-/// empty when the run stays within the model.
-std::vector<std::string> validity_warnings(const ValidityPeaks& p);
+/// empty when the run stays within the model. The limits are `rating`'s (a
+/// damper file's [rating]); the thesis damper's rating is the constants above,
+/// with the sentences naming their tables.
+std::vector<std::string> validity_warnings(const ValidityPeaks& p, const physics::DamperRating& rating = {});
 
 /// For many runs: one sentence per limit any run exceeds, saying in how many
 /// of the runs and the largest peak.
-std::vector<std::string> validity_warnings(const std::vector<ValidityPeaks>& runs);
+std::vector<std::string> validity_warnings(const std::vector<ValidityPeaks>& runs,
+                                           const physics::DamperRating& rating = {});
 
 }  // namespace mrd::run

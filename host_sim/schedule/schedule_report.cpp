@@ -67,6 +67,13 @@ ScheduleResult run_schedule(const ScheduleOptions& o) {
   c.scheduler.actuator_fitted = o.actuator;
   c.scheduler.lead_time_s = o.lead_hours * 3600.0;
   c.maintenance_response_s = o.maintenance_days * units::kSecondsPerDay;
+  c.estimator.model.settling = o.settling;
+  c.estimator.model.pr = o.damper.pr;
+  c.estimator.model.bingham = o.damper.bingham;
+  c.estimator.model.nominal_current_a = o.damper.rating.current_a;
+  c.scheduler.flow_area_m2 = o.damper.pr.flow_area_m2;
+  c.scheduler.max_amplitude_m = std::min(c.scheduler.max_amplitude_m, o.damper.rating.stroke_m);
+  c.scheduler.max_velocity_m_s = std::min(c.scheduler.max_velocity_m_s, o.damper.rating.velocity_m_s);
   // A request must come early enough for the visit, plus the same lead as
   // with an actuator (event grid and start of the cycle).
   c.scheduler.maintenance_lead_time_s = c.maintenance_response_s + c.scheduler.lead_time_s;

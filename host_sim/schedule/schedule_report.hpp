@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "host_sim/schedule/service_life.hpp"
+#include "mrd/physics/mr_damper.hpp"
+#include "mrd/physics/settling.hpp"
 
 namespace mrd::schedule {
 
@@ -20,6 +22,13 @@ struct ScheduleOptions {
   double maintenance_days = 7.0;      ///< request to visit without an actuator, days
   double lead_hours = 2.0;            ///< forecast horizon with an actuator, h
   NumericBuild numeric = NumericBuild::kDouble;  ///< build of the estimator policy's mixing task
+  /// The damper (a damper file's; the thesis's by default): its current laws
+  /// and rated current define the capacity, its participant ratio the
+  /// fluid's recovery, its flow area the mixing volume, and its rated stroke
+  /// and velocity cap the mixing actuator's (§6.6's ±76.2 mm, 0.1 m/s).
+  physics::MrDamperParams damper{};
+  /// The fluid in the damper's cylinder (Eq. 5.1–5.4, or a measured T_max).
+  physics::SettlingParams settling{};
 };
 
 struct ScheduleResult {
