@@ -2,18 +2,29 @@
 /// The board file (boards/<name>/board.toml): CAN interface and node ids,
 /// GPIO chip and lines (or `fitted = false` for a board without them),
 /// control period and mode, real-time settings, where the idle-time
-/// estimator's state is kept ([state]) and the mixing scheduler's settings
-/// ([mixing]). Read once at start-up; every
-/// error names the file, the line and the field.
+/// estimator's state is kept ([state]), the mixing scheduler's settings
+/// ([mixing]), and the configuration `mrd configure` derives for one
+/// building, damper and fluid: the control core's constants ([controller],
+/// fw::ControllerConfig's fields by name), the damper ([damper]) and the
+/// fluid ([fluid]). Without those three tables a board runs the thesis's
+/// controller, damper and fluid. Read once at start-up; every error names
+/// the file, the line and the field, and a [controller] the control core
+/// would refuse (fw::validate_config, for the board's numeric build) is
+/// refused here, naming the keys it concerns.
 
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 
+#include <map>
+
 #include "firmware/app/control_task.hpp"
 #include "firmware/app/mixing_task.hpp"
+#include "firmware/core/controller_config.hpp"
 #include "mrd/control/io.hpp"
+#include "mrd/physics/mr_damper.hpp"
+#include "mrd/physics/settling.hpp"
 #include "mrd/protocol/messages.hpp"
 
 namespace mrd::app {
@@ -59,11 +70,24 @@ struct BoardConfig {
   // [mixing]: the scheduler's settings (period and flow area come from the estimator)
   fw::MixingSchedulerConfig mixing{};
   double dead_band_m = 1.0e-4;  ///< estimator's play operator half-width, m (above the stroke sensor's noise)
+  // [controller]: the control core's constants; keys not given keep
+  // fw::default_controller_config(mode, period)'s. Its period and mode are [control]'s.
+  fw::ControllerConfig controller{};
+  // [damper]: its laws (Table 4.1 names), coil, rating, mixing area and the
+  // geometry the settling model uses; [fluid]: Table 5.3, Table 5.6 and an
+  // optional measured maximum settling time.
+  std::string damper_name = "thesis-200kn";
+  std::string fluid_name = "thesis-model-fluid";
+  physics::MrDamperParams damper{};
+  physics::SettlingParams settling{};  ///< fluid (Table 5.3) and damper geometry (Table 3.1, 5.4)
 
   double period_s() const noexcept { return static_cast<double>(period_us) * 1e-6; }
   ControlTaskConfig task_config() const noexcept;
-  /// The idle-time estimator and the mixing scheduler at the control period.
+  /// The idle-time estimator and the mixing scheduler at the control period,
+  /// with the board's damper and fluid.
   MixingTaskConfig mixing_task_config() const noexcept;
+  /// What the control core runs: [controller] at [control]'s period and mode.
+  fw::ControllerConfig controller_config() const noexcept { return controller; }
 };
 
 /// What is wrong with an existing path as the state file, in the words of
@@ -79,6 +103,11 @@ using StatePathCheck = std::string (*)(const std::string& path);
 /// too (without, only the text is checked: parsing alone touches no file).
 BoardConfig parse_board_config(const std::string& text, const std::string& origin,
                                StatePathCheck check_state_path = nullptr);
+
+/// The board file of `c`: every table with every value, numbers written so
+/// that they read back exactly (parse_board_config(board_toml(c)) == c).
+/// `header` is written first as comment lines (each prefixed "# ").
+std::string board_toml(const BoardConfig& c, const std::string& header = "");
 
 /// Largest board file read, bytes. The programs read the board file under
 /// the reader policy (posix::read_regular_file: a regular file, opened

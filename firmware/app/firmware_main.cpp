@@ -18,6 +18,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -34,6 +35,7 @@
 #include "firmware/app/runtime.hpp"
 #include "firmware/core/controller_config.hpp"
 #include "firmware/core/damper_controller.hpp"
+#include "firmware/core/idle_estimator.hpp"
 #include "firmware/core/state_store.hpp"
 #include "firmware/platform/linux/background_state_store.hpp"
 #include "firmware/platform/linux/file_state_store.hpp"
@@ -174,9 +176,33 @@ void report_unread_state(const mrd::posix::FileStateStore& file) {
   std::fflush(stdout);
 }
 
-/// --print-state: the record in the state file, without CAN or GPIO. A
-/// path that is not a regular file is a usage error (exit 2).
-int print_state(const std::string& path) {
+/// What the board's fluid and damper make of a saved equivalent idle time τ:
+/// T_max (Eq. 5.4, or the fluid's measured one), SQ (Eq. 5.5), a_PR
+/// (Eq. 5.6), the capacity (Eq. 5.10–5.12) and how long until the capacity
+/// falls to the scheduler's threshold without motion (a_PR⁻¹ of the
+/// threshold's PR, less τ).
+void print_idle_physics(const mrd::app::BoardConfig& board, double idle_s) {
+  mrd::fw::SettlingModel model;
+  if (!model.init(board.mixing_task_config().estimator.model)) {
+    std::printf("mrd-firmware: fluid %s, damper %s: the settling model rejects the configuration\n",
+                board.fluid_name.c_str(), board.damper_name.c_str());
+    return;
+  }
+  model.reset(idle_s, 0.0);
+  const double due_idle_s = model.idle_of_pr(model.pr_of_capacity(board.mixing.capacity_threshold));
+  const double y = mrd::units::kSecondsPerYear;
+  std::printf("mrd-firmware: fluid %s, damper %s: t_max_years=%.6f sq=%.6f pr=%.6f capacity=%.6f "
+              "below_threshold_in_years=%.6f (threshold %.3f)\n",
+              board.fluid_name.c_str(), board.damper_name.c_str(), model.max_settling_time_s() / y,
+              model.sq_of_idle(idle_s), model.participant_ratio(0.0), model.capacity_fraction(0.0),
+              std::max(0.0, due_idle_s - idle_s) / y, board.mixing.capacity_threshold);
+}
+
+/// --print-state: the record in the state file, without CAN or GPIO, and
+/// what the board's fluid and damper make of it. A path that is not a
+/// regular file is a usage error (exit 2).
+int print_state(const mrd::app::BoardConfig& board) {
+  const std::string& path = board.state_path;
   mrd::posix::FileStateStore file(path);
   mrd::hal::StateRecord record{};
   const mrd::hal::StoreStatus st = file.load(record);
@@ -201,6 +227,8 @@ int print_state(const std::string& path) {
     std::printf("mrd-firmware: state %s: corrupt (%s)\n", path.c_str(), mrd::fw::decode_status_name(d));
     return kExitBadState;
   }
+  // The record's line last: scripts read the outcome from the last line.
+  print_idle_physics(board, static_cast<double>(s.equivalent_idle_ms) * 1e-3);
   std::printf("mrd-firmware: state %s: ok seq=%u cycles=%u idle_years=%.6f rtc_ms=%lld lifetime_volume_m3=%.6f\n",
               path.c_str(), s.save_sequence, s.mixing_cycles,
               static_cast<double>(s.equivalent_idle_ms) * 1e-3 / mrd::units::kSecondsPerYear,
@@ -212,7 +240,7 @@ template <class Policy>
 int run(const mrd::app::BoardConfig& board, const Options& o) {
   using Core = mrd::fw::DamperController<Policy>;
   auto core = std::make_unique<Core>();
-  if (const auto e = core->init(mrd::fw::default_controller_config(board.mode, board.period_s()));
+  if (const auto e = core->init(board.controller_config());
       e != mrd::fw::ConfigError::kNone) {
     std::fprintf(stderr, "mrd-firmware: error: %s: the control core rejects the configuration (%s)\n",
                  o.board_file.c_str(), mrd::fw::config_error_name(e));
@@ -362,7 +390,7 @@ int main(int argc, char** argv) {
   }
   const std::optional<mrd::app::BoardConfig> board = board_of(o);
   if (!board) return kExitUsage;
-  if (o.print_state) return print_state(board->state_path);
+  if (o.print_state) return print_state(*board);
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

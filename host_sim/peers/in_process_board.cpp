@@ -14,7 +14,7 @@ InProcessBoard::InProcessBoard(const app::BoardConfig& board, const plant::Plant
   controller_ep_->set_filters(app::control_task_filters(board.nodes));
   drive_ep_->set_filters(drive_filters(board.nodes));
   plant_ep_->set_filters(plant_filters(board.nodes));
-  const fw::ConfigError e = core_.init(fw::default_controller_config(board.mode, board.period_s()));
+  const fw::ConfigError e = core_.init(board.controller_config());
   if (e != fw::ConfigError::kNone)
     throw std::invalid_argument(std::string("control core rejects the board configuration: ") +
                                 fw::config_error_name(e));
