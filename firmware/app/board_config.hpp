@@ -86,8 +86,14 @@ struct BoardConfig {
   /// The idle-time estimator and the mixing scheduler at the control period,
   /// with the board's damper and fluid.
   MixingTaskConfig mixing_task_config() const noexcept;
-  /// What the control core runs: [controller] at [control]'s period and mode.
-  fw::ControllerConfig controller_config() const noexcept { return controller; }
+  /// What the control core runs: [controller] at [control]'s period and mode
+  /// (as they are now: a program's --mode overrides the file's).
+  fw::ControllerConfig controller_config() const noexcept {
+    fw::ControllerConfig c = controller;
+    c.mode = mode;
+    c.period_s = period_s();
+    return c;
+  }
 };
 
 /// What is wrong with an existing path as the state file, in the words of

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   commands.push_back(mrd::cli::add_schedule_command(app));
   commands.push_back(mrd::cli::add_fragility_command(app));
   commands.push_back(mrd::cli::add_risk_command(app));
+  commands.push_back(mrd::cli::add_configure_command(app));
 
   try {
     app.parse(argc, argv);

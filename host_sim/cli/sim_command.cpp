@@ -3,6 +3,11 @@
 #include <cstdio>
 #include <string>
 
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "firmware/app/board_config.hpp"
 #include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/damper_option.hpp"
@@ -11,6 +16,7 @@
 #include "host_sim/io/text.hpp"
 #include "mrd/units.hpp"
 #include "host_sim/run/controller.hpp"
+#include "host_sim/run/wire_controller.hpp"
 #include "host_sim/run/run_outputs.hpp"
 #include "host_sim/run/sim_run.hpp"
 
@@ -43,7 +49,11 @@ MR fluid (Table 5.3's quantities or a measured maximum settling time, Table 5.6'
 default fluids/thesis-model-fluid.toml); with the default files the outputs are the same bytes as
 without them. The warnings' limits are the damper's [rating]; the hardware plant's coil is the
 damper file's resistance_ohm, inductance_1a_h and inductance_2a_h when it has them (else Table
-3.1's). The controller is the thesis's (fw::ControllerConfig; `mrd configure` derives one).
+3.1's). The controller is the thesis's (fw::ControllerConfig) unless --board FILE gives a board
+file: then the run is that board's configuration, as mrd-firmware runs it (its [controller] at its
+[control] period, mode and numeric build, its [damper] and [fluid], the controller's inputs and
+command quantized as the board's CAN frames carry them; `mrd configure` writes such a file); --control still picks the mode when given, and --step-s, --numeric, --damper and --fluid
+are refused with it (the board file decides them).
 
 Fields of DIR/summary.json:
   peak_base_displacement_m        max |base (DOF 0) displacement relative to the ground|, m
@@ -80,7 +90,11 @@ struct SimOptions {
   std::string record;
   double pga_g = run::kThesisPga_g;
   std::string control = "passive-off";
+  bool control_given = false;
   std::string numeric = "float";
+  bool numeric_given = false;
+  bool step_given = false;
+  std::string board;
   double idle_years = 0.0;
   double duration_s = 0.0;
   bool duration_given = false;  ///< --duration-s was given (without it: the record's length)
@@ -94,6 +108,21 @@ struct SimOptions {
   std::string fluid;
   std::string out_dir;
 };
+
+/// --board FILE read as mrd-firmware reads it; nothing without --board.
+/// Refuses the options the board file decides.
+std::optional<app::BoardConfig> board_of(const SimOptions& o) {
+  if (o.board.empty()) return std::nullopt;
+  for (const auto& [given, name] : {std::pair{o.step_given, "--step-s"}, std::pair{o.numeric_given, "--numeric"},
+                                    std::pair{!o.damper.empty(), "--damper"}, std::pair{!o.fluid.empty(), "--fluid"}}) {
+    if (given) throw io::UsageError(std::string(name) + " cannot be given with --board: the board file decides it");
+  }
+  try {
+    return app::parse_board_config(io::read_regular_file(o.board, app::kMaxBoardFileBytes), io::file_label(o.board));
+  } catch (const app::BoardConfigError& e) {
+    throw io::UsageError(e.what());
+  }
+}
 
 plant::PlantKind parse_plant_kind(const std::string& text) {
   require_choice("--plant", text, {"thesis", "hardware"});
@@ -124,10 +153,18 @@ run::SimSpec sim_spec(const SimOptions& o) {
   spec.step_s = o.step_s;
   spec.seed = o.seed;
   spec.keep_record = !o.out_dir.empty();
+  const std::optional<app::BoardConfig> board = board_of(o);
   spec.building = load_building(o.building);
   const DamperAndFluid d = load_damper_and_fluid("sim", o.damper, o.fluid);
   spec.damper = d.params;
   spec.settling = d.settling;
+  if (const std::optional<app::BoardConfig>& b = board) {
+    spec.step_s = b->period_s();
+    spec.numeric = b->fixed_point ? run::NumericKind::kFixed : run::NumericKind::kFloat;
+    if (!o.control_given) spec.mode = b->mode;
+    spec.damper = b->damper;
+    spec.settling = b->settling;
+  }
   const discrepancy::CoilCircuit& circuit = d.damper.coil_circuit;
   if (circuit.resistance_ohm) spec.hardware_coil.resistance_ohm = *circuit.resistance_ohm;
   if (circuit.inductance_1a_h) {
@@ -174,14 +211,21 @@ void add_options(CLI::App& app, SimOptions& o) {
   app.add_option("--record", o.record,
                  "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2; none: no ground motion");
   add_pga_g_option(app, o.pga_g, "Scale the record to this PGA, g (Table 6.3: 0.1127)");
-  app.add_option("--control", o.control, "passive-off | passive-on | semi-active")->capture_default_str();
+  app.add_option("--control", o.control, "passive-off | passive-on | semi-active")
+      ->capture_default_str()
+      ->each([&o](const std::string&) { o.control_given = true; });
   app.add_option("--numeric", o.numeric, "Numeric build of the firmware control core: float | fixed")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([&o](const std::string&) { o.numeric_given = true; });
+  app.add_option("--board", o.board,
+                 "Board file whose [controller], [damper], [fluid] and [control] period, mode and build the run uses "
+                 "(as mrd-firmware runs them)");
   add_idle_years_option(app, o.idle_years, "Idle time before the earthquake, years");
   app.add_option("--duration-s", o.duration_s,
                  "Simulated time, s, > 0 (default: the record's length; 40 s synthetic)")
       ->each([&o](const std::string&) { o.duration_given = true; });
   add_step_s_option(app, o.step_s, "Simulation and control step, s");
+  app.get_option("--step-s")->each([&o](const std::string&) { o.step_given = true; });
   add_seed_option(app, o.seed, "Seed of the synthetic motion (without --record)");
   app.add_option("--plant", o.plant, "thesis | hardware")->capture_default_str();
   add_building_option(app, o.building);
@@ -195,7 +239,16 @@ void add_options(CLI::App& app, SimOptions& o) {
 
 void execute(const SimOptions& o) {
   const run::SimSpec spec = sim_spec(o);
-  const auto controller = run::make_controller(spec.mode, spec.step_s, spec.numeric);
+  const std::optional<app::BoardConfig> board = board_of(o);
+  std::unique_ptr<run::Controller> controller;
+  if (board) {
+    fw::ControllerConfig c = board->controller_config();
+    c.mode = spec.mode;
+    // As the board runs it: its inputs and command through the CAN frames' quantization.
+    controller = std::make_unique<run::WireQuantizedController>(run::make_configured_controller(c, spec.numeric));
+  } else {
+    controller = run::make_controller(spec.mode, spec.step_s, spec.numeric);
+  }
   compute_print_write(
       "sim", o.out_dir, [&] { return run::run_sim(spec, *controller); }, print_summary, run::write_sim_outputs);
 }

@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
     if (!(pga_g > 0.0) || !(duration_s >= 0.0) || !(idle_years >= 0.0))
       throw io::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     spec.step_s = board.period_s();
+    spec.damper = board.damper;      // the board file's [damper] and [fluid]: the damper it controls
+    spec.settling = board.settling;
     spec.idle_time_s = units::years_to_s(idle_years);
     if (!building_file.empty()) spec.building = structure::read_building_file(building_file);
     ag = excitation::load_scaled_motion(record, pga_g, spec.step_s, duration_s).accel_m_s2;

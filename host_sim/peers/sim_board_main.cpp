@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
       throw io::UsageError("--pga-g must be > 0, --duration-s and --idle-years >= 0");
     plant::PlantSpec spec;
     spec.step_s = board.period_s();
+    spec.damper = board.damper;      // the board file's [damper] and [fluid]: the damper it controls
+    spec.settling = board.settling;
     spec.idle_time_s = units::years_to_s(idle_years);
     if (!building_file.empty()) spec.building = structure::read_building_file(building_file);
     const std::vector<double> ag =

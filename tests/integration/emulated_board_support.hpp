@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "quantized_reference.hpp"
+#include "host_sim/run/wire_controller.hpp"
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/motions.hpp"
 #include "mrd/units.hpp"
@@ -123,7 +123,7 @@ std::string runs_argument(const GuestRun (&runs)[N]) {
 
 /// Checks the plant and firmware summaries of run `index` (1-based, lines
 /// tagged [run-N-plant] and [run-N-firmware]) against run::run_closed_loop
-/// with the frames' quantization (QuantizedController) over the first
+/// with the frames' quantization (run::WireQuantizedController) over the first
 /// `duration_s` of `record`: same ticks, peaks within r.rel_tol, no rejected
 /// frame and no transmit error.
 inline void expect_guest_run_equals_in_process(const std::string& serial, int index, const GuestRun& r,
@@ -136,7 +136,7 @@ inline void expect_guest_run_equals_in_process(const std::string& serial, int in
   const auto motion = run::load_study_motion(record, run::kThesisPga_g, 1e-3, duration_s);
   plant::PlantSpec spec;
   spec.idle_time_s = units::years_to_s(r.idle_years);
-  QuantizedController controller(run::make_controller(r.mode, 1e-3));
+  run::WireQuantizedController controller(run::make_controller(r.mode, 1e-3));
   const plant::PlantSummary ref = run::run_closed_loop(spec, motion.accel_m_s2, controller);
   EXPECT_EQ(guest.at("ticks"), static_cast<double>(motion.accel_m_s2.size()));
   const std::pair<const char*, double> peaks[] = {

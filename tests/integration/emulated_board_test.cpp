@@ -3,7 +3,7 @@
 // under QEMU, over SocketCAN (vcan0) and the PL061 GPIO chip, in lockstep for
 // 10 s of the Hachinohe record (scripts/emulated-board/run.sh). Checked here:
 //  1. the peaks equal the in-process simulation's (with the frames'
-//     quantization applied, QuantizedController) to the last-bit differences
+//     quantization applied, run::WireQuantizedController) to the last-bit differences
 //     between aarch64 and x86-64 libm and Eigen: passive-on (idle 0.25 years,
 //     coil and mixing dynamics active) within relative 1e-9; semi-active (idle
 //     0.5 years) within 1e-6, because a last-bit difference could one day move

@@ -5,7 +5,7 @@
 //    grid, so they equal plain `mrd sim` bit for bit;
 //  - semi-active sees sensors quantized by the frames (0.1 µm, 0.1 N,
 //    1e-5 m/s², 1 mA), so it equals the in-process run with the same
-//    quantization applied (QuantizedController) bit for bit, and plain
+//    quantization applied (run::WireQuantizedController) bit for bit, and plain
 //    `mrd sim` to within the effect of that quantization.
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include "host_sim/io/text.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
 #include "host_sim/peers/in_process_board.hpp"
-#include "quantized_reference.hpp"
+#include "host_sim/run/wire_controller.hpp"
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/motions.hpp"
 #include "mrd/units.hpp"
@@ -63,7 +63,7 @@ plant::PlantSummary in_process(control::ControlMode mode, double idle_years, con
   spec.step_s = kStepS;
   spec.idle_time_s = units::years_to_s(idle_years);
   std::unique_ptr<run::Controller> c = run::make_controller(mode, kStepS);
-  if (quantized) c = std::make_unique<testing::QuantizedController>(std::move(c));
+  if (quantized) c = std::make_unique<run::WireQuantizedController>(std::move(c));
   return run::run_closed_loop(spec, ag, *c);
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-/// The in-process reference for runs over CAN: run::run_closed_loop with the
-/// controller's inputs and output passed through the same frames the CAN
-/// run uses (codec encode → decode), so the only difference between the two
-/// runs is the bus itself. Sensors: DaqMotion, DaqAccel; coil current:
+/// The controller as a board runs it: its inputs and output passed through
+/// the frames a board's CAN run uses (codec encode → decode, with their
+/// quantization), so that run::run_closed_loop with it differs from a run
+/// over CAN (mrd-sim-board, an emulated or real board) only by the bus
+/// itself. `mrd sim --board` runs it; the board tests use it as their
+/// in-process reference. Sensors: DaqMotion, DaqAccel; coil current:
 /// SimCoilState then DriveStatus (plant → drive → controller); command:
 /// CurrentCommand then SimCoilDrive (controller → drive → plant).
 
@@ -11,11 +13,11 @@
 #include "mrd/protocol/codec.hpp"
 #include "host_sim/run/controller.hpp"
 
-namespace mrd::testing {
+namespace mrd::run {
 
-class QuantizedController final : public run::Controller {
+class WireQuantizedController final : public Controller {
  public:
-  explicit QuantizedController(std::unique_ptr<run::Controller> inner) : inner_(std::move(inner)) {}
+  explicit WireQuantizedController(std::unique_ptr<Controller> inner) : inner_(std::move(inner)) {}
   void reset() override { inner_->reset(); }
 
   control::ControllerOutput step(const control::ControllerInput& in) override {
@@ -50,7 +52,7 @@ class QuantizedController final : public run::Controller {
   }
 
  private:
-  std::unique_ptr<run::Controller> inner_;
+  std::unique_ptr<Controller> inner_;
 };
 
-}  // namespace mrd::testing
+}  // namespace mrd::run

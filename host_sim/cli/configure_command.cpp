@@ -1,0 +1,108 @@
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "firmware/app/board_config.hpp"
+#include "firmware/platform/linux/regular_file.hpp"
+#include "host_sim/cli/building_option.hpp"
+#include "host_sim/cli/command.hpp"
+#include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/fluid_option.hpp"
+#include "host_sim/cli/options.hpp"
+#include "host_sim/configure/configure.hpp"
+#include "host_sim/io/text.hpp"
+#include "host_sim/io/usage_error.hpp"
+#include "host_sim/report/output_dir.hpp"
+
+namespace mrd::cli {
+namespace configure_command {
+namespace {
+
+constexpr CommandHelp kConfigureHelp{
+    "configure", "A board file configured for your building, damper and fluid, with how each number was derived",
+    R"(Writes DIR/board.toml: the --board file with its [controller], [damper] and [fluid] tables (and the
+[mixing] amplitude, velocity and dead band) derived from --building, --damper and --fluid, and
+DIR/configure.md: every derived number, its rule and inputs. mrd-firmware runs that board file as
+it is (validated at boot), and `mrd sim --board DIR/board.toml` simulates the same configuration.
+Rules: RILD's k is the effective stiffness of the first damper's element (an isolation layer with
+bearings: its springs plus the bearings' secant stiffness at --design-displacement-m, default half
+the damper's rated stroke), ω_f the building's fundamental mode with that layer linear, η = 0.8
+(§6.3); |F_d| <= 2 F_rated, load-cell guard 2.5 F_rated, deadband 1 % F_rated; I_r = I_nom = the
+rated current, forcing ±min(4 I_r, 10 A), band 4 % I_r; direction thresholds 10 and 5 σ_v of the
+velocity estimate on the stroke sensor's noise (--disp-noise-m, 16-bit over the rated stroke);
+mixing within 0.26 × the stroke and 0.4 × the rated velocity. The control core's own checks run
+before anything is written: a configuration it (or the fixed-point build) would refuse is an error.)"};
+
+struct ConfigureOptions {
+  std::string building, damper, fluid, board, out_dir;
+  double design_displacement_m = 0.0;
+  double disp_noise_m = 2.0e-6;
+};
+
+void add_options(CLI::App& app, ConfigureOptions& o) {
+  add_building_option(app, o.building);
+  add_damper_option(app, o.damper);
+  add_fluid_option(app, o.fluid);
+  app.add_option("--board", o.board, "The board file to configure (boards/<name>/board.toml)")->required();
+  add_out_option(app, o.out_dir, "Folder for board.toml and configure.md (created if missing)")->required();
+  app.add_option("--design-displacement-m", o.design_displacement_m,
+                 "Design displacement of the isolation layer for the bearings' secant stiffness, m (default: half "
+                 "the damper's rated stroke)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--disp-noise-m", o.disp_noise_m, "RMS noise of the stroke sensor, m (default: the thesis LVDT's)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+
+std::string stem_or(const std::string& path, const char* fallback) {
+  return path.empty() ? fallback : std::filesystem::path(path).stem().string();
+}
+
+void execute(const ConfigureOptions& o) {
+  configure::Inputs in;
+  in.building = load_building(o.building);
+  in.building_name = in.building.name.empty() ? stem_or(o.building, "thesis-6dof") : in.building.name;
+  const DamperAndFluid df = load_damper_and_fluid("configure", o.damper, o.fluid);
+  in.damper = df.params;
+  in.damper_name = df.damper.name;
+  in.settling = df.settling;
+  in.fluid_name = stem_or(o.fluid, "thesis-model-fluid");
+  try {
+    in.board = app::parse_board_config(io::read_regular_file(o.board, app::kMaxBoardFileBytes),
+                                       io::file_label(o.board));
+  } catch (const app::BoardConfigError& e) {
+    throw io::UsageError(e.what());
+  }
+  in.design_displacement_m = o.design_displacement_m;
+  in.sensor.noise_rms_m = o.disp_noise_m;
+  const configure::Result r = configure::configure(in);
+  const std::string toml = app::board_toml(
+      r.board, "Board file configured by `mrd configure` for building " + in.building_name + ", damper " +
+                   in.damper_name + ", fluid " + in.fluid_name + ".\nHow each number was derived: configure.md.");
+  // What the board reads back is what was derived: parse it as mrd-firmware will.
+  try {
+    (void)app::parse_board_config(toml, "board.toml");
+  } catch (const app::BoardConfigError& e) {
+    throw io::UsageError(std::string("configure: the configured board file does not read back: ") + e.what());
+  }
+  const auto out = open_optional_out_dir(o.out_dir);
+  report::write_file_atomically(*out / "board.toml", toml);
+  report::write_file_atomically(*out / "configure.md", configure::configure_markdown(in, r));
+  commit_out_dir();
+  for (const configure::Derived& d : r.derived) {
+    std::printf("  %-36s %14.6g %-6s\n", d.field.c_str(), d.value, d.unit.c_str());
+  }
+  for (const std::string& n : r.notes) std::printf("note: %s\n", n.c_str());
+  std::printf("wrote %s and %s\n", (std::filesystem::path(o.out_dir) / "board.toml").c_str(),
+              (std::filesystem::path(o.out_dir) / "configure.md").c_str());
+}
+
+}  // namespace
+}  // namespace configure_command
+
+Command add_configure_command(CLI::App& parent) {
+  using namespace configure_command;
+  return make_command(parent, kConfigureHelp, add_options, execute);
+}
+
+}  // namespace mrd::cli
