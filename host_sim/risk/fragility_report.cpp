@@ -1,5 +1,7 @@
 #include "host_sim/risk/fragility_report.hpp"
 
+#include "host_sim/run/thesis_building.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -7,6 +9,7 @@
 #include "host_sim/report/output_dir.hpp"
 #include "host_sim/report/plot.hpp"
 #include "host_sim/report/summary_json.hpp"
+#include "host_sim/run/thesis_building.hpp"
 #include "host_sim/run/validity.hpp"
 #include "mrd/control/io.hpp"
 
@@ -111,7 +114,7 @@ nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<Li
                     {"beta", c.fit.status == FitStatus::kFitted ? nlohmann::json(c.fit.beta) : nlohmann::json()}});
   }
   const double core_s = session.wall_s * session.ranks * session.threads_per_rank;
-  return {{"runs", plan.run_count()},
+  nlohmann::json j{{"runs", plan.run_count()},
           {"runs_computed", session.computed},
           {"runs_resumed", session.resumed},
           {"records", records},
@@ -139,6 +142,12 @@ nlohmann::json fragility_summary(const FragilityPlan& plan, const std::vector<Li
                ? nlohmann::json(static_cast<double>(session.computed_rank0) / session.cpu_s_rank0 * 3600.0)
                : nlohmann::json()},
           {"files", {"runs.csv", "fragility.csv", "fragility_curves.csv", "summary.json"}}};
+  // The thesis building keeps the thesis's summary; any other is named.
+  if (run::is_thesis_building(plan.base.building)) {
+    j.erase("building");
+    j.erase("dofs");
+  }
+  return j;
 }
 
 std::vector<std::string> write_fragility_outputs(const std::filesystem::path& dir, const FragilityPlan& plan,

@@ -214,16 +214,20 @@ nlohmann::json study_summary_json(const StudyResult& r) {
   }
   nlohmann::json sweep;
   if (r.sweep) sweep = {{"runs", r.sweep->rows.size()}, {"wall_time_s", r.sweep->wall_s}, {"csv", "sweep/sweep.csv"}};
-  return nlohmann::json{{"pga_g", r.options.pga_g},
+  nlohmann::json j{{"pga_g", r.options.pga_g},
                         {"idle_years", r.options.idle_years},
                         {"synthetic_motions", r.synthetic_motions},
                         {"max_settling_time_years", r.max_settling_time_years},
                         {"runs", runs},
                         {"sweep", sweep},
                         {"warnings", study_warnings(r)},
-                        {"report", "report.md"},
-                        {"building", r.options.building.name},
-                        {"dofs", r.options.building.dofs()}};
+                        {"report", "report.md"}};
+  // The thesis building keeps the thesis's summary; any other is named.
+  if (!thesis_building(r)) {
+    j["building"] = r.options.building.name;
+    j["dofs"] = r.options.building.dofs();
+  }
+  return j;
 }
 
 /// One comparison plot per row; the names of those drawn go to `figures`.

@@ -124,12 +124,17 @@ nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<Sweep
   nlohmann::json modes = nlohmann::json::array();
   for (auto m : spec.modes) modes.push_back(control::mode_name(m));
   const double simulated_s = simulated_seconds(rows);
-  return nlohmann::json{{"runs", rows.size()},          {"wall_time_s", wall_s},
+  nlohmann::json j{{"runs", rows.size()},          {"wall_time_s", wall_s},
                         {"simulated_s", simulated_s},     {"real_time_factor", simulated_s / wall_s},
                         {"motions", motions},            {"controls", modes},
                         {"idle_years", spec.idle_years}, {"csv", "sweep.csv"},
-                        {"plots", pngs},                {"warnings", sweep_warnings(rows, spec.base.damper.rating)},
-                        {"building", spec.base.building.name}, {"dofs", spec.base.building.dofs()}};
+                        {"plots", pngs},                {"warnings", sweep_warnings(rows, spec.base.damper.rating)}};
+  // The thesis building keeps the thesis's summary; any other is named.
+  if (!is_thesis_building(spec.base.building)) {
+    j["building"] = spec.base.building.name;
+    j["dofs"] = spec.base.building.dofs();
+  }
+  return j;
 }
 
 std::vector<std::string> write_sweep_report(const std::filesystem::path& dir, const SweepSpec& spec,
