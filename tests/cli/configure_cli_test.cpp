@@ -11,6 +11,8 @@
 #include <string>
 
 #include "cli_runner.hpp"
+#include "firmware/core/state_store.hpp"
+#include "firmware/platform/linux/file_state_store.hpp"
 
 namespace mrd::test {
 namespace {
@@ -126,6 +128,35 @@ TEST_F(ConfigureCli, SimWithABoardRefusesWhatTheBoardDecides) {
     const auto r = run_mrd(std::string("sim --board ") + source("boards/sim/board.toml") + " " + opt, scratch_.path());
     EXPECT_EQ(r.exit_code, 2) << opt;
     EXPECT_NE(r.err.find("cannot be given with --board"), std::string::npos) << opt << ": " << r.err;
+  }
+}
+
+// A fluid whose maximum settling time is 20 years (fluids/illustrative-20-year.toml)
+// on a configured board: after a saved idle time of 1 year, mrd-firmware
+// --print-state gives SQ = τ/T_max = 1/20 (Eq. 5.5) and a_PR = 0.10 + 0.90·e^{−7·0.05}
+// = 0.734219 (Eq. 5.6, Table 5.6); the thesis's model fluid (T_max = 0.853 years,
+// Eq. 5.4) is fully settled after the same year (SQ = 1, a_PR = 0.10 + 0.90·e^{−7} = 0.100821).
+TEST_F(ConfigureCli, TheBoardsFluidSetsTheFirmwaresSettlingState) {
+  fw::PersistedIdleState st;
+  st.equivalent_idle_ms = 31557600000ull;  // one Julian year
+  st.rtc_ms = 1700000000000;
+  st.save_sequence = 3;
+  const fs::path state = scratch_.path() / "state.bin";
+  posix::FileStateStore store(state.string());
+  ASSERT_EQ(store.save(fw::encode_state(st)), hal::StoreStatus::kOk);
+  for (const auto& [fluid, expect] :
+       {std::pair{std::string(" --fluid ") + source("fluids/illustrative-20-year.toml"),
+                  std::string("t_max_years=20.000000 sq=0.050000 pr=0.734219")},
+        std::pair{std::string(), std::string("t_max_years=0.853434 sq=1.000000 pr=0.100821")}}) {
+    const fs::path cfg = scratch_.path() / (fluid.empty() ? "thesis" : "slow");
+    const auto k = run_mrd("configure --board " + source("boards/emulated-arm64/board.toml") + fluid + " --out " + cfg.string(),
+                           scratch_.path());
+    ASSERT_EQ(k.exit_code, 0) << k.err;
+    const auto p = run_command(std::string(MRD_FIRMWARE) + " --board " + (cfg / "board.toml").string() + " --state " +
+                                   state.string() + " --print-state",
+                               scratch_.path());
+    ASSERT_EQ(p.exit_code, 0) << p.err;
+    EXPECT_NE(p.out.find(expect), std::string::npos) << p.out;
   }
 }
 
