@@ -9,6 +9,8 @@
 # first $MRD_EMU_DURATION_S seconds, for each run of $MRD_EMU_RUNS
 # ("mode:idle_years" …). `ip -details -statistics link show` of both
 # controllers is taken before and after the runs.
+# The board file, building and PGA are lib.sh's MRD_EMU_BOARD,
+# MRD_EMU_BUILDING and MRD_EMU_PGA_G.
 # Serial console: $OUT/serial.txt; lines tagged [run-N-plant], [run-N-firmware],
 # [run-N-drive], [link-before-canX], [link-after-canX].
 #
@@ -30,6 +32,7 @@ emu_closed_loop_rootfs "$rootfs" "can can-raw kvaser_pci" "$record" ip
 {
   echo "DURATION=$duration_s"
   echo "RUNS=\"$runs\""
+  echo "PLANT_OPTIONS=\"$(emu_plant_options)\""
   cat <<'SCENARIO'
 for i in 0 1; do
   /sbin/ip link set can$i type can bitrate 1000000 restart-ms 100 && /sbin/ip link set can$i up ||
@@ -48,7 +51,7 @@ for r in $RUNS; do
   fw=$!
   t0=$(date +%s)
   ./mrd-plant-sim --board board.toml --can can1 --lockstep --record record.csv --duration-s "$DURATION" \
-      --idle-years "$idle" --start-delay-s 1 > /tmp/plant.log 2>&1
+      --idle-years "$idle" --start-delay-s 1 $PLANT_OPTIONS > /tmp/plant.log 2>&1
   echo "EMU: run $n: plant exit $?, $(( $(date +%s) - t0 )) s wall"
   wait $fw; echo "EMU: run $n: firmware exit $?"
   wait $drive; echo "EMU: run $n: drive exit $?"

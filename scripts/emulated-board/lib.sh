@@ -8,6 +8,11 @@
 # Environment: MRD_EMU_CACHE (fetch cache), MRD_EMU_SKIP_BUILD (use the binaries
 # in build/aarch64-release as they are), MRD_EMU_JOBS (cross build jobs),
 # MRD_EMU_TIMEOUT_S (wall-time limit of one boot, default 900).
+# Closed-loop scenarios (run.sh, kvaser.sh) also read MRD_EMU_BOARD (the board
+# file the guest's programs run, default boards/emulated-arm64/board.toml),
+# MRD_EMU_BUILDING (a building file for mrd-plant-sim, default none: the
+# thesis building) and MRD_EMU_PGA_G (the record's PGA for mrd-plant-sim, g,
+# default none: the program's default, Table 6.3's 0.1127 g).
 
 emu_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 emu_build=$emu_root/build/aarch64-release
@@ -135,20 +140,39 @@ emu_resolve_modules() {
 emu_closed_loop_prepare() {
   local record=$1 out=$2
   [[ -r $record ]] || emu_fail "ground-motion record $record not readable"
+  [[ -z ${MRD_EMU_BOARD+x} || (-f $MRD_EMU_BOARD && -r $MRD_EMU_BOARD) ]] ||
+    emu_fail "MRD_EMU_BOARD: board file '${MRD_EMU_BOARD}' not a readable file"
+  [[ -z ${MRD_EMU_BUILDING+x} || (-f $MRD_EMU_BUILDING && -r $MRD_EMU_BUILDING) ]] ||
+    emu_fail "MRD_EMU_BUILDING: building file '${MRD_EMU_BUILDING}' not a readable file"
+  [[ -z ${MRD_EMU_PGA_G+x} || $MRD_EMU_PGA_G =~ ^[0-9]+(\.[0-9]+)?([eE][-+]?[0-9]+)?$ ]] ||
+    emu_fail "MRD_EMU_PGA_G: '${MRD_EMU_PGA_G}' is not a PGA in g (a positive decimal number)"
   rm -rf "$out" && mkdir -p "$out"
   emu_cross_build "$out/build.log" mrd-firmware mrd-plant-sim mrd-drive-sim
   emu_fetch
 }
 
 # The closed-loop initramfs tree $1 (emu_rootfs with modules $2 and $4 as its
-# third argument) holding the three programs, the emulated board's board
-# file and the record $3 as /mrd/record.csv.
+# third argument) holding the three programs, the board file (MRD_EMU_BOARD,
+# else the emulated board's) as /mrd/board.toml, the building file
+# (MRD_EMU_BUILDING, when set) as /mrd/building.toml and the record $3 as
+# /mrd/record.csv.
 emu_closed_loop_rootfs() {
   local rootfs=$1 modules=$2 record=$3 with_ip=${4:-}
   emu_rootfs "$rootfs" "$modules" "$with_ip"
   cp "$(emu_bin mrd-firmware)" "$(emu_bin mrd-plant-sim)" "$(emu_bin mrd-drive-sim)" "$rootfs/mrd/"
-  cp "$emu_root/boards/emulated-arm64/board.toml" "$rootfs/mrd/board.toml"
+  cp "${MRD_EMU_BOARD:-$emu_root/boards/emulated-arm64/board.toml}" "$rootfs/mrd/board.toml"
+  if [[ -n ${MRD_EMU_BUILDING:-} ]]; then cp "$MRD_EMU_BUILDING" "$rootfs/mrd/building.toml"; fi
   cp "$record" "$rootfs/mrd/record.csv"
+}
+
+# The options the closed-loop scenarios add to mrd-plant-sim in the guest:
+# --building building.toml when MRD_EMU_BUILDING is set, --pga-g G when
+# MRD_EMU_PGA_G is (nothing by default).
+emu_plant_options() {
+  local o=""
+  if [[ -n ${MRD_EMU_BUILDING:-} ]]; then o+=" --building building.toml"; fi
+  if [[ -n ${MRD_EMU_PGA_G:-} ]]; then o+=" --pga-g $MRD_EMU_PGA_G"; fi
+  echo "${o# }"
 }
 
 # Makes the initramfs tree $1: busybox, the modules named in $2 (space

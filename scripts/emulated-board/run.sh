@@ -12,7 +12,11 @@
 #      safe current is visible), then `kill -9` of the firmware: the drive
 #      reports when it fell back, how long after the last valid command, and
 #      how long after its own previous tick.
-# The serial console goes to $OUT/serial.txt (both boots); lines are tagged [run-N-plant],
+# Each phase is a boot of its own; MRD_EMU_PHASES names the phases to run
+# (default "lockstep cut"). The board file, building and PGA are lib.sh's
+# MRD_EMU_BOARD, MRD_EMU_BUILDING and MRD_EMU_PGA_G (defaults: the emulated
+# board, the thesis building, mrd-plant-sim's 0.1127 g).
+# The serial console goes to $OUT/serial.txt (every boot); lines are tagged [run-N-plant],
 # [run-N-firmware], [run-N-drive], [run-N-gpio], [cut-drive], [cut-firmware].
 #
 # Usage: run.sh RECORD OUT_DIR
@@ -24,6 +28,11 @@ record=${1:?usage: run.sh RECORD OUT_DIR}
 out=${2:?usage: run.sh RECORD OUT_DIR}
 runs=${MRD_EMU_RUNS:-"passive-on:0.25 semi-active:0.5"}
 duration_s=${MRD_EMU_DURATION_S:-10}
+phases=${MRD_EMU_PHASES-"lockstep cut"}
+[[ -n ${phases// /} ]] || emu_fail "MRD_EMU_PHASES is empty (give lockstep, cut or both)"
+for phase in $phases; do
+  [[ $phase == lockstep || $phase == cut ]] || emu_fail "MRD_EMU_PHASES: unknown phase '$phase' (lockstep or cut)"
+done
 
 emu_require_tools
 emu_closed_loop_prepare "$record" "$out"
@@ -33,6 +42,7 @@ emu_closed_loop_rootfs "$rootfs" "can can-raw vcan" "$record"
 {
   echo "DURATION=$duration_s"
   echo "RUNS=\"$runs\""
+  echo "PLANT_OPTIONS=\"$(emu_plant_options)\""
   cat <<'SCENARIO'
 ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
 case " $(cat /proc/cmdline) " in *" mrd_phase=cut "*) PHASE=cut ;; *) PHASE=lockstep ;; esac
@@ -50,7 +60,7 @@ n=0
   snap=$!
   t0=$(date +%s)
   ./mrd-plant-sim --board board.toml --lockstep --record record.csv --duration-s "$DURATION" --idle-years "$idle" \
-      --start-delay-s 1 > /tmp/plant.log 2>&1
+      --start-delay-s 1 $PLANT_OPTIONS > /tmp/plant.log 2>&1
   echo "EMU: run $n: plant exit $?, $(( $(date +%s) - t0 )) s wall"
   wait $snap
   wait $fw; echo "EMU: run $n: firmware exit $?"
@@ -79,17 +89,18 @@ SCENARIO
 } >"$rootfs/mrd/scenario.sh"
 emu_pack "$rootfs" "$out/initrd.gz"
 
-# Two boots: the lockstep runs on one CPU (cross-CPU wake-ups are slow under
-# TCG), the command cut on two (drive and firmware each get a CPU, as they
-# would on separate hardware).
+# One boot per phase: the lockstep runs on one CPU (cross-CPU wake-ups are
+# slow under TCG), the command cut on two (drive and firmware each get a CPU,
+# as they would on separate hardware).
 : >"$out/serial.txt"
-for phase in lockstep:1 cut:2; do
-  name=${phase%%:*}
-  echo "emulated-board: booting $emu_kver under qemu-system-aarch64 -smp ${phase##*:} for the $name phase"
+for name in $phases; do
+  smp=1
+  if [[ $name == cut ]]; then smp=2; fi
+  echo "emulated-board: booting $emu_kver under qemu-system-aarch64 -smp $smp for the $name phase"
   rc=0
-  MRD_EMU_SMP=${phase##*:} emu_boot "$out/initrd.gz" "mrd_phase=$name" "$out/serial-$name.log" || rc=$?
+  MRD_EMU_SMP=$smp emu_boot "$out/initrd.gz" "mrd_phase=$name" "$out/serial-$name.log" || rc=$?
   cat "$out/serial-$name.log" >>"$out/serial.txt"
   grep -q "^EMU: done $name" "$out/serial-$name.log" ||
     { tail -n 40 "$out/serial-$name.log" >&2; emu_fail "the $name phase did not finish (qemu exit $rc)"; }
 done
-echo "emulated-board: guest finished both phases ($out/serial.txt)"
+echo "emulated-board: guest finished ($phases; $out/serial.txt)"

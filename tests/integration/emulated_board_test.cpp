@@ -4,12 +4,14 @@
 // 10 s of the Hachinohe record (scripts/emulated-board/run.sh). Checked here:
 //  1. the peaks equal the in-process simulation's (with the frames'
 //     quantization applied, run::WireQuantizedController) to the last-bit differences
-//     between aarch64 and x86-64 libm and Eigen: passive-on (idle 0.25 years,
-//     coil and mixing dynamics active) within relative 1e-9; semi-active (idle
-//     0.5 years) within 1e-6, because a last-bit difference could one day move
-//     a sensor value across a float or 0.1 µm rounding boundary and the
-//     switching law (ODBDCO) take another branch for a tick. Measured on
-//     Hachinohe, 10 s: at most 1.9e-12 (passive-on) and 1.4e-12 (semi-active);
+//     between aarch64 and x86-64 libm and Eigen (the cross build contracts no
+//     multiply-add: cmake/toolchain-aarch64.cmake): passive-on (idle 0.25
+//     years, coil and mixing dynamics active) and semi-active (idle 0.5 years)
+//     within relative 1e-9. A last-bit difference that moved a sensor value
+//     across a float or 0.1 µm rounding boundary, so that the switching law
+//     (ODBDCO) took another branch for a tick, would fail here: a difference
+//     to explain, not to tolerate. Measured on Hachinohe, 10 s: at most
+//     1.9e-12 (passive-on) and 1.4e-12 (semi-active);
 //  2. the drive-enable line was driven: the kernel's own view
 //     (/sys/kernel/debug/gpio) shows line 0 held high by mrd-firmware;
 //  3. after `kill -9` of the free-running firmware the drive applies its safe
