@@ -178,13 +178,18 @@ void write_model(std::ostream& md, const StudyResult& r) {
   md << " Passive-on is " << fw::kPassiveOnCurrent_a << " A.\n";
 }
 
-nlohmann::json peaks_json(const plant::PlantSummary& s) {
-  return nlohmann::json{{"peak_base_displacement_m", s.peak_base_displacement_m},
-                        {"peak_damper_force_kn", s.peak_damper_force_n / 1e3},
-                        {"peak_superstructure_accel_m_s2", s.peak_superstructure_accel_m_s2},
-                        {"sq", s.sq},
-                        {"peak_isolator_force_kn", s.peak_isolator_force_n / 1e3},
-                        {"peak_story_drift_m", s.peak_story_drift_m}};
+/// A run's peaks; `building_peaks`: with the isolator force and story drift
+/// (a building other than the thesis's, whose summary keeps the thesis's keys).
+nlohmann::json peaks_json(const plant::PlantSummary& s, bool building_peaks) {
+  nlohmann::json j{{"peak_base_displacement_m", s.peak_base_displacement_m},
+                   {"peak_damper_force_kn", s.peak_damper_force_n / 1e3},
+                   {"peak_superstructure_accel_m_s2", s.peak_superstructure_accel_m_s2},
+                   {"sq", s.sq}};
+  if (building_peaks) {
+    j["peak_isolator_force_kn"] = s.peak_isolator_force_n / 1e3;
+    j["peak_story_drift_m"] = s.peak_story_drift_m;
+  }
+  return j;
 }
 
 }  // namespace
@@ -208,8 +213,8 @@ nlohmann::json study_summary_json(const StudyResult& r) {
   for (const auto& row : r.rows) {
     runs.push_back({{"record", row.motion},
                     {"control", control::mode_name(row.mode)},
-                    {"fully_mixed", peaks_json(row.fully_mixed)},
-                    {"idle", peaks_json(row.idle)},
+                    {"fully_mixed", peaks_json(row.fully_mixed, !thesis_building(r))},
+                    {"idle", peaks_json(row.idle, !thesis_building(r))},
                     {"plot", comparison_png(row)}});
   }
   nlohmann::json sweep;
