@@ -4,6 +4,7 @@
 #include <cstring>
 #include <variant>
 
+#include "host_sim/batch/batch_run.hpp"
 #include "host_sim/run/closed_loop.hpp"
 #include "host_sim/run/controller.hpp"
 #include "mrd/units.hpp"
@@ -153,12 +154,39 @@ std::uint64_t FragilityPlan::fingerprint() const {
   return h.value();
 }
 
-void simulate_runs(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out) {
+void simulate_runs_one_by_one(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out) {
   std::vector<double> accel;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunKey k = plan.key(runs[i]);
     auto controller = run::make_controller(plan.modes[k.mode], plan.base.step_s);
     out[i] = simulate_one(plan, k, *controller, accel);
+  }
+}
+
+bool lanes_take(const FragilityPlan& plan) noexcept {
+  return plan.base.kind == plant::PlantKind::kThesis && plan.base.damper.law == physics::ForceLaw::kBingham;
+}
+
+void simulate_runs(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out) {
+  if (!lanes_take(plan)) {
+    simulate_runs_one_by_one(plan, runs, out);
+    return;
+  }
+  // The chunk's runs side by side in SIMD lanes: each lane's a_g[n] is
+  // pga · record[n], the product simulate_one forms, and its peaks are the
+  // scalar loop's bit for bit (batch_run.hpp).
+  std::vector<batch::BatchRun> lanes(runs.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunKey k = plan.key(runs[i]);
+    lanes[i].ground_accel_m_s2 = plan.records[k.record].accel_1g_m_s2;
+    lanes[i].ground_scale = plan.pga_g[k.pga];
+    lanes[i].idle_time_s = units::years_to_s(plan.idle_years[k.idle]);
+    lanes[i].mode = plan.modes[k.mode];
+  }
+  const std::vector<plant::PlantSummary> s = batch::run_closed_loop_batch(plan.base, lanes);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    out[i] = {s[i].peak_base_displacement_m, s[i].peak_damper_force_n, s[i].peak_superstructure_accel_m_s2,
+              s[i].peak_base_accel_m_s2, s[i].peak_story_drift_m};
   }
 }
 

@@ -63,8 +63,16 @@ struct FragilityPlan {
 /// Simulates the runs `runs` of `plan` into `out` (same length): the
 /// closed loop of run::run_closed_loop (plant::Plant stepped with the
 /// firmware's controller of the run's mode), with the story drifts read
-/// after every step. One call per chunk of runs, so that a path stepping
-/// several runs at once can take its place.
+/// after every step. One call per chunk of runs: the chunk's runs step side
+/// by side in SIMD lanes (host_sim/batch, the same peaks bit for bit) when
+/// the lanes take the plan's plant (lanes_take), else one by one.
 void simulate_runs(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out);
+
+/// The same, one run after the other through plant::Plant.
+void simulate_runs_one_by_one(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out);
+
+/// True when the SIMD lanes step the plan's plant: the thesis (ideal) plant
+/// kind with Eq. 4.4's damper law, on any building.
+bool lanes_take(const FragilityPlan& plan) noexcept;
 
 }  // namespace mrd::risk

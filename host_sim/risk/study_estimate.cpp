@@ -12,6 +12,7 @@
 #include "host_sim/io/text.hpp"
 #include "host_sim/risk/fragility_report.hpp"
 #include "host_sim/risk/run_journal.hpp"
+#include "host_sim/risk/study_runner.hpp"
 
 namespace mrd::risk {
 namespace {
@@ -145,13 +146,14 @@ double pilot_steps_per_s(const plant::PlantSpec& base, control::ControlMode mode
   plan.pga_g = {pga_g};
   plan.idle_years = {idle_years};
   plan.modes = {mode};
-  const std::size_t run[1] = {0};
-  RunMetrics out[1];
+  // A whole chunk, as the study steps it (its runs side by side in lanes).
+  const std::vector<std::size_t> run(kChunkRuns, 0);
+  std::vector<RunMetrics> out(kChunkRuns);
   const auto t0 = std::chrono::steady_clock::now();
   double steps = 0.0, elapsed_s = 0.0;
   do {
     simulate_runs(plan, run, out);
-    steps += static_cast<double>(plan.records[0].accel_1g_m_s2.size());
+    steps += static_cast<double>(plan.records[0].accel_1g_m_s2.size() * run.size());
     elapsed_s = seconds_since(t0);
   } while (elapsed_s < min_s);
   return steps / std::max(elapsed_s, 1e-9);

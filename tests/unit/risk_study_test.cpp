@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <algorithm>
 #include <set>
+#include <span>
 
 #include "host_sim/risk/fragility_plan.hpp"
 #include "host_sim/risk/run_journal.hpp"
@@ -161,6 +163,52 @@ TEST(RiskStudy, RunFunctionEqualsTheScalarClosedLoop) {
   // A story's drift is below the base's own travel and above zero.
   EXPECT_GT(out[0].peak_story_drift_m, 0.0);
   EXPECT_LT(out[0].peak_story_drift_m, s.peak_base_displacement_m);
+}
+
+// A chunk of runs in SIMD lanes (records of different lengths, every mode,
+// two PGAs and idle times) gives what the runs give one by one through
+// plant::Plant, every metric bit for bit; a building with lead-rubber
+// bearings (any building's lanes) too.
+TEST(RiskStudy, ChunksInLanesEqualTheRunsOneByOne) {
+  for (const bool isolated : {false, true}) {
+    SCOPED_TRACE(isolated ? "lead-rubber building" : "thesis building");
+    FragilityPlan p;
+    if (isolated) {
+      structure::LeadRubberBearing lrb;
+      lrb.count = 8;
+      lrb.characteristic_strength_n = 30.0e3;
+      lrb.post_yield_stiffness_n_m = 0.4e6;
+      lrb.yield_displacement_m = 0.01;
+      p.base.building.story_stiffness_n_m[0] = 0.0;
+      p.base.building.isolators = {lrb};
+    }
+    StochasticMotionRanges r;
+    for (std::uint64_t i = 0; i < 3; ++i) {
+      r.duration_s = 3.0 + 1.5 * static_cast<double>(i);
+      const auto m = stochastic_motion(r, record_seed(5, i), i);
+      p.records.push_back({m.name, m.source, excitation::resample_linear(m, 1e-3)});
+    }
+    p.pga_g = {0.2, 0.5};
+    p.idle_years = {0.0, 1.5};
+    p.modes = {control::ControlMode::kPassiveOff, control::ControlMode::kPassiveOn, control::ControlMode::kSemiActive};
+    ASSERT_TRUE(lanes_take(p));
+    std::vector<std::size_t> runs(p.run_count());
+    for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = i;
+    std::vector<RunMetrics> lanes(runs.size()), one(runs.size());
+    for (std::size_t c = 0; c < runs.size(); c += kChunkRuns) {
+      const std::size_t n = std::min(kChunkRuns, runs.size() - c);
+      simulate_runs(p, std::span(runs).subspan(c, n), std::span(lanes).subspan(c, n));
+    }
+    simulate_runs_one_by_one(p, runs, one);
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      SCOPED_TRACE("run " + std::to_string(i));
+      EXPECT_EQ(lanes[i].peak_base_displacement_m, one[i].peak_base_displacement_m);
+      EXPECT_EQ(lanes[i].peak_damper_force_n, one[i].peak_damper_force_n);
+      EXPECT_EQ(lanes[i].peak_floor_accel_m_s2, one[i].peak_floor_accel_m_s2);
+      EXPECT_EQ(lanes[i].peak_base_accel_m_s2, one[i].peak_base_accel_m_s2);
+      EXPECT_EQ(lanes[i].peak_story_drift_m, one[i].peak_story_drift_m);
+    }
+  }
 }
 
 }  // namespace
