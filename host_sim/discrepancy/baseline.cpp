@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mrd/physics/damper_laws.hpp"
+
 namespace mrd::discrepancy {
 
 const char* base_law_name(BaseLaw law) noexcept { return law == BaseLaw::bouc_wen ? "bouc_wen" : "bingham"; }
@@ -32,24 +34,8 @@ Baseline thesis_baseline() {
 double thesis_force_scale_n() { return thesis_baseline().force_scale_n(); }
 
 double bouc_wen_step(double z, double v_m_s, double dt_s, double yield_disp_m) noexcept {
-  if (!(yield_disp_m > 0.0)) return v_m_s > 0.0 ? 1.0 : (v_m_s < 0.0 ? -1.0 : z);
-  const double s = v_m_s * dt_s / yield_disp_m;
-  if (s == 0.0) return z;
-  const double d = s > 0.0 ? 1.0 : -1.0;
-  double travel = std::fabs(s);
-  double mag = z * d;  // z along the direction of motion
-  if (mag < 0.0) {
-    // Unloading: linear until z crosses zero.
-    if (travel <= -mag) return z + s;
-    travel += mag;
-    mag = 0.0;
-  }
-  // tanh(atanh m + u) = (m + tanh u) / (1 + m tanh u): one tanh a step, no atanh.
-  constexpr double kEdge = 1.0 - 1e-15;
-  const double t = std::tanh(travel);
-  mag = std::min(mag, kEdge);
-  mag = (mag + t) / (1.0 + mag * t);
-  return d * std::min(mag, kEdge);
+  // The closed loop's law over the stroke increment v·dt (one source for both).
+  return physics::bouc_wen_z_after(z, v_m_s * dt_s, yield_disp_m);
 }
 
 }  // namespace mrd::discrepancy
