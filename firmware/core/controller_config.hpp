@@ -129,11 +129,11 @@ constexpr double largest_force_n(const ControllerConfig& c) noexcept {
 
 /// The unit scales the core runs `c` at (numeric_formats.hpp): s_D from the
 /// stroke limit, s_F from the largest force and kη, s_I from the rated
-/// current; all 1 in float.
+/// current, s_V from s_D and the period; all 1 in float.
 template <class Policy>
 constexpr CoreScales core_scales(const ControllerConfig& c) noexcept {
   return select_core_scales<Policy>(c.disp_limit_m, largest_force_n(c), c.stiffness_n_m * c.loss_factor,
-                                    c.rated_current_a);
+                                    c.rated_current_a, c.period_s);
 }
 
 /// Counts of Force the desired-force limit spans at least (2^22: F_d resolved
@@ -185,14 +185,16 @@ constexpr const char* fixed_point_misfit(const ControllerConfig& c) noexcept {
              "(s_D the stroke scale, 1 for a 0.30 m stroke limit)";
     }
   }
-  if (!representable<typename F::Disp>(c.velocity_on_m_s * c.period_s / sd)) {
-    return "velocity_on_m_s: v_on × period_s must fit Disp Q3.28 at the stroke scale s_D (±8 s_D m per tick)";
+  const double sv = scales.velocity_m();
+  if (!representable<typename F::Velocity>(c.velocity_on_m_s * c.period_s / sv)) {
+    return "velocity_on_m_s: v_on × period_s must fit Velocity Q3.28 at the velocity scale s_V (±8 s_V m per "
+           "tick, s_V the power of two with 8 s_D m/s × period_s ≤ 4 s_V)";
   }
   // A velocity threshold that rounds to zero counts would be no threshold.
   if (kFixed && c.velocity_on_m_s != 0.0 &&
-      !(num::to_double(num::from_double<typename F::Disp>(c.velocity_on_m_s * c.period_s / sd)) > 0.0)) {
-    return "velocity_on_m_s: v_on × period_s must be at least one count of Disp Q3.28 at the stroke scale "
-           "s_D (the power of two nearest disp_limit_m / 0.30 m): 3.7e−9 s_D m per tick";
+      !(num::to_double(num::from_double<typename F::Velocity>(c.velocity_on_m_s * c.period_s / sv)) > 0.0)) {
+    return "velocity_on_m_s: v_on × period_s must be at least one count of Velocity Q3.28 at the velocity "
+           "scale s_V (8 s_D m/s × period_s ≤ 4 s_V): 3.7e−9 s_V m per tick, 7.5e−9 to 1.5e−8 s_D m/s";
   }
   // Every current is within the drive's peak (validate_config's order) or the sensor's limit.
   if (!representable<typename F::Current>(c.drive_peak_limit_a / si)) {

@@ -96,6 +96,7 @@ template <class Policy>
 class DamperController {
  public:
   using Disp = typename Formats<Policy>::Disp;
+  using Velocity = typename Formats<Policy>::Velocity;
   using Force = typename Formats<Policy>::Force;
   using Current = typename Formats<Policy>::Current;
 
@@ -197,7 +198,8 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
   current_in_ = static_cast<float>(1.0 / si);
   current_out_ = static_cast<float>(si);
   rild_.init(config.stiffness_n_m * sd / sf, config.loss_factor, config.filter_freq_rad_s, config.period_s);
-  velocity_.init(config.velocity_cutoff_hz, config.period_s);
+  const double sv = scales_.velocity_m();
+  velocity_.init(config.velocity_cutoff_hz, config.period_s, static_cast<float>(sd / sv));
   InputGuardLimits limits;
   limits.disp_limit_m = static_cast<float>(config.disp_limit_m);
   limits.force_limit_n = static_cast<float>(config.force_limit_n);
@@ -210,8 +212,8 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
   odbdco_.backdrive_a = num::from_double<Current>(config.backdrive_current_a / si);
   odbdco_.band_a = num::from_double<Current>(config.current_band_a / si);
   odbdco_.deadband_n = num::from_double<Force>(config.force_deadband_n / sf);
-  odbdco_.velocity_on_m = num::from_double<Disp>(config.velocity_on_m_s * config.period_s / sd);
-  odbdco_.velocity_off_m = num::from_double<Disp>(config.velocity_off_m_s * config.period_s / sd);
+  odbdco_.velocity_on = num::from_double<Velocity>(config.velocity_on_m_s * config.period_s / sv);
+  odbdco_.velocity_off = num::from_double<Velocity>(config.velocity_off_m_s * config.period_s / sv);
   odbdco_.dwell_ticks = static_cast<std::uint32_t>(config.target_dwell_s / config.period_s + 0.5);
   odbdco_.rest_ticks = static_cast<std::uint32_t>(config.rest_release_s / config.period_s + 0.5);
   i2t_.init(config.coil_thermal_time_constant_s, config.period_s, config.rated_current_a / si,
@@ -325,19 +327,20 @@ inline bool DamperController<Policy>::step_guard(const control::ControllerInput&
 template <class Policy>
 inline void DamperController<Policy>::step_filters(const control::ControllerInput& in, bool disp_ok) noexcept {
   if (disp_ok) {
-    const Disp x = num::from_float<Disp>(in.damper_disp_m * disp_in_);
+    const float x_units = in.damper_disp_m * disp_in_;
+    const Disp x = num::from_float<Disp>(x_units);
     if (!primed_) {
       rild_.prime(x);
-      velocity_.prime(x);
+      velocity_.prime(x_units);
       primed_ = true;
     } else if (disp_gap_) {
-      velocity_.resync(x);
+      velocity_.resync(x_units);
     }
     const Force fd = rild_.step(x);
     const Force clamped = num::clamp(fd, -desired_limit_n_, desired_limit_n_);
     if (!(clamped == fd)) bump(status_.desired_force_clamps);
     desired_n_ = clamped;
-    (void)velocity_.step(x);
+    (void)velocity_.step(x_units);
   }
   disp_gap_ = !disp_ok;
 }
@@ -354,7 +357,7 @@ inline typename DamperController<Policy>::Current DamperController<Policy>::step
   OdbdcoDecision<Policy> d;
   if (usable) {
     d = law_.step(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n * force_in_), coil_a,
-                  velocity_.per_tick_m(), i2t_.ceiling_a());
+                  velocity_.per_tick(), i2t_.ceiling_a());
   }
   if (mode_ == control::ControlMode::kPassiveOn) return nominal_a_;
   if (mode_ != control::ControlMode::kSemiActive) return Current{};  // passive-off
@@ -376,5 +379,6 @@ inline typename DamperController<Policy>::Current DamperController<Policy>::step
 
 extern template class DamperController<num::Float32Policy>;
 extern template class DamperController<num::Fixed32Policy>;
+extern template class DamperController<Float64Policy>;
 
 }  // namespace mrd::fw

@@ -16,7 +16,8 @@
 ///
 /// | role    | unit (scaled)  | format | range (units)       | resolution (units) | holds                                 |
 /// |---------|----------------|--------|---------------------|--------------------|---------------------------------------|
-/// | Disp    | s_D m (/tick)  | Q3.28  | [−8, 8)             | 3.7e−9             | stroke limit ≤ 0.42; RILD ≤ 4× it     |
+/// | Disp    | s_D m          | Q3.28  | [−8, 8)             | 3.7e−9             | stroke limit ≤ 0.42; RILD ≤ 4× it     |
+/// | Velocity| s_V m per tick | Q3.28  | [−8, 8)             | 3.7e−9             | 8 s_D m/s ≤ 4 units; v_on, v_off      |
 /// | Force   | s_F N          | Q19.12 | [−524 288, 524 288) | 2.4e−4             | F_d, load-cell and F_db limits        |
 /// | Current | s_I A          | Q7.24  | [−128, 128)         | 6.0e−8             | drive peak and sensor limit           |
 /// | Coef    | 1              | Q2.29  | [−4, 4)             | 1.9e−9             | filter poles and gains in (−1, 1)     |
@@ -45,9 +46,8 @@
 /// - s_D is the power of two nearest to d_lim / 0.30 m in the log (d_lim the
 ///   input guard's stroke limit), the one that puts d_lim in (0.21, 0.42]
 ///   units, around the thesis's 0.30 m for which Disp was sized: the RILD
-///   state (< 4 d_lim ≤ 1.7 units) always fits, and strokes, the velocity
-///   thresholds in m per tick and the filters' rounding keep the thesis's
-///   resolution relative to the stroke. Thesis 0.30 m → s_D = 1; a lab
+///   state (< 4 d_lim ≤ 1.7 units) always fits, and strokes and the RILD
+///   filter's rounding keep the thesis's resolution relative to the stroke. Thesis 0.30 m → s_D = 1; a lab
 ///   damper's 30 mm → 1/8 (0.24 units); a 2 m stroke → 8.
 /// - s_F is the smallest power of two for which the largest configured
 ///   force (desired-force limit, load-cell limit, deadband) fits Force and
@@ -75,6 +75,18 @@
 ///   the identity, so the thesis's outputs are the unscaled ones bit for
 ///   bit. The scale is not a compile-time format choice: one binary holds
 ///   dampers from 1 kN to 2 MN and coils from 0.5 to 10 A.
+/// - s_V, the velocity's unit (m per control tick), is the smallest power of
+///   two that puts 8 s_D m/s (for the thesis 8 m/s, 32 times the damper's
+///   0.25 m/s rating; for any damper 19 times its stroke limit per second)
+///   within 4 units at the control period T: 8 s_D T ≤ 4 s_V, half the
+///   format, so that the estimator's v − d never saturates below it. Thesis,
+///   T = 1 ms: s_V = 2^−8 m per tick, a count of 1.5e−11 m per tick
+///   (1.5e−8 m/s), 1/256 of a Disp count: the direction thresholds (6 and
+///   3 mm/s) resolve to 7e−9 m/s and the estimate settles within 4e−8 m/s
+///   of the exact filter of the same samples (velocity_estimator.hpp), so
+///   the fixed build decides a velocity reversal on the same tick as the
+///   float build unless the velocity passes the threshold within about
+///   1e−7 m/s of it. A velocity above 31 m/s saturates, keeping its sign.
 /// What no scale can hold is refused by validate_config with
 /// ConfigError::kFixedPointRange, and `fixed_point_misfit()` names the
 /// constant and its format's limit (a velocity threshold below one count
@@ -93,7 +105,8 @@ struct Formats;
 
 template <>
 struct Formats<num::Float32Policy> {
-  using Disp = float;     ///< m, or m per tick for velocities
+  using Disp = float;      ///< m
+  using Velocity = float;  ///< m per tick
   using Force = float;    ///< N
   using Current = float;  ///< A
   using Coef = float;     ///< dimensionless filter coefficient
@@ -104,6 +117,7 @@ struct Formats<num::Float32Policy> {
 template <>
 struct Formats<num::Fixed32Policy> {
   using Disp = num::Fixed<3, 28>;
+  using Velocity = num::Fixed<3, 28>;
   using Force = num::Fixed<19, 12>;
   using Current = num::Fixed<7, 24>;
   using Coef = num::Fixed<2, 29>;
@@ -119,6 +133,21 @@ struct Float64Policy {
   static constexpr const char* kName = "double";
 };
 
+/// The control core's double-precision build: the host's reference, with the
+/// rounding of neither the float nor the fixed-point build, against which both
+/// are measured (`mrd sim --numeric double`; never on a board). It takes the
+/// same float inputs and gives the same float outputs as they do.
+template <>
+struct Formats<Float64Policy> {
+  using Disp = double;
+  using Velocity = double;
+  using Force = double;
+  using Current = double;
+  using Coef = double;
+  using Gain = double;
+  using Square = double;
+};
+
 /// 2^e, exactly (|e| ≤ 1000), in constant expressions too.
 constexpr double pow2(int e) noexcept {
   double v = 1.0;
@@ -129,12 +158,15 @@ constexpr double pow2(int e) noexcept {
 
 /// Exponents of the core's unit scales: strokes in s_D = 2^disp_exp m,
 /// forces in s_F = 2^force_exp N (gains in s_F/s_D N/m), currents in
-/// s_I = 2^current_exp A (mean squares in s_I² A²).
+/// s_I = 2^current_exp A (mean squares in s_I² A²), velocities in
+/// s_V = 2^velocity_exp m per control tick.
 struct CoreScales {
   int disp_exp = 0;
   int force_exp = 0;
   int current_exp = 0;
+  int velocity_exp = 0;
   constexpr double disp_m() const noexcept { return pow2(disp_exp); }
+  constexpr double velocity_m() const noexcept { return pow2(velocity_exp); }
   constexpr double force_n() const noexcept { return pow2(force_exp); }
   constexpr double current_a() const noexcept { return pow2(current_exp); }
 };
@@ -145,6 +177,8 @@ inline constexpr int kMaxScaleExp = 24;
 /// thesis's damper and coil).
 inline constexpr double kScaleReferenceStroke_m = 0.30;
 inline constexpr double kScaleReferenceCurrent_a = 2.5;
+/// The velocity format holds 8 s_D m/s within half its range.
+inline constexpr double kVelocityRangeStrokesPerS = 8.0;
 
 /// The smallest e in [−kMaxScaleExp, kMaxScaleExp] with v ≤ top·2^e.
 constexpr int smallest_exp_within(double v, double top) noexcept {
@@ -155,11 +189,11 @@ constexpr int smallest_exp_within(double v, double top) noexcept {
 
 /// The scales for a configuration whose input guard's stroke limit is
 /// `disp_limit_m`, whose largest force is `force_bound_n`, whose RILD gain is
-/// `gain_n_m` (kη) and whose coil is rated `rated_current_a` (rules above).
-/// Float: s_D = s_F = s_I = 1.
+/// `gain_n_m` (kη), whose coil is rated `rated_current_a` and whose control
+/// period is `period_s` (rules above). Float: s_D = s_F = s_I = s_V = 1.
 template <class Policy>
 constexpr CoreScales select_core_scales(double disp_limit_m, double force_bound_n, double gain_n_m,
-                                        double rated_current_a) noexcept {
+                                        double rated_current_a, double period_s) noexcept {
   using F = Formats<Policy>;
   constexpr double kSqrt2 = 1.4142135623730951;
   CoreScales s;
@@ -174,6 +208,8 @@ constexpr CoreScales select_core_scales(double disp_limit_m, double force_bound_
     s.force_exp = by_force > by_gain ? by_force : by_gain;
     // I_r / s_I ≤ 2.5 A · √2: the smallest such exponent puts I_r / s_I in (1.77, 3.54].
     s.current_exp = smallest_exp_within(rated_current_a, kScaleReferenceCurrent_a * kSqrt2);
+    // 8 s_D m/s × T ≤ 4 s_V.
+    s.velocity_exp = smallest_exp_within(kVelocityRangeStrokesPerS * s.disp_m() * period_s, 4.0);
     return s;
   }
 }

@@ -73,12 +73,13 @@
 /// away from the target, so a current-sensor bias below I_band cannot walk
 /// the current; at rest (s = 0) nothing is latched at all.
 ///
-/// Units: strokes in the controller's s_D m, forces in its s_F N, currents
-/// in its s_I A (numeric_formats.hpp; all 1 for the thesis's damper), so
-/// every level above is the configured one divided by its scale.
+/// Units: velocities in the controller's s_V m per tick, forces in its s_F N,
+/// currents in its s_I A (numeric_formats.hpp; 1 in the float build, and
+/// s_F = s_I = 1 for the thesis's damper in fixed point), so every level
+/// above is the configured one divided by its scale.
 ///
 /// Fixed point: forces Q19.12 s_F N, currents Q7.24 s_I A, velocity Q3.28
-/// s_D m/tick. s·F_d − s·F_m saturates at ±524 288 s_F N; only its sign against
+/// s_V m/tick. s·F_d − s·F_m saturates at ±524 288 s_F N; only its sign against
 /// F_db matters, and saturation keeps the sign. The command is I_od, I_bd,
 /// 0 or the target I_t ∈ [0, I_c] ⊂ [0, I_r], so it can never leave
 /// [I_bd, I_od], whose ends fit Current by validate_config.
@@ -101,13 +102,13 @@ template <class Policy>
 struct OdbdcoParams {
   using Force = typename Formats<Policy>::Force;
   using Current = typename Formats<Policy>::Current;
-  using Disp = typename Formats<Policy>::Disp;
+  using Velocity = typename Formats<Policy>::Velocity;
   Current overdrive_a{};         ///< I_od
   Current backdrive_a{};         ///< I_bd (negative)
   Current band_a{};              ///< I_band
   Force deadband_n{};            ///< F_db
-  Disp velocity_on_m{};          ///< v_on · T, m per tick
-  Disp velocity_off_m{};         ///< v_off · T, m per tick
+  Velocity velocity_on{};        ///< v_on · T, s_V m per tick
+  Velocity velocity_off{};       ///< v_off · T, s_V m per tick
   std::uint32_t dwell_ticks = 0; ///< minimum ticks between target changes
   std::uint32_t rest_ticks = 0;  ///< ticks of unknown direction before the target goes to 0
 };
@@ -125,7 +126,7 @@ class Odbdco {
  public:
   using Force = typename Formats<Policy>::Force;
   using Current = typename Formats<Policy>::Current;
-  using Disp = typename Formats<Policy>::Disp;
+  using Velocity = typename Formats<Policy>::Velocity;
 
   /// Direction unknown, target 0 A, free to change at once.
   void reset() noexcept {
@@ -137,17 +138,17 @@ class Odbdco {
     forcing_ = 0;
   }
 
-  /// One tick. `velocity_per_tick_m` is the velocity estimate in m per tick
-  /// (VelocityEstimator); `ceiling_a` is I_c.
+  /// One tick. `velocity_per_tick` is the velocity estimate in s_V m per
+  /// tick (VelocityEstimator); `ceiling_a` is I_c.
   OdbdcoDecision<Policy> step(const OdbdcoParams<Policy>& p, Force desired_n, Force measured_n, Current coil_a,
-                              Disp velocity_per_tick_m, Current ceiling_a) noexcept {
+                              Velocity velocity_per_tick, Current ceiling_a) noexcept {
     // Direction with hysteresis.
-    const Disp v = velocity_per_tick_m;
-    if (p.velocity_on_m < v) {
+    const Velocity v = velocity_per_tick;
+    if (p.velocity_on < v) {
       direction_ = 1;
-    } else if (v < -p.velocity_on_m) {
+    } else if (v < -p.velocity_on) {
       direction_ = -1;
-    } else if ((direction_ > 0 && v < p.velocity_off_m) || (direction_ < 0 && -p.velocity_off_m < v)) {
+    } else if ((direction_ > 0 && v < p.velocity_off) || (direction_ < 0 && -p.velocity_off < v)) {
       direction_ = 0;
     }
 

@@ -214,7 +214,7 @@ void add_options(CLI::App& app, SimOptions& o) {
   app.add_option("--control", o.control, "passive-off | passive-on | semi-active")
       ->capture_default_str()
       ->each([&o](const std::string&) { o.control_given = true; });
-  app.add_option("--numeric", o.numeric, "Numeric build of the firmware control core: float | fixed")
+  app.add_option("--numeric", o.numeric, "Numeric build of the firmware control core: float | fixed | double (the host's reference, with neither build's rounding)")
       ->capture_default_str()
       ->each([&o](const std::string&) { o.numeric_given = true; });
   app.add_option("--board", o.board,

@@ -22,12 +22,20 @@ std::vector<control::ControlMode> available_modes() {
   return modes;
 }
 
-const char* numeric_name(NumericKind kind) noexcept { return kind == NumericKind::kFixed ? "fixed" : "float"; }
+const char* numeric_name(NumericKind kind) noexcept {
+  switch (kind) {
+    case NumericKind::kFixed: return "fixed";
+    case NumericKind::kDouble: return "double";
+    case NumericKind::kFloat: break;
+  }
+  return "float";
+}
 
 NumericKind parse_numeric_kind(const std::string& text) {
   if (text == "float") return NumericKind::kFloat;
   if (text == "fixed") return NumericKind::kFixed;
-  throw io::UsageError("--numeric: expected float or fixed, got '" + text + "'");
+  if (text == "double") return NumericKind::kDouble;
+  throw io::UsageError("--numeric: expected float, fixed or double, got '" + text + "'");
 }
 
 namespace {
@@ -62,11 +70,13 @@ std::unique_ptr<Controller> make_firmware(const fw::ControllerConfig& c) {
 std::unique_ptr<Controller> make_controller(control::ControlMode mode, double period_s, NumericKind numeric) {
   const fw::ControllerConfig c = fw::default_controller_config(mode, period_s);
   if (numeric == NumericKind::kFixed) return make_firmware<num::Fixed32Policy>(c);
+  if (numeric == NumericKind::kDouble) return make_firmware<fw::Float64Policy>(c);
   return make_firmware<num::Float32Policy>(c);
 }
 
 std::unique_ptr<Controller> make_configured_controller(const fw::ControllerConfig& config, NumericKind numeric) {
   if (numeric == NumericKind::kFixed) return make_configured<num::Fixed32Policy>(config);
+  if (numeric == NumericKind::kDouble) return make_configured<fw::Float64Policy>(config);
   return make_configured<num::Float32Policy>(config);
 }
 

@@ -35,12 +35,14 @@ class ConstantCurrentController final : public Controller {
 };
 
 /// Which numeric build of the firmware control core runs.
-enum class NumericKind { kFloat, kFixed };
+/// The control core's build: single-precision float (the boards' default),
+/// 32-bit fixed point, or the host's double-precision reference.
+enum class NumericKind { kFloat, kFixed, kDouble };
 
-/// "float" | "fixed".
+/// "float" | "fixed" | "double".
 const char* numeric_name(NumericKind kind) noexcept;
 
-/// Parses "float" | "fixed"; throws io::UsageError naming --numeric otherwise.
+/// Parses "float" | "fixed" | "double"; throws io::UsageError naming --numeric otherwise.
 NumericKind parse_numeric_kind(const std::string& text);
 
 /// The firmware control core (firmware/core) behind the simulator's

@@ -2,6 +2,7 @@
 // through the command line, and bad --numeric input.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
@@ -29,13 +30,23 @@ TEST(FirmwareCli, SimRunsTheSemiActiveCoreInBothBuilds) {
 
 TEST(FirmwareCli, BadNumericIsAOneLineUsageError) {
   TempDir scratch, out;
-  const auto r = run_mrd("sim --duration-s 1 --control semi-active --numeric double --out " + out.path().string(),
+  const auto r = run_mrd("sim --duration-s 1 --control semi-active --numeric quad --out " + out.path().string(),
                          scratch.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("--numeric"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("double"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("quad"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out.path() / "summary.json"));
+}
+
+TEST(FirmwareCli, DoubleIsTheReferenceBuild) {
+  // --numeric double runs the control core in double precision and says so.
+  TempDir scratch, out;
+  const auto r = run_mrd("sim --duration-s 2 --control semi-active --numeric double --out " + out.path().string(),
+                         scratch.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(std::ifstream(out.path() / "summary.json"));
+  EXPECT_EQ(j["numeric"], "double");
 }
 
 }  // namespace

@@ -121,11 +121,12 @@ TEST(DamperControllerConfig, FixedPointRefusesConstantsOutsideItsFormats) {
   c.stiffness_n_m = 1.25e10;
   EXPECT_EQ(validate_config<num::Float32Policy>(c), ConfigError::kNone);
   EXPECT_EQ(validate_config<num::Fixed32Policy>(c), ConfigError::kFixedPointRange);
-  // A direction threshold of 1 µm/s is 1e−9 m per tick, under half a count
-  // of Q3.28 (3.7e−9 m) at the stroke scale of a 0.30 m stroke limit.
+  // A direction threshold of 2 nm/s is 2e−12 m per tick, under half a count
+  // of Velocity Q3.28 at the velocity scale of a 0.30 m stroke limit at 1 ms
+  // (s_V = 2^−8 m per tick: 2^−36 = 1.46e−11 m per tick).
   ControllerConfig d;
-  d.velocity_on_m_s = 1.0e-6;
-  d.velocity_off_m_s = 0.5e-6;
+  d.velocity_on_m_s = 2.0e-9;
+  d.velocity_off_m_s = 1.0e-9;
   EXPECT_EQ(validate_config<num::Fixed32Policy>(d), ConfigError::kFixedPointRange);
 }
 

@@ -17,7 +17,7 @@ class OdbdcoTest : public ::testing::Test {
  protected:
   using Force = typename Formats<Policy>::Force;
   using Current = typename Formats<Policy>::Current;
-  using Disp = typename Formats<Policy>::Disp;
+  using Velocity = typename Formats<Policy>::Velocity;
 
   // The defaults of ControllerConfig at T = 1 ms: I_od = 10 A, I_bd = −10 A,
   // I_band = 0.1 A, F_db = 2 kN, v_on = 6 mm/s, v_off = 3 mm/s, dwell 30
@@ -28,8 +28,8 @@ class OdbdcoTest : public ::testing::Test {
     p.backdrive_a = num::from_double<Current>(-10.0);
     p.band_a = num::from_double<Current>(0.1);
     p.deadband_n = num::from_double<Force>(2000.0);
-    p.velocity_on_m = num::from_double<Disp>(6e-3 * 1e-3);
-    p.velocity_off_m = num::from_double<Disp>(3e-3 * 1e-3);
+    p.velocity_on = num::from_double<Velocity>(6e-3 * 1e-3);
+    p.velocity_off = num::from_double<Velocity>(3e-3 * 1e-3);
     p.dwell_ticks = 30;
     p.rest_ticks = 1000;
     return p;
@@ -38,7 +38,7 @@ class OdbdcoTest : public ::testing::Test {
   static OdbdcoDecision<Policy> tick(Odbdco<Policy>& law, double fd_n, double fm_n, double coil_a, double v_m_s,
                                      double ceiling_a = 2.5) {
     return law.step(params(), num::from_double<Force>(fd_n), num::from_double<Force>(fm_n),
-                    num::from_double<Current>(coil_a), num::from_double<Disp>(v_m_s * 1e-3),
+                    num::from_double<Current>(coil_a), num::from_double<Velocity>(v_m_s * 1e-3),
                     num::from_double<Current>(ceiling_a));
   }
   /// The first tick of a fresh law (target 0 A, free to change).

@@ -43,6 +43,13 @@ constexpr Out mul(float a, float b) noexcept {
   return a * b;
 }
 
+/// double × double → double (Out must be double): the host's reference build.
+template <class Out>
+constexpr Out mul(double a, double b) noexcept {
+  static_assert(sizeof(Out) == sizeof(double), "double products stay double");
+  return a * b;
+}
+
 template <class T>
 constexpr T clamp(T v, T lo, T hi) noexcept {
   return v < lo ? lo : (hi < v ? hi : v);
@@ -69,6 +76,7 @@ constexpr T from_float(float v) noexcept {
 
 /// Run-time conversion back to float (raw·2^−F, rounded to float's 24 bits).
 constexpr float to_float(float v) noexcept { return v; }
+constexpr float to_float(double v) noexcept { return static_cast<float>(v); }
 template <int I, int F>
 constexpr float to_float(Fixed<I, F> v) noexcept {
   return static_cast<float>(v.raw()) * (1.0f / static_cast<float>(std::int64_t{1} << F));
