@@ -583,13 +583,32 @@ void decide_verdict(DiscrepancyResult& res, const Selection& current, const Sele
     if (sa.structured_share >= kStructuredShare) describe_residual(res, sa, true);
     return;
   }
-  res.verdict = Verdict::unexplained;
   res.rejected = res.effects;
   res.rejected_params = res.params;
   res.effects.clear();
   res.params.clear();
   res.findings.push_back(label + " was fitted and " + numbers + " (limits " + percent(kLeftOverNoise) + " and " +
                          percent(kLeftOverRemoved) + "): it is not the explanation.");
+  // A calibrated baseline leaves a gap on the very records it was fitted to
+  // (its model-form error, res.expected_gap, the largest of them). A record
+  // whose gap is within it has no discrepancy to explain, whatever shape the
+  // residual has: that shape is the baseline's own, found on its calibration
+  // records too. Only a gap beyond it is unexplained.
+  // The expected gap is a whole-record gap (the calibration's record_gaps),
+  // so the record's whole gap is what is compared with it; the held-out
+  // blocks' gap, whose normalization differs, is reported beside it.
+  const bool within_expected = res.expected_gap > 0.0 && res.gap_before <= tolerance;
+  if (within_expected) {
+    res.verdict = Verdict::none;
+    res.findings.push_back(
+        "The baseline's gap on this record, " + percent(res.gap_before) + " (held-out samples " +
+        percent(res.gap_validation_before) + "), is within 1.25 times its expected gap, " + percent(res.expected_gap) +
+        " (the largest gap on the records it was calibrated on): the residual is the baseline's known model-form "
+        "error, not a discrepancy of this record. A baseline of another form may leave less (mrd calibrate --law).");
+    describe_residual(res, sb, false);
+    return;
+  }
+  res.verdict = Verdict::unexplained;
   describe_residual(res, sa, true);
   describe_rejections(res);
 }
