@@ -161,6 +161,24 @@ Result configure(const Inputs& in) {
   return r;
 }
 
+/// The unit scales the fixed-point core runs `c` at (firmware/core/numeric_formats.hpp), each with its rule.
+std::string fixed_point_scales_markdown(const fw::ControllerConfig& c) {
+  const fw::CoreScales s = fw::core_scales<num::Fixed32Policy>(c);
+  const auto p2 = [](int e) { return "2^" + std::to_string(e); };
+  std::string md = "\n## Fixed-point scales\n\nThe fixed-point core counts each quantity in a unit that is a power "
+                   "of two chosen for this configuration (firmware/core/numeric_formats.hpp):\n\n"
+                   "| scale | value | rule | one count |\n|---|---|---|---|\n";
+  md += "| s_D, strokes | " + p2(s.disp_exp) + " m | disp_limit_m = " + num(c.disp_limit_m) +
+        " m within (0.21, 0.42] s_D | " + num(s.disp_m() * std::ldexp(1.0, -28), "%.3g") + " m (Q3.28) |\n";
+  md += "| s_F, forces | " + p2(s.force_exp) + " N | the smallest with the largest force limit within 524 288 s_F "
+        "and kη s_D/s_F within 8.39e6 N/m | " + num(s.force_n() * std::ldexp(1.0, -12), "%.3g") + " N (Q19.12) |\n";
+  md += "| s_I, currents | " + p2(s.current_exp) + " A | rated_current_a = " + num(c.rated_current_a) +
+        " A within (1.77, 3.54] s_I | " + num(s.current_a() * std::ldexp(1.0, -24), "%.3g") + " A (Q7.24) |\n";
+  md += "| s_V, velocities | " + p2(s.velocity_exp) + " m per tick | 8 s_D m/s × period_s within 4 s_V | " +
+        num(s.velocity_m() * std::ldexp(1.0, -28) / c.period_s, "%.3g") + " m/s (Q3.28) |\n";
+  return md;
+}
+
 std::string configure_markdown(const Inputs& in, const Result& r) {
   std::string md = "# Board configuration\n\n";
   md += "Board `" + r.board.name + "`, building `" + in.building_name + "` (" +
@@ -170,6 +188,7 @@ std::string configure_markdown(const Inputs& in, const Result& r) {
   for (const Derived& d : r.derived) {
     md += "| `" + d.field + "` | " + num(d.value, "%.6g") + " | " + d.unit + " | " + d.rule + " |\n";
   }
+  if (r.board.fixed_point) md += fixed_point_scales_markdown(r.board.controller_config());
   if (!r.notes.empty()) {
     md += "\n## Notes\n\n";
     for (const std::string& n : r.notes) md += "- " + n + "\n";

@@ -101,6 +101,25 @@ TEST(Configure, TheBoardFileCarriesEveryDerivedNumberAndReadsBack) {
   EXPECT_NE(md.find("measured maximum settling time"), std::string::npos);
 }
 
+TEST(Configure, AFixedPointBoardSaysItsScales) {
+  // The thesis's building and damper on a fixed-point board at 1 ms: s_D = 1
+  // (0.30 m stroke limit), s_F = 1 (500 kN load cell ≤ 524 288 N), s_I = 1
+  // (2.5 A), s_V = 2^−8 m per tick (8 m/s × 1 ms = 8e−3 m ≤ 4 × 3.9e−3 m,
+  // not 4 × 1.95e−3 m): one velocity count 2^−36 m per 1 ms = 1.46e−8 m/s.
+  Inputs in = thesis_inputs();
+  in.board.fixed_point = true;
+  const Result r = configure(in);
+  const std::string md = configure_markdown(in, r);
+  EXPECT_NE(md.find("## Fixed-point scales"), std::string::npos) << md;
+  EXPECT_NE(md.find("| s_D, strokes | 2^0 m"), std::string::npos) << md;
+  EXPECT_NE(md.find("| s_F, forces | 2^0 N"), std::string::npos) << md;
+  EXPECT_NE(md.find("| s_I, currents | 2^0 A"), std::string::npos) << md;
+  EXPECT_NE(md.find("| s_V, velocities | 2^-8 m per tick"), std::string::npos) << md;
+  EXPECT_NE(md.find("1.46e-08 m/s"), std::string::npos) << md;
+  // A float board has none.
+  EXPECT_EQ(configure_markdown(thesis_inputs(), configure(thesis_inputs())).find("Fixed-point"), std::string::npos);
+}
+
 TEST(Configure, ABuildingWithoutADamperIsRefused) {
   Inputs in = thesis_inputs();
   in.building.dampers.clear();
