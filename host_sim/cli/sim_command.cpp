@@ -13,6 +13,7 @@
 #include "host_sim/cli/damper_option.hpp"
 #include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/options.hpp"
+#include "host_sim/cli/sim_spec.hpp"
 #include "host_sim/io/text.hpp"
 #include "mrd/units.hpp"
 #include "host_sim/run/controller.hpp"
@@ -86,100 +87,6 @@ Files: DIR/timeseries.csv (every step; columns name their units), DIR/timeseries
 (displacement, force, floor acceleration, current over time, like Fig. 6.9-6.11) and
 DIR/timeseries_loop.png (force against stroke).)"};
 
-struct SimOptions {
-  std::string record;
-  double pga_g = run::kThesisPga_g;
-  std::string control = "passive-off";
-  bool control_given = false;
-  std::string numeric = "float";
-  bool numeric_given = false;
-  bool step_given = false;
-  std::string board;
-  double idle_years = 0.0;
-  double duration_s = 0.0;
-  bool duration_given = false;  ///< --duration-s was given (without it: the record's length)
-  double step_s = 1.0e-3;
-  std::uint64_t seed = 1;
-  std::string plant = "thesis";
-  std::uint64_t sensor_seed = 1;
-  double offset_mm = 3.0;
-  std::string building;
-  std::string damper;
-  std::string fluid;
-  std::string out_dir;
-};
-
-/// --board FILE read as mrd-firmware reads it; nothing without --board.
-/// Refuses the options the board file decides.
-std::optional<app::BoardConfig> board_of(const SimOptions& o) {
-  if (o.board.empty()) return std::nullopt;
-  for (const auto& [given, name] : {std::pair{o.step_given, "--step-s"}, std::pair{o.numeric_given, "--numeric"},
-                                    std::pair{!o.damper.empty(), "--damper"}, std::pair{!o.fluid.empty(), "--fluid"}}) {
-    if (given) throw io::UsageError(std::string(name) + " cannot be given with --board: the board file decides it");
-  }
-  try {
-    return app::parse_board_config(io::read_regular_file(o.board, app::kMaxBoardFileBytes), io::file_label(o.board));
-  } catch (const app::BoardConfigError& e) {
-    throw io::UsageError(e.what());
-  }
-}
-
-plant::PlantKind parse_plant_kind(const std::string& text) {
-  require_choice("--plant", text, {"thesis", "hardware"});
-  return text == "hardware" ? plant::PlantKind::kHardware : plant::PlantKind::kThesis;
-}
-
-/// The run the options ask for; throws io::UsageError for a bad option.
-run::SimSpec sim_spec(const SimOptions& o) {
-  check_pga_g(o.pga_g);
-  check_idle_years(o.idle_years);
-  if (o.duration_given) {
-    require_positive("--duration-s", o.duration_s, "a duration");
-    require_at_most("--duration-s", o.duration_s, kMaxDuration_s, "100000 s");
-  }
-  require_step_s(o.step_s, 0.02, "0.02 s");
-  require_finite_at_least("--offset-mm", o.offset_mm, -292.1);
-  require_at_most("--offset-mm", o.offset_mm, 292.1, "292.1 mm");
-  run::SimSpec spec;
-  spec.plant = parse_plant_kind(o.plant);
-  spec.sensor_seed = o.sensor_seed;
-  spec.stroke_offset_m = o.offset_mm * 1e-3;
-  spec.record = o.record;
-  spec.pga_g = o.pga_g;
-  spec.mode = run::parse_control_mode(o.control);
-  spec.numeric = run::parse_numeric_kind(o.numeric);
-  spec.idle_years = o.idle_years;
-  spec.duration_s = o.duration_s;
-  spec.step_s = o.step_s;
-  spec.seed = o.seed;
-  spec.keep_record = !o.out_dir.empty();
-  const std::optional<app::BoardConfig> board = board_of(o);
-  spec.building = load_building(o.building);
-  const DamperAndFluid d = load_damper_and_fluid("sim", o.damper, o.fluid);
-  spec.damper = d.params;
-  spec.settling = d.settling;
-  if (const std::optional<app::BoardConfig>& b = board) {
-    spec.step_s = b->period_s();
-    spec.numeric = b->fixed_point ? run::NumericKind::kFixed : run::NumericKind::kFloat;
-    if (!o.control_given) spec.mode = b->mode;
-    spec.damper = b->damper;
-    spec.settling = b->settling;
-  }
-  const discrepancy::CoilCircuit& circuit = d.damper.coil_circuit;
-  if (circuit.resistance_ohm) spec.hardware_coil.resistance_ohm = *circuit.resistance_ohm;
-  if (circuit.inductance_1a_h) {
-    spec.hardware_coil.inductance_1a_h = *circuit.inductance_1a_h;
-    spec.hardware_coil.inductance_2a_h = *circuit.inductance_2a_h;
-    // The saturated floor (an assumption, plant/coil.hpp) stays below the coil's own L(2 A).
-    spec.hardware_coil.min_inductance_h = std::min(spec.hardware_coil.min_inductance_h, *circuit.inductance_2a_h);
-  }
-  if (spec.plant == plant::PlantKind::kHardware && !o.damper.empty() &&
-      (!circuit.resistance_ohm || !circuit.inductance_1a_h))
-    print_warnings("sim", {io::file_label(o.damper) + ": the hardware plant's coil is the thesis's (Table 3.1) where "
-                           "the file's [coil] has no resistance_ohm or inductance_1a_h/inductance_2a_h"});
-  return spec;
-}
-
 void print_summary(const run::SimRun& r) {
   if (r.spec.record.empty()) std::printf("no --record given: using %s\n", r.motion.source.c_str());
   const plant::PlantSummary& s = r.summary;
@@ -239,16 +146,7 @@ void add_options(CLI::App& app, SimOptions& o) {
 
 void execute(const SimOptions& o) {
   const run::SimSpec spec = sim_spec(o);
-  const std::optional<app::BoardConfig> board = board_of(o);
-  std::unique_ptr<run::Controller> controller;
-  if (board) {
-    fw::ControllerConfig c = board->controller_config();
-    c.mode = spec.mode;
-    // As the board runs it: its inputs and command through the CAN frames' quantization.
-    controller = std::make_unique<run::WireQuantizedController>(run::make_configured_controller(c, spec.numeric));
-  } else {
-    controller = run::make_controller(spec.mode, spec.step_s, spec.numeric);
-  }
+  const std::unique_ptr<run::Controller> controller = sim_controller(o, spec);
   compute_print_write(
       "sim", o.out_dir, [&] { return run::run_sim(spec, *controller); }, print_summary, run::write_sim_outputs);
 }

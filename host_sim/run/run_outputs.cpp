@@ -33,29 +33,38 @@ void note(std::vector<std::string>& problems, const report::PlotResult& r, const
 
 }  // namespace
 
-std::vector<std::string> write_closed_loop_outputs(const std::filesystem::path& dir, const std::string& stem,
-                                                   const std::string& title, const ClosedLoopRecord& rec) {
-  std::vector<std::string> columns{"time_s", "ground_accel_m_s2", "base_disp_m", "base_vel_m_s", "damper_force_n",
-                                   "desired_force_n", "command_a", "current_a", "participant_ratio",
-                                   "roof_accel_m_s2", "peak_floor_accel_m_s2"};
+std::vector<ClosedLoopColumn> closed_loop_columns(const ClosedLoopRecord& rec) {
+  std::vector<ClosedLoopColumn> columns{{"time_s", &rec.time_s},
+                                        {"ground_accel_m_s2", &rec.ground_accel_m_s2},
+                                        {"base_disp_m", &rec.base_disp_m},
+                                        {"base_vel_m_s", &rec.base_vel_m_s},
+                                        {"damper_force_n", &rec.damper_force_n},
+                                        {"desired_force_n", &rec.desired_force_n},
+                                        {"command_a", &rec.command_a},
+                                        {"current_a", &rec.current_a},
+                                        {"participant_ratio", &rec.pr},
+                                        {"roof_accel_m_s2", &rec.roof_accel_m_s2},
+                                        {"peak_floor_accel_m_s2", &rec.peak_floor_accel_m_s2}};
   const std::size_t ticks = rec.time_s.size();
-  const bool isolators = rec.isolator_force_n.size() == ticks && ticks > 0;
-  if (isolators) columns.push_back("isolator_force_n");
-  std::vector<const std::vector<double>*> drifts;
+  if (rec.isolator_force_n.size() == ticks && ticks > 0) columns.push_back({"isolator_force_n", &rec.isolator_force_n});
   for (std::size_t st = 0; st < rec.story_elements.size(); ++st) {
     if (rec.story_drift_m[st].size() != ticks) continue;
-    columns.push_back("story_" + std::to_string(rec.story_elements[st]) + "_drift_m");
-    drifts.push_back(&rec.story_drift_m[st]);
+    columns.push_back({"story_" + std::to_string(rec.story_elements[st]) + "_drift_m", &rec.story_drift_m[st]});
   }
-  report::TimeSeries ts(columns);
+  return columns;
+}
+
+std::vector<std::string> write_closed_loop_outputs(const std::filesystem::path& dir, const std::string& stem,
+                                                   const std::string& title, const ClosedLoopRecord& rec) {
+  const std::vector<ClosedLoopColumn> columns = closed_loop_columns(rec);
+  std::vector<std::string> names;
+  for (const ClosedLoopColumn& c : columns) names.push_back(c.name);
+  const std::size_t ticks = rec.time_s.size();
+  report::TimeSeries ts(names);
   ts.reserve(ticks);
-  std::vector<double> row;
+  std::vector<double> row(columns.size());
   for (std::size_t k = 0; k < ticks; ++k) {
-    row = {rec.time_s[k], rec.ground_accel_m_s2[k], rec.base_disp_m[k], rec.base_vel_m_s[k],
-           rec.damper_force_n[k], rec.desired_force_n[k], rec.command_a[k], rec.current_a[k], rec.pr[k],
-           rec.roof_accel_m_s2[k], rec.peak_floor_accel_m_s2[k]};
-    if (isolators) row.push_back(rec.isolator_force_n[k]);
-    for (const auto* d : drifts) row.push_back((*d)[k]);
+    for (std::size_t c = 0; c < columns.size(); ++c) row[c] = (*columns[c].values)[k];
     ts.add_row(row);
   }
   report::write_csv(ts, dir / (stem + ".csv"));

@@ -12,6 +12,17 @@
 
 namespace mrd::run {
 
+/// One column of a run's time series: its name in the CSV header (units in
+/// the name) and its values, one per step, owned by the record.
+struct ClosedLoopColumn {
+  std::string name;
+  const std::vector<double>* values;
+};
+
+/// The columns of `rec` in the order `<stem>.csv` writes them: the eleven
+/// fixed ones, isolator_force_n with isolators, then story_<element>_drift_m.
+[[nodiscard]] std::vector<ClosedLoopColumn> closed_loop_columns(const ClosedLoopRecord& rec);
+
 /// Writes `dir/<stem>.csv` (every step) and `dir/<stem>_response.png` (base
 /// displacement, damper force and peak floor acceleration over time) and
 /// `dir/<stem>_loop.png` (damper force against stroke). Returns the reasons
