@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages a job needs (as root), only those that are
 # missing, so a machine that has them needs no network:
 #   deps.sh main   building and running the mrd program (scripts/main.sh):
-#                  the lists core, discrepancy, idle and risk
+#                  the lists core, discrepancy, idle, risk and python
 #   deps.sh all    every list (scripts/test.sh; the default): also the test
 #                  suite's (test), the boards' (board) and the firmware's (firmware)
 # The package lists live in scripts/deps/*.list (one name a line, # comments);
@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-main_lists=(deps/core.list deps/discrepancy.list deps/idle.list deps/risk.list)
+main_lists=(deps/core.list deps/discrepancy.list deps/idle.list deps/risk.list deps/python.list)
 case ${1:-all} in
   main) lists=("${main_lists[@]}") ;;
   all) lists=(deps/*.list) ;;

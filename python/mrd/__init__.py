@@ -1,0 +1,122 @@
+"""mrd from Python: the closed loop of ``mrd sim`` as a function.
+
+``mrd.sim(...)`` runs one closed-loop earthquake run exactly as ``mrd sim``
+does (same options, same checks, same numbers) and returns its summary as a
+dict (summary.json's fields) and its time series as NumPy arrays (timeseries.csv's
+columns, lent by the run without a copy). ``controller=`` puts a control law
+written in Python in the loop in place of the firmware core.
+
+Bad input raises :class:`mrd.UsageError` (a ValueError) with the message
+``mrd`` prints after ``mrd: error:``.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Callable, Dict, Optional, Union
+
+import numpy as np
+
+from ._mrd import Sensors, UsageError, _sim
+
+__all__ = ["sim", "SimResult", "Sensors", "UsageError"]
+
+
+class SimResult:
+    """One closed-loop run.
+
+    Attributes:
+        summary: dict with the fields of ``mrd sim --out``'s summary.json
+            (``mrd sim --help`` lists them; units in the names).
+        timeseries: dict of read-only float64 NumPy arrays, one per column of
+            timeseries.csv, in its order (time_s, ground_accel_m_s2,
+            base_disp_m, ..., story_<k>_drift_m); one value per control tick.
+    """
+
+    __slots__ = ("summary", "timeseries")
+
+    def __init__(self, summary: Dict[str, Any], timeseries: Dict[str, np.ndarray]) -> None:
+        self.summary = summary
+        self.timeseries = timeseries
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (
+            f"SimResult(record={s.get('record')!r}, control={s.get('control')!r}, "
+            f"peak_base_displacement_m={s.get('peak_base_displacement_m')!r}, "
+            f"ticks={len(self.timeseries.get('time_s', ()))})"
+        )
+
+
+def sim(
+    record: Optional[str] = None,
+    pga_g: float = 0.1127,
+    control: Optional[str] = None,
+    numeric: Optional[str] = None,
+    board: Optional[str] = None,
+    idle_years: float = 0.0,
+    duration_s: Optional[float] = None,
+    step_s: Optional[float] = None,
+    seed: int = 1,
+    plant: str = "thesis",
+    sensor_seed: int = 1,
+    offset_mm: float = 3.0,
+    building: Optional[str] = None,
+    damper: Optional[str] = None,
+    fluid: Optional[str] = None,
+    controller: Union[None, Callable[[Sensors], float], Any] = None,
+) -> SimResult:
+    """Run one closed loop as ``mrd sim`` does; each argument is its option.
+
+    Args:
+        record: ground-motion file (CSV time_s,accel_m_s2 or PEER .AT2); None:
+            a synthetic Kanai-Tajimi motion (``seed``); "none": no ground motion.
+        pga_g: PGA the record is scaled to, g (Table 6.3: 0.1127).
+        control: "passive-off" | "passive-on" | "semi-active"; None: passive-off,
+            or the board file's mode with ``board``.
+        numeric: firmware core build "float" | "fixed" | "double"; None: float
+            (refused with ``board``, as --numeric is).
+        board: board file whose controller, damper, fluid and period the run uses.
+        idle_years: idle time before the earthquake, years.
+        duration_s: simulated time, s; None: the record's length (40 s synthetic).
+        step_s: simulation and control step, s; None: 1e-3 (refused with ``board``).
+        seed: seed of the synthetic motion.
+        plant: "thesis" | "hardware".
+        sensor_seed: seed of the hardware plant's sensor noise.
+        offset_mm: hardware plant: damper parked this far off its stroke centre, mm.
+        building, damper, fluid: building, damper and fluid files (None: the thesis's).
+        controller: None for the firmware control core (``control`` mode), or
+            a Python control law: a callable, or an object with a
+            ``step(sensors)`` method (and optionally ``reset()``, called before
+            the run), given each tick's :class:`Sensors` and returning the coil
+            current command, A (the core's float; drive enabled). It runs in
+            the same plant as the core; the summary's "control" field still
+            names ``control``.
+
+    Returns:
+        SimResult with ``summary`` (summary.json's dict) and ``timeseries``.
+
+    Raises:
+        UsageError: a bad option value or file, with the CLI's message.
+    """
+    raw = _sim(
+        "" if record is None else record,
+        pga_g,
+        control,
+        numeric,
+        "" if board is None else board,
+        idle_years,
+        duration_s,
+        step_s,
+        seed,
+        plant,
+        sensor_seed,
+        offset_mm,
+        "" if building is None else building,
+        "" if damper is None else damper,
+        "" if fluid is None else fluid,
+        controller,
+    )
+    summary = json.loads(raw.summary_json)
+    timeseries = {name: np.asarray(column) for name, column in raw.columns}
+    return SimResult(summary, timeseries)
