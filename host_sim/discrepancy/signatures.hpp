@@ -20,7 +20,15 @@
 ///   current_law          F·i/i_max                  the force depending on current otherwise than the law
 ///   inertia              a                          a force in phase with acceleration (mass, compressibility)
 ///   filter_shape         d²F/dt²                    a filter (low-pass, compliance) rather than a pure delay
-///   w(v) = max(0, 1 − |v| / (3 v_band))
+///   current_lag_short    F·(i_0.1s − i)/i_max       the force late after current changes: a slower coil
+///   current_lag_long     F·(i_1s − i)/i_max         the same, slower still
+///   volume_recovery_short F·exp(−S / 0.03 m)        a deficit recovering with displaced volume (settling)
+///   volume_recovery_long F·exp(−S / 0.3 m)          the same, over more volume
+///   heating              F·E / E_end                a change growing with dissipated energy (fade)
+///   w(v) = max(0, 1 − |v| / (3 v_band)); i_τ: the current through a further
+///   first-order lag τ (∂F/∂i taken ∝ F); S = ∫|v| dt, the rod's travel since
+///   the record's start (displaced volume over the flow area); E = ∫|F v| dt,
+///   the energy dissipated so far.
 /// </pre>
 /// And one signature without a form, state_map: the mean residual in each
 /// cell of the damper's state (velocity in 12 quantile bins × displacement
@@ -45,8 +53,8 @@ struct SignatureStat {
 
 struct SignatureAnalysis {
   std::vector<SignatureStat> signatures;  ///< largest held-out share first
-  /// Held-out share of the residual power that is structure: the larger of
-  /// all form signatures together and the state map.
+  /// Held-out share of the residual power that is structure: the largest of
+  /// all form signatures together, any one of them and the state map.
   double structured_share = 0.0;
 };
 

@@ -123,6 +123,34 @@ std::vector<std::string> bound_flags(Effect e, std::span<const double> params, c
   return flags;
 }
 
+std::string offset_wander(std::span<const double> time_s, std::span<const double> residual_n, double offset_n) {
+  const std::size_t n = std::min(time_s.size(), residual_n.size());
+  if (n < 2 * kOffsetBlocks) return {};
+  const double t0 = time_s[0];
+  const double span_s = std::max(time_s[n - 1] - t0, 1e-12);
+  std::vector<double> sum(kOffsetBlocks, 0.0), count(kOffsetBlocks, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto b = std::min(kOffsetBlocks - 1, static_cast<std::size_t>((time_s[k] - t0) / span_s * kOffsetBlocks));
+    sum[b] += residual_n[k] + offset_n;
+    count[b] += 1.0;
+  }
+  std::vector<double> means;
+  for (std::size_t b = 0; b < kOffsetBlocks; ++b) {
+    if (count[b] > 0.0) means.push_back(sum[b] / count[b]);
+  }
+  if (means.size() < 3) return {};
+  const auto m = static_cast<double>(means.size());
+  double mean = 0.0;
+  for (const double x : means) mean += x / m;
+  double var = 0.0;
+  for (const double x : means) var += (x - mean) * (x - mean) / (m - 1.0);
+  const double se = std::sqrt(var / m);
+  if (std::fabs(offset_n) >= kOffsetBlockT * se) return {};
+  return "offset " + format_number("%.4g", offset_n) + " N is within " + format_number("%g", kOffsetBlockT) +
+         " standard errors (" + format_number("%.3g", se) + " N) of the means of " + std::to_string(means.size()) +
+         " spans of the record, which wander: the slow part of the noise, not a zero offset";
+}
+
 const char* verdict_name(Verdict v) noexcept {
   switch (v) {
     case Verdict::none: return "none";
@@ -269,6 +297,22 @@ std::vector<std::string> implausibility_reasons(const SelectionContext& ctx, con
     const FitOutcome& f = trials[i].fit;
     why[i] = collapse_reason(ctx, f);
     if (!why[i].empty()) continue;
+    if (const auto off = f.set.offset(Effect::force_offset)) {
+      ModelWorkspace ws;
+      std::vector<double> resid;
+      (void)fit_rss(ctx.fd, f.set, f.params, ws, &resid);
+      const std::string w = offset_wander(ctx.fit_times_s, resid, f.params[*off]);
+      if (!w.empty()) {
+        if (trials[i].alternative) {
+          why[i] = std::string("force_offset: ").append(w);
+        } else if (trials[i].effect == Effect::force_offset) {
+          why[i] = w;
+        } else {
+          why[i] = std::string("makes force_offset implausible: ").append(w);
+        }
+        continue;
+      }
+    }
     for (const Effect e : f.set.effects) {
       const std::string w = implausibility(e, own_params(f.set, f.params, e), scale);
       if (w.empty()) continue;

@@ -37,7 +37,8 @@
 /// and not a limit of the fit; it is still flagged. A model whose force
 /// collapses (free play at least the record's stroke, or an RMS force below
 /// a tenth of the baseline's, less than the most settled damper of Eq. 5.6
-/// keeps) is rejected.
+/// keeps) is rejected. A force_offset that does not stand out of the
+/// wander of the record's tenths (offset_wander) is rejected.
 ///
 /// Confusable pairs and what separates them (each is a column of the
 /// joint fit, and the independent study checks them):
@@ -57,7 +58,16 @@
 ///                                  quadrature part scales with dF/dt
 ///   preyield_hysteresis / backlash both soften reversals; pre-yield keeps the force's sign through
 ///                                  the reversal (a loop), play drops it to zero
+///   force_offset / coloured noise  an offset is the same in every tenth of the record; the slow part of
+///                                  1/f noise gives the record a mean too, but one that wanders from
+///                                  tenth to tenth (offset_wander): such an offset is implausible
 /// </pre>
+///
+/// Signatures of the residual (signatures.hpp) also carry the physics of the
+/// pairs: a deficit recovering with rod travel (settling, volume_recovery_*),
+/// a change growing with dissipated energy (heating), the force late after
+/// current steps (a slower coil, current_lag_*). A residual of those shapes
+/// that no catalogued effect removes is unexplained, not noise.
 ///
 /// Selection, per round: every catalogue effect not yet in the model is
 /// added to it and all parameters (old and new) are refitted jointly. Its
@@ -186,6 +196,21 @@ struct DiscrepancyResult {
 /// `scale`: DamperModel::param_scale() (force-valued bounds scale; an
 /// assumed coil may be faster).
 [[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale = {});
+
+/// A fitted force_offset against the slow part of the noise. A load-cell
+/// zero offset is the same in every part of the record; coloured noise
+/// (1/f, a wandering zero) has a slow part that also gives the record a mean,
+/// but one that differs from part to part. `residual_n` is the fitted
+/// model's residual (the offset inside the model) at `time_s`: the record is
+/// cut into kOffsetBlocks equal spans of time, and the offset must exceed
+/// kOffsetBlockT standard errors of the spans' means of residual + offset.
+/// Empty when it does, else the reason.
+[[nodiscard]] std::string offset_wander(std::span<const double> time_s, std::span<const double> residual_n,
+                                        double offset_n);
+inline constexpr std::size_t kOffsetBlocks = 10;
+/// Four standard errors: a mean of ten spans of noise without offset passes
+/// with a chance of 0.3 % (Student's t, 9 degrees of freedom).
+inline constexpr double kOffsetBlockT = 4.0;
 
 /// Per parameter of effect `e`: "" or "at its lower/upper bound …".
 [[nodiscard]] std::vector<std::string> bound_flags(Effect e, std::span<const double> params,

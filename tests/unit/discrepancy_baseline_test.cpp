@@ -402,6 +402,135 @@ TEST(DiscrepancyBaseline, SignaturesNameAnOffsetAndALag) {
   EXPECT_NEAR(sa.signatures.front().coefficient, -0.005, 0.0005);
 }
 
+/// Rod travel ∫|v| dt and dissipated energy ∫|F v| dt of a record, per sample (rectangle sums).
+struct SigHistories {
+  std::vector<double> travel_m, energy_j;
+};
+SigHistories sig_histories(const SigRecord& r) {
+  SigHistories h{{0.0}, {0.0}};
+  for (std::size_t k = 1; k < r.t.size(); ++k) {
+    h.travel_m.push_back(h.travel_m.back() + std::fabs(r.v[k - 1]) * 1e-3);
+    h.energy_j.push_back(h.energy_j.back() + std::fabs(r.f[k - 1] * r.v[k - 1]) * 1e-3);
+  }
+  return h;
+}
+
+// Settling against heating, by what the force change scales with. A settled
+// fluid's deficit shrinks with displaced volume (rod travel S): the measured
+// force is F (1 − d e^(−S/S_r)), below the model early and recovering, so the
+// residual −d F e^(−S/S_r) is the volume signature with coefficient −d.
+// Heating loses force in proportion to the energy dissipated so far: the
+// measured force F (1 − α E/E_end), the residual the heating signature with
+// coefficient −α. Each residual is then wholly its own signature (share 1 less
+// the noise's: the noise is 1 % of the signal's power here), and the other
+// physics removes clearly less of it.
+TEST(DiscrepancyBaseline, SignaturesTellSettlingFromHeatingByWhatTheForceChangeScalesWith) {
+  const SigRecord r = sig_record();
+  const SigHistories h = sig_histories(r);
+  test::Normals n(9);
+  const SampleSplit s = split_samples(r.t);
+  const auto share_of = [](const SignatureAnalysis& sa, const std::string& name) {
+    for (const auto& sg : sa.signatures) {
+      if (sg.name == name) return sg;
+    }
+    return SignatureStat{};
+  };
+  // Settling: d = 0.3 over S_r = 0.3 m (the record travels 20 s · 4 · 20 mm · 0.7 Hz = 1.12 m).
+  std::vector<double> settling(r.t.size()), heating(r.t.size());
+  double p_settling = 0.0, p_heating = 0.0;
+  for (std::size_t k = 0; k < r.t.size(); ++k) {
+    settling[k] = -0.3 * r.f[k] * std::exp(-h.travel_m[k] / 0.3);
+    heating[k] = -0.05 * r.f[k] * h.energy_j[k] / h.energy_j.back();
+    p_settling += settling[k] * settling[k];
+    p_heating += heating[k] * heating[k];
+  }
+  const double noise_settling = 0.1 * std::sqrt(p_settling / static_cast<double>(r.t.size()));
+  const double noise_heating = 0.1 * std::sqrt(p_heating / static_cast<double>(r.t.size()));
+  for (std::size_t k = 0; k < r.t.size(); ++k) {
+    settling[k] += noise_settling * n.next();
+    heating[k] += noise_heating * n.next();
+  }
+  const SignatureAnalysis a = analyse_residual({r.t, r.x, r.v, r.i, r.f, settling, 0.01}, s.train, s.held_out);
+  EXPECT_EQ(a.signatures.front().name, "volume_recovery_long");
+  EXPECT_NEAR(a.signatures.front().held_out_share, 1.0 / 1.01, 0.01);
+  EXPECT_NEAR(a.signatures.front().coefficient, -0.3, 0.01);  // a deficit: the force grows over the record
+  EXPECT_LT(share_of(a, "heating").held_out_share, a.signatures.front().held_out_share - 0.2);
+  const SignatureAnalysis b = analyse_residual({r.t, r.x, r.v, r.i, r.f, heating, 0.01}, s.train, s.held_out);
+  EXPECT_EQ(b.signatures.front().name, "heating");
+  EXPECT_NEAR(b.signatures.front().held_out_share, 1.0 / 1.01, 0.01);
+  EXPECT_NEAR(b.signatures.front().coefficient, -0.05, 0.002);  // a loss: the force falls over the record
+  EXPECT_LT(share_of(b, "volume_recovery_long").held_out_share, b.signatures.front().held_out_share - 0.2);
+}
+
+// A slower coil leaves its error after current steps: with the command
+// stepping 0.5 → 2 A every 2 s, a coil 0.1 s slower makes the measured force
+// follow the model's late, F·(i_0.1s − i)/i_max with ∂F/∂i ∝ F: the short
+// current-lag signature with coefficient 1. On a constant current the
+// signature does not exist (a zero column) and removes nothing.
+TEST(DiscrepancyBaseline, SignaturesSeeASlowerCoilOnlyWhereTheCurrentSteps) {
+  SigRecord r = sig_record();
+  for (std::size_t k = 0; k < r.t.size(); ++k) r.i[k] = (static_cast<int>(r.t[k] / 2.0) % 2 == 0) ? 0.5 : 2.0;
+  // The current through a further 0.1 s lag, exact for a held command: e^(−1 ms / 0.1 s) per sample.
+  std::vector<double> lagged(r.t.size());
+  double il = r.i[0];
+  const double keep = std::exp(-1e-3 / 0.1);
+  for (std::size_t k = 0; k < r.t.size(); ++k) {
+    if (k > 0) il = r.i[k - 1] + (il - r.i[k - 1]) * keep;
+    lagged[k] = il;
+  }
+  std::vector<double> resid(r.t.size());
+  for (std::size_t k = 0; k < r.t.size(); ++k) resid[k] = r.f[k] * (lagged[k] - r.i[k]) / 2.0;
+  const SampleSplit s = split_samples(r.t);
+  const SignatureAnalysis a = analyse_residual({r.t, r.x, r.v, r.i, r.f, resid, 0.01}, s.train, s.held_out);
+  EXPECT_EQ(a.signatures.front().name, "current_lag_short");
+  EXPECT_GT(a.signatures.front().held_out_share, 0.999);
+  EXPECT_NEAR(a.signatures.front().coefficient, 1.0, 1e-3);
+  const SigRecord steady = sig_record();
+  const SignatureAnalysis b =
+      analyse_residual({steady.t, steady.x, steady.v, steady.i, steady.f, resid, 0.01}, s.train, s.held_out);
+  for (const auto& sg : b.signatures) {
+    if (sg.name.rfind("current_lag", 0) == 0) {
+      EXPECT_EQ(sg.held_out_share, 0.0) << sg.name;
+    }
+  }
+}
+
+// A load-cell offset against the slow part of coloured noise: the offset is
+// the same in every tenth of the record, the noise's slow part is not.
+//   Offset 300 N in 500 N of white noise: each 2 s span's mean has a standard
+//   deviation 500/√2000 = 11.2 N, the standard error of ten spans 3.5 N:
+//   300 N is 85 of them. Kept.
+//   No offset, a slow wander 200 N·sin(2π t / 13 s) over 20 s: the record's
+//   mean is 200·(13/2π)(1 − cos(2π·20/13))/20 = 200·2.069·1.971/20 = 40.8 N,
+//   fitted as an offset; the spans' means swing between about ±190 N (standard
+//   deviation ~140 N, standard error ~45 N): 40.8 N is under one. Rejected.
+//   The same wander beside a real 2 kN offset: ~45 standard errors. Kept.
+TEST(DiscrepancyBaseline, AnOffsetIsConstantOverTheRecordTheNoisesSlowPartWanders) {
+  test::Normals n(10);
+  std::vector<double> t, white, wander;
+  for (int k = 0; k < 20000; ++k) {
+    t.push_back(k * 1e-3);
+    white.push_back(500.0 * n.next());
+    wander.push_back(200.0 * std::sin(2.0 * units::kPi * t.back() / 13.0));
+  }
+  // Residuals of a fitted model with the offset in it: the data less the offset.
+  const auto residual = [](const std::vector<double>& data, double offset) {
+    std::vector<double> r = data;
+    for (double& x : r) x -= offset;
+    return r;
+  };
+  std::vector<double> with_offset = white;
+  for (double& x : with_offset) x += 300.0;
+  EXPECT_EQ(offset_wander(t, residual(with_offset, 300.0), 300.0), "");
+  double mean = 0.0;
+  for (const double x : wander) mean += x / 20000.0;
+  EXPECT_NEAR(mean, 40.8, 0.5);
+  EXPECT_NE(offset_wander(t, residual(wander, mean), mean).find("slow part of the noise"), std::string::npos);
+  std::vector<double> both = wander;
+  for (double& x : both) x += 2000.0;
+  EXPECT_EQ(offset_wander(t, residual(both, 2000.0 + mean), 2000.0 + mean), "");
+}
+
 }  // namespace
 }  // namespace mrd::discrepancy
 
