@@ -28,8 +28,13 @@ value(I) = limit + (at_zero - limit) exp(-rate_per_a |I|)):
   bingham       F = TF(v) (Y sgn v + C v), Eq. 4.1-4.4             v_tf_m_s
   bingham_tanh  F = Y tanh(v / v_tf) + C v (a smoother transition)  v_tf_m_s
   bouc_wen      F = Y z + C v + k0 x, normalized Spencer et al. (1997)  yield_disp_m, stiffness_n_m
---law auto fits all three (--law bingham both Bingham transitions; --transition linear or
-tanh only one). Each is then fitted again with each extra in turn, on top of those kept before:
+and, with its own current laws ([spencer]: alpha quadratic, c0 and c1 affine, gamma exponential
+in |I|; A = 300, n = 2, beta = gamma, x0 = 0 held):
+  spencer       Spencer et al. (1997)'s modified Bouc-Wen model, F = c1 y' + k1 (x - x0),
+                y' = (alpha z + c0 x' + k0 (x - y)) / (c0 + c1), z' of Bouc-Wen on x' - y'
+--law auto fits them all (--law bingham both Bingham transitions; --transition linear or
+tanh only one); spencer takes no extra and auto chooses it only on --check records.
+Each other form is then fitted again with each extra in turn, on top of those kept before:
   transition time (bingham only): TF's band widens to v_tf_m_s + transition_time_s |a|, so the
     force builds over a time after a reversal, not over a velocity      transition_time_s
   lost motion: a share of the force builds only after the piston has moved m_per_n * Y(I)
@@ -96,7 +101,7 @@ const std::map<std::string, discrepancy::LostMotionForm> kLostMotionForms{
 void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_option("--measured", o.measured, "Characterization records (CSV or .mat)")->required();
   add_out_option(app, o.out_dir, "Folder for damper.toml, summary.json, report.md and plots");
-  app.add_option("--law", o.law, "bingham, bouc_wen or auto (all, chosen as above)")->capture_default_str();
+  app.add_option("--law", o.law, "bingham, bouc_wen, spencer or auto (all, chosen as above)")->capture_default_str();
   app.add_option("--transition", o.transition, "Bingham transition: linear (Eq. 4.4), tanh or auto (both)")
       ->capture_default_str();
   app.add_option("--check", o.check, "Records not fitted: the calibrated models' gap on each is reported");
@@ -131,8 +136,10 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
     opt.law = discrepancy::BaseLaw::bingham;
   } else if (o.law == "bouc_wen") {
     opt.law = discrepancy::BaseLaw::bouc_wen;
+  } else if (o.law == "spencer") {
+    opt.law = discrepancy::BaseLaw::spencer;
   } else if (o.law != "auto") {
-    throw io::UsageError("--law: expected bingham, bouc_wen or auto, got '" + o.law + "'");
+    throw io::UsageError("--law: expected bingham, bouc_wen, spencer or auto, got '" + o.law + "'");
   }
   return opt;
 }

@@ -132,6 +132,12 @@ DamperFile thesis_damper() {
 
 DamperFile parse_damper_toml(const std::string& text, const std::string& origin) {
   const BaselineFile f = discrepancy::parse_baseline_toml(text, origin);
+  if (f.baseline.law == BaseLaw::spencer) {
+    const toml::table root = discrepancy::parse_toml(text, origin);
+    discrepancy::fail_at(origin, where(root, "model", "law"), "model.law",
+                         "\"spencer\" is a baseline of `mrd discrepancy`, `mrd synth` and `mrd calibrate`; the "
+                         "closed loop's laws are \"bingham\" and \"bouc_wen\"");
+  }
   DamperFile d;
   d.name = f.baseline.name;
   d.params = damper_params(f.baseline);

@@ -7,7 +7,14 @@
 
 namespace mrd::discrepancy {
 
-const char* base_law_name(BaseLaw law) noexcept { return law == BaseLaw::bouc_wen ? "bouc_wen" : "bingham"; }
+const char* base_law_name(BaseLaw law) noexcept {
+  switch (law) {
+    case BaseLaw::bouc_wen: return "bouc_wen";
+    case BaseLaw::spencer: return "spencer";
+    case BaseLaw::bingham: break;
+  }
+  return "bingham";
+}
 
 std::string baseline_form_name(const Baseline& b) {
   return std::string(base_law_name(b.law)) + (b.has_tanh_transition() ? "_tanh" : "") +
@@ -20,7 +27,33 @@ double CurrentLaw::at(double current_a, double participant_ratio) const noexcept
   return b + (at_zero - b) * std::exp(-rate_per_a * std::fabs(current_a));
 }
 
-double Baseline::force_scale_n() const noexcept { return std::fabs(yield_n.at(range.current_max_a)); }
+double Baseline::force_scale_n() const noexcept {
+  if (law == BaseLaw::spencer) {
+    const double f = std::fabs(physics::spencer_yield_force_n(spencer.at(range.current_max_a)));
+    return std::isfinite(f) ? f : 0.0;
+  }
+  return std::fabs(yield_n.at(range.current_max_a));
+}
+
+physics::SpencerParams published_lab_spencer() {
+  physics::SpencerParams p;
+  p.k0_n_m = 1.501e-4 * 1e3;
+  p.k1_n_m = 1.2388 * 1e3;
+  p.x0_m = 2.309e-3 * 1e-3;
+  p.alpha_n_m = 15.221 * 1e3;
+  p.alpha_per_a_n_m = 41.508 * 1e3;
+  p.alpha_per_a2_n_m = -38.152 * 1e3;
+  p.gamma_per_m_pow_n = 1.8941 * 1e6;
+  p.gamma_rate_per_a = 3.6561;
+  p.beta_over_gamma = 1.0;
+  p.c0_ns_m = 0.9249 * 1e3;
+  p.c0_per_a_ns_m = 7.626 * 1e3;
+  p.c1_ns_m = 9.867 * 1e3;
+  p.c1_per_a_ns_m = 78.337 * 1e3;
+  p.a = 300.0;
+  p.n = 2.0;
+  return p;
+}
 
 Baseline thesis_baseline() {
   Baseline b;

@@ -69,16 +69,29 @@
 /// the fluid's chains and the valve's pressure take a time to form again
 /// (the response time of MR fluid and of the compressed volume, a few
 /// milliseconds), not a velocity. τ = 0 is Eq. 4.4 as the thesis has it.
+///
+/// A third law, `spencer`, is Spencer et al. (1997)'s modified Bouc–Wen
+/// model with its own current laws (physics/spencer_law.hpp: Eq. (8)–(10)
+/// of the paper, α quadratic, c_0 and c_1 affine, γ exponential in the
+/// current). It keeps its parameters in Baseline::spencer; yield_n,
+/// viscous_ns_m, v_tf_m_s, yield_disp_m and stiffness_n_m do not act, and it
+/// carries no lost motion or transition time. Its coil current is Eq. 4.5's,
+/// which with equal time constants is the paper's first-order filter
+/// u̇ = −η (u − v) (Eq. (14), η = 1/τ) acting on the current rather than a
+/// voltage: the laws are in amperes, as the laboratory's published fit has
+/// them, and one coil model serves every law (a calibration fits its time
+/// constants only from records whose current changes, calibrate.hpp).
 
 #include <cmath>
 #include <string>
 
 #include "mrd/physics/current_dynamics.hpp"
 #include "mrd/physics/participant_ratio.hpp"
+#include "mrd/physics/spencer_law.hpp"
 
 namespace mrd::discrepancy {
 
-enum class BaseLaw { bingham, bouc_wen };
+enum class BaseLaw { bingham, bouc_wen, spencer };
 
 [[nodiscard]] const char* base_law_name(BaseLaw law) noexcept;
 
@@ -119,6 +132,7 @@ struct Baseline {
   double v_tf_m_s = 0.010;           ///< Eq. 4.4 transition velocity (bingham); low-velocity band (both)
   double yield_disp_m = 0.0;         ///< x_y (bouc_wen)
   double stiffness_n_m = 0.0;        ///< k_0 (bouc_wen)
+  physics::SpencerParams spencer{};  ///< the spencer law's parameters and current laws (spencer only)
   double lost_motion_m_per_n = 0.0;  ///< λ: width of the lost motion at reversals per newton of Y(i), m/N (0 = none)
   double lost_motion_share = 0.0;    ///< r: share of the force held up by it, [0, 1]
   double lost_motion_band_m_s = 0.0;  ///< v_p: band of the force inside the play, m/s (0 = none: the share form)
@@ -141,9 +155,12 @@ struct Baseline {
   double expected_gap = 0.0;
 
   /// Yield force at the top of the current range, PR = 1: the force scale
-  /// the effects' force-valued bounds are measured against, N.
+  /// the effects' force-valued bounds are measured against, N (spencer:
+  /// the force of its saturated hysteretic element, spencer_yield_force_n).
   [[nodiscard]] double force_scale_n() const noexcept;
-  [[nodiscard]] bool has_lost_motion() const noexcept { return lost_motion_m_per_n > 0.0 && lost_motion_share > 0.0; }
+  [[nodiscard]] bool has_lost_motion() const noexcept {
+    return law != BaseLaw::spencer && lost_motion_m_per_n > 0.0 && lost_motion_share > 0.0;
+  }
   /// A lost motion whose force inside the play grows over the band v_p.
   [[nodiscard]] bool has_viscous_lost_motion() const noexcept { return has_lost_motion() && lost_motion_band_m_s > 0.0; }
   [[nodiscard]] bool has_transition_time() const noexcept {
@@ -178,6 +195,18 @@ inline constexpr double kTransitionAccelHalfWindow_s = 0.005;
 /// The thesis's damper: Table 4.1, Eq. 4.5, Table 5.6; range 0–2.5 A (the
 /// drive's rating, §3.1), |v| ≤ 0.2491 m/s (Table 3.1), 200 kN.
 [[nodiscard]] Baseline thesis_baseline();
+
+/// The laboratory's published fit of Spencer et al. (1997)'s model to the
+/// damper of the shared records (README, discrepancy section), in SI: given
+/// in N, mm and s with A = 300, n = 2, β = γ,
+/// <pre>
+///   k_0 = 1.501e-4 N/mm, k_1 = 1.2388 N/mm, x_0 = 2.309e-3 mm
+///   α(i) = −38.152 i² + 41.508 i + 15.221 N/mm,  γ(i) = 1.8941 exp(−3.6561 i) mm⁻²
+///   c_0(i) = 7.626 i + 0.9249 N·s/mm,  c_1(i) = 78.337 i + 9.867 N·s/mm
+/// </pre>
+/// that is N/mm × 10³ = N/m, N·s/mm × 10³ = N·s/m, mm × 10⁻³ = m and
+/// mm⁻² × 10⁶ = m⁻² (z a length, A dimensionless). Its range: 0–1 A.
+[[nodiscard]] physics::SpencerParams published_lab_spencer();
 
 /// Force scale of the thesis damper: Y at 2.5 A, N. Effect bounds given in
 /// newtons are for this scale and are multiplied by force_scale_n()/this.

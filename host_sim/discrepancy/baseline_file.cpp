@@ -1,5 +1,6 @@
 #include "host_sim/discrepancy/baseline_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "host_sim/discrepancy/physical_ranges.hpp"
@@ -66,6 +67,26 @@ void law_table(std::string& t, const char* name, const char* comment, const Curr
   t += "fitted = " + fitted_list(f) + "  # the others are held (sigma 0)\n";
 }
 
+/// [spencer]: Spencer et al. (1997)'s model and its current laws (physics/spencer_law.hpp).
+void spencer_table(std::string& t, const physics::SpencerParams& p) {
+  t += "\n[spencer]  # Spencer et al. (1997): F = c1 y' + k1 (x - x0), Eq. (8)-(10); |I| in A\n";
+  t += "alpha_n_m = " + num(p.alpha_n_m) + "  # alpha(I) = alpha_n_m + alpha_per_a_n_m |I| + alpha_per_a2_n_m I^2\n";
+  t += "alpha_per_a_n_m = " + num(p.alpha_per_a_n_m) + "\n";
+  t += "alpha_per_a2_n_m = " + num(p.alpha_per_a2_n_m) + "\n";
+  t += "c0_ns_m = " + num(p.c0_ns_m) + "  # c0(I) = c0_ns_m + c0_per_a_ns_m |I|\n";
+  t += "c0_per_a_ns_m = " + num(p.c0_per_a_ns_m) + "\n";
+  t += "c1_ns_m = " + num(p.c1_ns_m) + "  # c1(I) = c1_ns_m + c1_per_a_ns_m |I|\n";
+  t += "c1_per_a_ns_m = " + num(p.c1_per_a_ns_m) + "\n";
+  t += "gamma_per_m_pow_n = " + num(p.gamma_per_m_pow_n) + "  # gamma(I) = gamma_per_m_pow_n exp(-gamma_rate_per_a |I|)\n";
+  t += "gamma_rate_per_a = " + num(p.gamma_rate_per_a) + "\n";
+  t += "beta_over_gamma = " + num(p.beta_over_gamma) + "\n";
+  t += "a = " + num(p.a) + "  # A, dimensionless (z is a length)\n";
+  t += "n = " + num(p.n) + "\n";
+  t += "k0_n_m = " + num(p.k0_n_m) + "\n";
+  t += "k1_n_m = " + num(p.k1_n_m) + "\n";
+  t += "x0_m = " + num(p.x0_m) + "\n";
+}
+
 // ---- reading ---------------------------------------------------------------
 
 using Table = TomlTable;
@@ -83,7 +104,8 @@ BaseLaw law_named(const std::string& s, const std::string& origin, const toml::s
                   const std::string& field) {
   if (s == "bingham") return BaseLaw::bingham;
   if (s == "bouc_wen") return BaseLaw::bouc_wen;
-  fail(origin, where, field, "expected \"bingham\" or \"bouc_wen\", got \"" + s + "\"");
+  if (s == "spencer") return BaseLaw::spencer;
+  fail(origin, where, field, "expected \"bingham\", \"bouc_wen\" or \"spencer\", got \"" + s + "\"");
 }
 
 /// The `transition` key of table `t`: true for "tanh", false for "linear".
@@ -138,6 +160,54 @@ void read_coil_circuit(Table& c, CoilCircuit& circuit) {
   if (circuit.inductance_1a_h && *circuit.inductance_2a_h > *circuit.inductance_1a_h)
     c.refuse("inductance_2a_h", "expected at most inductance_1a_h (" + num(*circuit.inductance_1a_h) +
                                     " H): the iron saturates, the inductance does not grow with the current");
+}
+
+/// [spencer]; its laws' signs are checked against the current range once
+/// [validity] is read (check_spencer_laws).
+physics::SpencerParams read_spencer(const toml::table& root, const std::string& origin) {
+  Table t(table_of(root, "spencer", origin), "spencer", origin);
+  physics::SpencerParams p;
+  p.alpha_n_m = t.in("alpha_n_m", kStiffnessRange);
+  p.alpha_per_a_n_m = t.in("alpha_per_a_n_m", kSpencerAlphaSlopeRange);
+  p.alpha_per_a2_n_m = t.in("alpha_per_a2_n_m", kSpencerAlphaSlopeRange);
+  p.c0_ns_m = t.in("c0_ns_m", kViscousRange);
+  p.c0_per_a_ns_m = t.in("c0_per_a_ns_m", kSpencerViscousSlopeRange);
+  p.c1_ns_m = t.in("c1_ns_m", kViscousRange);
+  p.c1_per_a_ns_m = t.in("c1_per_a_ns_m", kSpencerViscousSlopeRange);
+  p.gamma_per_m_pow_n = t.in("gamma_per_m_pow_n", kSpencerGammaRange);
+  p.gamma_rate_per_a = t.in("gamma_rate_per_a", kCurrentRateRange);
+  p.beta_over_gamma = t.in("beta_over_gamma", kSpencerBetaRatioRange);
+  p.a = t.in("a", kSpencerARange);
+  p.n = t.in("n", kSpencerExponentRange);
+  p.k0_n_m = t.in("k0_n_m", kStiffnessRange);
+  p.k1_n_m = t.in("k1_n_m", kStiffnessRange);
+  p.x0_m = t.in("x0_m", kSpencerRestStrokeRange);
+  t.no_unknown_keys();
+  return p;
+}
+
+/// α, c_0 and c_1 of [spencer] at 0 A and at the largest current of
+/// [validity] (a quadratic α also at its vertex when inside): α and c_0 not
+/// negative, c_1 positive (ẏ divides by c_0 + c_1).
+void check_spencer_laws(const toml::table& root, const physics::SpencerParams& p, const ValidityRange& v,
+                        const std::string& origin) {
+  Table t(table_of(root, "spencer", origin), "spencer", origin);
+  const double top = std::max(std::fabs(v.current_min_a), std::fabs(v.current_max_a));
+  std::vector<double> at{0.0, top};
+  if (p.alpha_per_a2_n_m != 0.0) {
+    const double vertex = -p.alpha_per_a_n_m / (2.0 * p.alpha_per_a2_n_m);
+    if (vertex > 0.0 && vertex < top) at.push_back(vertex);
+  }
+  for (const double i : at) {
+    const std::string where = " at " + num(i) + " A (the [validity] current range reaches " + num(top) + " A)";
+    if (p.alpha_at(i) < 0.0)
+      t.refuse(i == 0.0 ? "alpha_n_m" : "alpha_per_a_n_m", "alpha(I) = " + num(p.alpha_at(i)) + " N/m" + where +
+                                                                ": expected a stiffness of at least 0");
+    if (p.c0_at(i) < 0.0)
+      t.refuse("c0_per_a_ns_m", "c0(I) = " + num(p.c0_at(i)) + " N s/m" + where + ": expected at least 0");
+    if (!(p.c1_at(i) > 0.0))
+      t.refuse("c1_per_a_ns_m", "c1(I) = " + num(p.c1_at(i)) + " N s/m" + where + ": expected more than 0");
+  }
 }
 
 physics::DamperRating read_rating(const toml::table& table, const std::string& origin) {
@@ -195,11 +265,15 @@ std::string baseline_toml(const BaselineFile& f) {
   t += "source_records = [";
   for (std::size_t i = 0; i < f.source_records.size(); ++i) t += (i ? ", " : "") + quoted(f.source_records[i]);
   t += "]\n";
-  law_table(t, "yield_n", "Y(I) = limit + (at_zero - limit) exp(-rate_per_a |I|), N (Eq. 4.2)", b.yield_n,
-            f.sigma.yield_n, f.yield_fitted, kYieldForceRange);
-  law_table(t, "viscous_ns_m", "C(I), the same law, N s/m (Eq. 4.3)", b.viscous_ns_m, f.sigma.viscous_ns_m,
-            f.viscous_fitted, kViscousRange);
-  if (b.law == BaseLaw::bingham) {
+  if (b.law != BaseLaw::spencer) {
+    law_table(t, "yield_n", "Y(I) = limit + (at_zero - limit) exp(-rate_per_a |I|), N (Eq. 4.2)", b.yield_n,
+              f.sigma.yield_n, f.yield_fitted, kYieldForceRange);
+    law_table(t, "viscous_ns_m", "C(I), the same law, N s/m (Eq. 4.3)", b.viscous_ns_m, f.sigma.viscous_ns_m,
+              f.viscous_fitted, kViscousRange);
+  }
+  if (b.law == BaseLaw::spencer) {
+    spencer_table(t, b.spencer);
+  } else if (b.law == BaseLaw::bingham) {
     t += std::string("\n[bingham]  # transition function, ") + (b.has_tanh_transition() ? "tanh" : "Eq. 4.4") + "\n";
     t += "v_tf_m_s = " + num(b.v_tf_m_s) + "\n";
     t += sigma_line("v_tf_m_s_sigma", f.sigma.v_tf_m_s, kVelocityBandRange);
@@ -303,8 +377,8 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
   Baseline& b = f.baseline;
   b = thesis_baseline();
   no_unknown_tables(root,
-                    {"model", "yield_n", "viscous_ns_m", "bingham", "bouc_wen", "lost_motion", "channels", "coil",
-                     "participant_ratio", "validity", "rating", "geometry", "fit"},
+                    {"model", "yield_n", "viscous_ns_m", "bingham", "bouc_wen", "spencer", "lost_motion", "channels",
+                     "coil", "participant_ratio", "validity", "rating", "geometry", "fit"},
                     origin);
   {
     Table m(table_of(root, "model", origin), "model", origin);
@@ -313,13 +387,23 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     if (m.has("source_records")) f.source_records = m.strings("source_records");
     m.no_unknown_keys();
   }
-  read_law(root, "yield_n", origin, b.yield_n, f.sigma.yield_n, f.yield_fitted, kYieldForceRange);
-  read_law(root, "viscous_ns_m", origin, b.viscous_ns_m, f.sigma.viscous_ns_m, f.viscous_fitted, kViscousRange);
-  const char* own = b.law == BaseLaw::bingham ? "bingham" : "bouc_wen";
-  const char* other = b.law == BaseLaw::bingham ? "bouc_wen" : "bingham";
-  if (const toml::node* n = root.get(other))
-    fail(origin, n->source(), other, std::string("not allowed with model.law = \"") + own + "\"");
-  {
+  const char* own = base_law_name(b.law);
+  for (const char* other : {"bingham", "bouc_wen", "spencer"}) {
+    if (std::string(other) == own) continue;
+    if (const toml::node* n = root.get(other))
+      fail(origin, n->source(), other, std::string("not allowed with model.law = \"") + own + "\"");
+  }
+  if (b.law == BaseLaw::spencer) {
+    // The spencer law has its own current laws: Eq. 4.2-4.3's do not act.
+    for (const char* unused : {"yield_n", "viscous_ns_m", "lost_motion"})
+      if (const toml::node* n = root.get(unused))
+        fail(origin, n->source(), unused, "not allowed with model.law = \"spencer\" (its current laws are in [spencer])");
+    b.spencer = read_spencer(root, origin);
+  } else {
+    read_law(root, "yield_n", origin, b.yield_n, f.sigma.yield_n, f.yield_fitted, kYieldForceRange);
+    read_law(root, "viscous_ns_m", origin, b.viscous_ns_m, f.sigma.viscous_ns_m, f.viscous_fitted, kViscousRange);
+  }
+  if (b.law != BaseLaw::spencer) {
     Table t(table_of(root, own, origin), own, origin);
     if (b.law == BaseLaw::bingham) {
       b.v_tf_m_s = t.in("v_tf_m_s", kVelocityBandRange);
@@ -407,6 +491,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     order(r.frequency_min_hz, r.frequency_max_hz, "frequency_max_hz", "frequency_min_hz");
     v.no_unknown_keys();
   }
+  if (b.law == BaseLaw::spencer) check_spencer_laws(root, b.spencer, b.range, origin);
   if (const toml::table* t = optional_table(root, "rating", origin)) f.rating = read_rating(*t, origin);
   if (const toml::table* t = optional_table(root, "geometry", origin)) f.geometry = read_geometry(*t, origin);
   if (const toml::node* n = root.get("fit")) {

@@ -6,13 +6,19 @@
 /// (host_sim/damper/damper_file.hpp).
 ///
 /// <pre>
-///   [model]          law ("bingham" | "bouc_wen"), name, source_records
+///   [model]          law ("bingham" | "bouc_wen" | "spencer"), name, source_records
 ///   [yield_n]        at_zero, limit, rate_per_a (1/A), each with _sigma; fitted = [...]   Eq. 4.2
 ///   [viscous_ns_m]   the same for the viscous coefficient, N·s/m                           Eq. 4.3
 ///   [bingham]        v_tf_m_s, v_tf_m_s_sigma                                              Eq. 4.4
 ///                    transition ("linear", Eq. 4.4, when absent | "tanh")
 ///                    transition_time_s, transition_time_s_sigma (only when the baseline has one)
 ///   [bouc_wen]       yield_disp_m, stiffness_n_m, each with _sigma
+///   [spencer]        alpha_n_m, alpha_per_a_n_m, alpha_per_a2_n_m, c0_ns_m, c0_per_a_ns_m,
+///                    c1_ns_m, c1_per_a_ns_m, gamma_per_m_pow_n, gamma_rate_per_a,
+///                    beta_over_gamma, a, n, k0_n_m, k1_n_m, x0_m          Spencer et al. (1997)
+///                    (physics/spencer_law.hpp; no _sigma: a calibration reports its
+///                    standard errors, of α, c_0 and c_1 at the records' currents, in
+///                    calibration.txt); with it no [yield_n], [viscous_ns_m] or [lost_motion]
 ///   [lost_motion]    m_per_n (m/N), share, each with _sigma (only when the baseline has one);
 ///                    band_m_s (m/s) with _sigma when the force inside the play grows over a band
 ///   [channels]       force_delay_s, force_delay_s_sigma
@@ -32,7 +38,7 @@
 ///                    viscous_lost_motion (when true), gap, samples
 ///                    (one per record and form fitted)
 /// </pre>
-/// Only the table of the model's law ([bingham] or [bouc_wen]) may be present.
+/// Only the table of the model's law ([bingham], [bouc_wen] or [spencer]) may be present.
 /// A file written by hand may leave out what only a calibration has: the
 /// standard errors (`*_sigma`, 0 when absent), `fitted` (none), `source_records`
 /// (none), [channels] (no lag) and [[fit]].

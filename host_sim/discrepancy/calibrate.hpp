@@ -2,9 +2,13 @@
 /// Calibrating a baseline (baseline.hpp) to the user's damper from
 /// characterization records: a joint bounded least-squares fit of the
 /// Bingham model (Eq. 4.1–4.4) and of the normalized Bouc–Wen model with the
-/// exponential current laws of Eq. 4.2–4.3, standard errors from the
-/// Jacobian, the choice between the two by BIC, and the validity range the
-/// records cover.
+/// exponential current laws of Eq. 4.2–4.3, and of Spencer et al. (1997)'s
+/// model with its own current laws (α through its values at the records'
+/// lowest, middle and highest current, c_0 and c_1 through the lowest and
+/// highest, γ exponential, k_1, k_0; A = 300, n = 2, β = γ and x_0 = 0
+/// held: A's scale is z's, β = γ the paper's and the laboratory's choice),
+/// standard errors from the Jacobian, the choice between them, and the
+/// validity range the records cover.
 ///
 /// Joint fit: every record's residual (F_model − F_meas) is divided by that
 /// record's RMS force, so that records weigh alike whatever their force
@@ -92,7 +96,10 @@ enum class TransitionShape { both, linear, tanh };
 enum class LostMotionForm { both, share, viscous };
 
 struct CalibrateOptions {
-  std::optional<BaseLaw> law;  ///< nullopt: fit both, choose the lower BIC
+  std::optional<BaseLaw> law;  ///< nullopt: fit every law (auto), choose as CalibrationResult says
+  /// Whether auto fits the spencer law too (a fit of eleven parameters
+  /// through a stiff ODE, minutes on a laboratory's fifteen records).
+  bool auto_spencer = true;
   /// The Bingham law with Eq. 4.4's transition, with a tanh one, or both
   /// (each a law of its own in the BIC choice).
   TransitionShape transition = TransitionShape::both;
@@ -121,7 +128,8 @@ struct CalibrationResult {
   /// (Bingham), + lost motion, each on top of the extras kept before it. The
   /// chosen one: of the forms each with its kept extras, the lowest RMS gap
   /// on the check records; without check records (no extra kept), the plain
-  /// form of lowest BIC.
+  /// form of lowest BIC, spencer excepted (auto chooses it only on check
+  /// records: it has no extras, its own freedom is what they judge).
   std::vector<LawFit> fits;
   std::size_t chosen = 0;    ///< index into fits
   std::string choice_reason;

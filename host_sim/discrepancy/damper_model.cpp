@@ -246,6 +246,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double* b_y = base_b_y_.data();
   const double* a_c = base_a_c_.data();
   const double* b_c = base_b_c_.data();
+  const double* coil_a = base_current_a_.data();
   if (set.contains(Effect::coil_lag)) {
     coil_current(tau_scale, ws.current_a);
     coefficients(ws.current_a, ws.a_y, ws.b_y, ws.a_c, ws.b_c);
@@ -253,6 +254,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
     b_y = ws.b_y.data();
     a_c = ws.a_c.data();
     b_c = ws.b_c.data();
+    coil_a = ws.current_a.data();
   }
 
   // Damper motion: the actuator's, or through the free play of the mounting.
@@ -279,7 +281,10 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const bool tanh_shape = p_.has_tanh_transition();
   const double tau_s = p_.transition_time_s;
   const bool preyield = set.contains(Effect::preyield_hysteresis) && param(Effect::preyield_hysteresis, 0, 0.0) > 0.0;
-  const bool bouc_wen = p_.law == BaseLaw::bouc_wen || preyield;
+  // The spencer law has its own pre-yield (Eq. (9)): a preyield_hysteresis
+  // effect leaves it as it is.
+  const bool spencer = p_.law == BaseLaw::spencer;
+  const bool bouc_wen = !spencer && (p_.law == BaseLaw::bouc_wen || preyield);
   const double x_y = preyield ? param(Effect::preyield_hysteresis, 0, 0.0) : p_.yield_disp_m;
   const double asym = param(Effect::direction_asymmetry, 0, 0.0);
   const double k_0 = p_.stiffness_n_m;
@@ -300,6 +305,11 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   double pr = 1.0;
   double decay = 1.0;  // exp(−c_PR ∫Q dt), ∫Q dt in volume units, updated by a factor per step
   double z = 0.0;      // Bouc–Wen variable; the record starts unloaded
+  // spencer: (y, z) from rest at the first stroke, its coefficients
+  // recomputed when the current, the participant ratio or the fade changes.
+  physics::SpencerState sp{n > 0 ? xd[0] : 0.0, 0.0};
+  physics::SpencerCoefficients sc;
+  double sc_key[4] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0};
   for (std::size_t k = 0; k < n; ++k) {
     const double v = vd[k];
     const double av = std::fabs(v);
@@ -313,7 +323,24 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
     const double dt = step_s_[k];
     double fb = 0.0;
     double elastic = 0.0;
-    if (bouc_wen) {
+    if (spencer) {
+      const double phi_y = thermal ? std::max(1.0 - alpha_y * energy_j, 0.0) : 1.0;
+      const double phi_v = thermal ? std::max(1.0 - alpha_v * energy_j, 0.0) : 1.0;
+      if (!(sc_key[0] == coil_a[k] && sc_key[1] == pr && sc_key[2] == phi_y && sc_key[3] == phi_v)) {
+        sc = p_.spencer.at(coil_a[k], pr);
+        sc.alpha_n_m *= phi_y;
+        sc.c0_ns_m *= phi_v;
+        sc.c1_ns_m *= phi_v;
+        sc_key[0] = coil_a[k];
+        sc_key[1] = pr;
+        sc_key[2] = phi_y;
+        sc_key[3] = phi_v;
+      }
+      // Eq. (8) less its spring, which joins the elastic part.
+      fb = sc.c1_ns_m * physics::spencer_y_rate(sc, sp, xd[k], v);
+      elastic = sc.k1_n_m * (xd[k] - sc.x0_m);
+      sp = physics::spencer_state_after(sc, sp, xd[k], v, dt);
+    } else if (bouc_wen) {
       fb = fy * z + cv * v;
       elastic = k_0 * xd[k];
       z = bouc_wen_step(z, v, dt, x_y);

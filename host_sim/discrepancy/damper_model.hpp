@@ -1,6 +1,6 @@
 #pragma once
 /// The baseline damper model (baseline.hpp: the thesis's chapter-4 model or
-/// a calibrated Bingham or Bouc–Wen model) driven by a measured record, with
+/// a calibrated Bingham, Bouc–Wen or Spencer model) driven by a measured record, with
 /// any set of catalogue effects added. Built for many evaluations of one
 /// record: the coil current of Eq. 4.5 and the current-dependent laws are
 /// computed once; an evaluation is one pass over the samples.
@@ -22,6 +22,9 @@
 ///              with v_TF + τ|ā[k]| for TF's band, ā the actuator's acceleration
 ///              averaged over ±5 ms (the baseline's transition time τ, baseline.hpp)
 ///            = φ_y Y(i, PR) z[k] + φ_v C(i, PR) v_d + k_0 x_d,  z[k+1] = bouc_wen_step   (bouc_wen)
+///            = c_1 ẏ[k] + k_1 (x_d − x_0), Eq. (8)–(10) of Spencer et al. (1997) with α ×φ_y,
+///              c_0, c_1 ×φ_v at (i, PR); (y, z)[k+1] = spencer_state_after   (spencer;
+///              y starts at x_d[0], z at 0; a preyield_hysteresis effect leaves it as it is)
 ///   F_b[k]  ×= (1 − r) + r e_lm[k]   (the baseline's lost motion, width λ Y(i) on x_d, baseline.hpp)
 ///   F_b[k]  ×= 1 + a sgn v_d                                                   (direction_asymmetry)
 ///   F_b: the bouc_wen form with x_y fitted, on either baseline              (preyield_hysteresis)

@@ -80,6 +80,31 @@ inline constexpr PhysicalRange kForceDelayRange{0.0, 0.1, "s", "a lag"};
 /// valve's pressure take to form again.
 inline constexpr PhysicalRange kTransitionTimeRange{1e-6, 0.1, "s", "a time"};
 
+// ---- the spencer law (Spencer et al. 1997, physics/spencer_law.hpp) ------------------
+
+/// α's change per ampere (and per ampere squared), k_1 and k_0 being
+/// stiffnesses of kStiffnessRange: either sign, at most the largest stiffness
+/// per ampere (a law that changes by more within 1 A leaves that range).
+inline constexpr PhysicalRange kSpencerAlphaSlopeRange{-kStiffnessRange.max, kStiffnessRange.max, "N/m per A^k",
+                                                       "a stiffness change"};
+/// c_0's and c_1's change per ampere: either sign, at most the largest
+/// viscous coefficient per ampere.
+inline constexpr PhysicalRange kSpencerViscousSlopeRange{-kViscousRange.max, kViscousRange.max, "N s/m per A",
+                                                         "a viscous coefficient change"};
+/// γ at 0 A, 1/m^n: 0 is no saturation; 1e30 saturates z (a length) below
+/// 1 nm with A up to 1e6 and n = 2, below any sensor (the laboratory damper:
+/// 1.9e6 1/m², z saturating at 9 mm).
+inline constexpr PhysicalRange kSpencerGammaRange{0.0, 1e30, "1/m^n", "a Bouc-Wen coefficient"};
+/// β/γ: 0 (β = 0) to 1000; β + γ must stay positive for z to saturate
+/// (Spencer et al. 1997 fit β = γ).
+inline constexpr PhysicalRange kSpencerBetaRatioRange{0.0, 1e3, "", "a ratio"};
+/// A: from 1e-6 to 1e6 (dimensionless; the laboratory damper's 300).
+inline constexpr PhysicalRange kSpencerARange{1e-6, 1e6, "", "a Bouc-Wen coefficient"};
+/// n: 1 to 10 (the paper's and the laboratory's 2).
+inline constexpr PhysicalRange kSpencerExponentRange{1.0, 10.0, "", "an exponent"};
+/// x_0, the accumulator spring's rest stroke: within the largest half stroke.
+inline constexpr PhysicalRange kSpencerRestStrokeRange{-kMaxHalfStroke_m, kMaxHalfStroke_m, "m", "a stroke"};
+
 // ---- the coil (Eq. 4.5) ----------------------------------------------------------
 
 /// A time constant of the coil and its drive: from 1 µs, shorter than the

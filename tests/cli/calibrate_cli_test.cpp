@@ -199,7 +199,7 @@ TEST_F(CalibrateCli, BadLawAndBadBaselineFileAreOneLineErrors) {
   std::ofstream(bad) << "[model]\nlaw = \"spring\"\n";
   const auto r = run_mrd("discrepancy --measured " + a.string() + " --baseline " + bad.string(), scratch_.path());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "mrd: error: " + bad.string() + ":2: model.law: expected \"bingham\" or \"bouc_wen\", got \"spring\"\n");
+  EXPECT_EQ(r.err, "mrd: error: " + bad.string() + ":2: model.law: expected \"bingham\", \"bouc_wen\" or \"spencer\", got \"spring\"\n");
 }
 
 }  // namespace

@@ -365,7 +365,7 @@ TEST(DamperFile, RefusesBadFilesNamingFileLineAndField) {
       {"no rating, no current", edited(without_table(t, "rating"), "current_max_a = 2.5 ", "current_max_a = 0.0 "),
        "current_max_a", "validity.current_max_a", "add a [rating] table"},
       {"unknown law", edited(t, "law = \"bingham\"", "law = \"spring\""), "law = ", "model.law",
-       "expected \"bingham\" or \"bouc_wen\", got \"spring\""},
+       "expected \"bingham\", \"bouc_wen\" or \"spencer\", got \"spring\""},
       {"unknown transition", edited(t, "transition = \"linear\"", "transition = \"cubic\""), "transition = ",
        "bingham.transition", "expected \"linear\" or \"tanh\""},
       {"participant ratio above 1", edited(t, "a_initial = 1.0", "a_initial = 1.5"), "a_initial",
