@@ -67,6 +67,15 @@ struct SignatureInput {
   std::span<const double> model_force_n;
   std::span<const double> residual_n;  ///< measured − model
   double low_velocity_band_m_s = 0.01;
+  /// The model already carries a coil lag, a settling or a fade: the
+  /// history signatures of that physics (current_lag_*, volume_recovery_*,
+  /// heating) are then reported but not counted in structured_share. What the
+  /// named effect leaves in its own shape is a detail of its form (one coil
+  /// time constant or two, a deficit recovering at another rate), not a
+  /// further effect.
+  bool model_has_coil_lag = false;
+  bool model_has_settling = false;
+  bool model_has_fade = false;
 };
 
 /// Fits on `train` and judges on `held_out` (sample indices).

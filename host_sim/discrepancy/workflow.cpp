@@ -505,11 +505,17 @@ void add_traces_and_regions(DiscrepancyResult& res, const DamperModel& model, co
   res.windows = localize_time(tr);
 }
 
+/// `named`: the effects in the model whose residual this is (signatures.hpp: their own history
+/// signatures are not counted as structure).
 SignatureAnalysis signatures_of(const DiscrepancyResult& res, const MeasuredData& data,
-                                std::span<const double> model_force_n, const SampleSplit& split, double v_band_m_s) {
+                                std::span<const double> model_force_n, const SampleSplit& split, double v_band_m_s,
+                                const EffectSet& named) {
   std::vector<double> resid(data.size());
   for (std::size_t k = 0; k < resid.size(); ++k) resid[k] = data.force_n[k] - model_force_n[k];
-  const SignatureInput in{data.time_s, res.disp_m, res.vel_m_s, res.coil_current_a, model_force_n, resid, v_band_m_s};
+  SignatureInput in{data.time_s, res.disp_m, res.vel_m_s, res.coil_current_a, model_force_n, resid, v_band_m_s};
+  in.model_has_coil_lag = named.contains(Effect::coil_lag);
+  in.model_has_settling = named.contains(Effect::idle_settling);
+  in.model_has_fade = named.contains(Effect::thermal_fade);
   return analyse_residual(in, split.train, split.held_out);
 }
 
@@ -719,8 +725,8 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   res.params = current.params;
   add_traces_and_regions(res, model, data, current, split, ws);
   const double band = model.baseline().v_tf_m_s;
-  res.signatures_before = signatures_of(res, data, res.baseline_force_n, split, band);
-  res.signatures_after = signatures_of(res, data, res.updated_force_n, split, band);
+  res.signatures_before = signatures_of(res, data, res.baseline_force_n, split, band, EffectSet{});
+  res.signatures_after = signatures_of(res, data, res.updated_force_n, split, band, current.set);
   if (res.baseline_check.mismatch) {
     res.verdict = Verdict::baseline_mismatch;
     if (res.baseline_check.force_scale_outside) {
