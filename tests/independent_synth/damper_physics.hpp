@@ -22,6 +22,8 @@ inline constexpr double kCoilTauSlow_s = 0.7;
 inline constexpr double kCoilTauFast_s = 0.03;
 inline constexpr double kCoilWeightSlow = 0.5;
 inline constexpr double kCoilWeightFast = 0.5;
+/// Eq. 4.5's mean delay (the first moment of its impulse response), s: ½·0.7 + ½·0.03.
+inline constexpr double kCoilMeanTau_s = kCoilWeightSlow * kCoilTauSlow_s + kCoilWeightFast * kCoilTauFast_s;
 
 /// Effective flow area that turns |v| into the flow rate Q of Eq. 5.9, m²;
 /// ∫Q dt is counted in litres.

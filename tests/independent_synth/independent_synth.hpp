@@ -48,6 +48,18 @@ inline constexpr std::array kOutOfCatalogueEffects{Effect::tanh_transition, Effe
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;
 [[nodiscard]] bool in_catalogue(Effect e) noexcept;
 
+/// Full ranges of the sensors an ADC quantizes: the 250 kN load cell (±250 kN)
+/// and an LVDT of ±150 mm.
+inline constexpr double kLoadCellRange_n = 500.0e3;
+inline constexpr double kLvdtRange_m = 0.300;
+inline constexpr int kPinkSections = 8;
+/// The 1/f noise's slowest correlation time, s: a tenth of the 20 s record.
+/// A part slower than that changes little over the record: there it is a
+/// load-cell zero offset or drift (an offset the workflow rightly names),
+/// not noise, so the clean records keep it out; the linear drift is drawn
+/// on its own.
+inline constexpr double kPinkSlowest_s = 2.0;
+
 /// Range of the drawn ENR.
 inline constexpr double kEnrMin = 0.25;
 inline constexpr double kEnrMax = 64.0;
@@ -58,8 +70,9 @@ struct Spec {
   double duration_s = 20.0;
   double rate_hz = 1000.0;
   int oversample = 10;
-  /// ENR every effect is sized to; ≤ 0: drawn per effect, log-uniform in [kEnrMin, kEnrMax].
+  /// ENR every effect is sized to; ≤ 0: drawn per effect, log-uniform in [enr_min, kEnrMax].
   double target_enr = -1.0;
+  double enr_min = kEnrMin;
 };
 
 /// Force-channel and displacement sensor models of one record.
@@ -68,9 +81,15 @@ struct SensorModel {
   double force_white_n = 0.0;           ///< white, RMS
   double force_coloured_n = 0.0;        ///< AR(1), stationary RMS
   double force_correlation_s = 0.0;     ///< AR(1) correlation time
+  /// 1/f (pink) noise, RMS: a sum of kPinkSections AR(1) processes of equal
+  /// variance with correlation times spaced evenly in log from 2 ms to
+  /// kPinkSlowest_s (equal variance per Lorentzian at log-spaced corners gives
+  /// a 1/f density between the corners).
+  double force_pink_n = 0.0;
   double force_drift_n = 0.0;           ///< linear drift over the record, end minus start
   double disp_quantum_m = 0.0;          ///< 0 = none
   double force_quantum_n = 0.0;         ///< 0 = none
+  int adc_bits = 0;                     ///< quanta from an ADC of this many bits over the ranges below; 0 = not an ADC
   double timing_jitter_s = 0.0;         ///< RMS of sampling instant minus time stamp
 };
 
@@ -79,6 +98,12 @@ struct Case {
   std::vector<double> time_s, displacement_m, current_cmd_a, force_n;
   // The truth.
   std::vector<Effect> effects;
+  /// Per effect, its physical form (e.g. "cooling", "impact_spring"), drawn per case.
+  std::vector<std::string> forms;
+  /// The force noise's colour ("white", "ar1", "pink"), the quantization
+  /// ("none", "fine" for 1 µm and 10 N, "adcNN") and the test motion
+  /// ("sine", "multisine", "random", "chirp").
+  std::string noise_form, quantization_form, motion_form;
   std::vector<double> target_enr;       ///< per effect (NaN where the effect has no size to tune)
   std::vector<double> enr;              ///< per effect, achieved, with the others present
   /// Per effect, for force_lowpass and series_compliance (whose leading term
@@ -86,6 +111,10 @@ struct Case {
   /// effect delayed by d) / RMS(noise), what no pure delay reproduces. NaN
   /// for the other effects.
   std::vector<double> enr_beyond_delay;
+  /// Per effect, for a gas spring with its preload (a constant a force_offset
+  /// reproduces): RMS(difference less its mean) / RMS(noise), the spring's
+  /// part. NaN otherwise.
+  std::vector<double> enr_beyond_offset;
   EffectParams params;
   SensorModel sensors;
   double force_noise_rms_n = 0.0;       ///< RMS of the force noise actually added

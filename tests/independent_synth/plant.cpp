@@ -94,6 +94,11 @@ class MotionStepper {
   [[nodiscard]] double a() const {
     double sum = 0.0;
     for (const auto& p : phasors_) sum -= p.amp_m_s2 * p.s;
+    if (m_.chirp.amplitude_m != 0.0) {
+      // The sweep computed directly (its frequency changes every step).
+      const Motion sweep{0.0, 0.0, {}, m_.chirp};
+      sum += sweep.acceleration_m_s2(static_cast<double>(j_) * h_);
+    }
     return sum;
   }
   void step() {
@@ -120,6 +125,10 @@ class MotionStepper {
       } else {
         sum += p.amp_m * p.s;
       }
+    }
+    if (m_.chirp.amplitude_m != 0.0) {
+      const Motion sweep{0.0, 0.0, {}, m_.chirp};
+      sum += velocity ? sweep.velocity_m_s(t) : sweep.displacement_m(t);
     }
     return sum;
   }
@@ -155,18 +164,24 @@ FineRun simulate(const Scenario& s, Channels channels) {
   }
 
   const double u0 = s.current.at(0.0);
-  Coil coil{kCoilTauSlow_s * e.coil_tau_scale, kCoilTauFast_s * e.coil_tau_scale, u0, u0};
+  // One lag: both halves with the same time constant.
+  Coil coil = e.coil_single_lag
+                  ? Coil{kCoilMeanTau_s * e.coil_tau_scale, kCoilMeanTau_s * e.coil_tau_scale, u0, u0}
+                  : Coil{kCoilTauSlow_s * e.coil_tau_scale, kCoilTauFast_s * e.coil_tau_scale, u0, u0};
   const PrLaw law = pr_law(e.settling_quotient);
   DamperLaw damper{e};
   const double half_play = 0.5 * e.free_play_m;
   const double filter_gain = e.force_filter_s > 0.0 ? 1.0 - std::exp(-h / e.force_filter_s) : 1.0;
+  const double aa_gain = e.delay_filter_s > 0.0 ? 1.0 - std::exp(-h / e.delay_filter_s) : 1.0;
+  const bool impact = play && e.contact_stiffness_n_m > 0.0;
   const double cooling = e.cooling_time_s > 0.0 ? std::exp(-h / e.cooling_time_s) : 1.0;
 
   // The rod starts against the side of the play the actuator is moving towards.
   double xd = s.motion.displacement_m(0.0) - half_play * sgn(s.motion.velocity_m_s(0.0));
   double volume_l = 0.0;
   double temp_k = 0.0;
-  double channel_n = e.force_offset_n;
+  double channel_n = e.force_offset_n + e.gas_preload_n;
+  double aa_n = channel_n;
 
   MotionStepper motion(s.motion, h);
   double vd_before = s.motion.velocity_m_s(0.0);
@@ -175,12 +190,26 @@ FineRun simulate(const Scenario& s, Channels channels) {
     const double xa = motion.x();
     const double va = motion.v();
     const double current = coil.current_a();
-    const double pr = e.settling_quotient > 0.0 ? participant_ratio(law, volume_l) : 1.0;
+    const double pr = e.settling_quotient <= 0.0        ? 1.0
+                      : e.settling_recovery_l > 0.0 ? 1.0 - (1.0 - law.a_pr) * std::exp(-volume_l / e.settling_recovery_l)
+                                                    : participant_ratio(law, volume_l);
     damper.set_state(current, pr, temp_k);
 
     // Rod motion.
     double vd = va;
-    if (play && e.contact_fraction > 0.0) {
+    if (impact) {
+      // Backward Euler through the contact spring: F_d(v) = k_c dz(x_a(t + h) − x_d − h v), dz the
+      // dead zone of the half play; the left side rises and the right side falls with v.
+      const double k = e.contact_stiffness_n_m;
+      const double gap = motion.x_next() - xd;
+      const auto dead_zone = [&](double u) { return u > half_play ? u - half_play : (u < -half_play ? u + half_play : 0.0); };
+      double lo = -2.0, hi = 2.0;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (damper.force_n(mid) - k * dead_zone(gap - h * mid) > 0.0 ? hi : lo) = mid;
+      }
+      vd = 0.5 * (lo + hi);  // x_d advances with the other states
+    } else if (play && e.contact_fraction > 0.0) {
       vd = smooth_rod_velocity(xa, va, xd, half_play, e.contact_fraction * e.free_play_m);
     } else if (play) {
       // Play operator: the rod moves only when the actuator pushes it, and then at its velocity.
@@ -206,11 +235,14 @@ FineRun simulate(const Scenario& s, Channels channels) {
     // Rod acceleration: the actuator's (exact) when the rod follows it rigidly, else a backward difference.
     const double ad = !play && !compliant ? motion.a() : (j > 0 ? (vd - vd_before) / h : 0.0);
     vd_before = vd;
-    const double f = fd + e.gas_stiffness_n_m * xd * (1.0 + e.gas_nonlinearity_per_m2 * xd * xd) +
+    const double f = fd + e.gas_preload_n + e.gas_stiffness_n_m * xd * (1.0 + e.gas_nonlinearity_per_m2 * xd * xd) +
                      e.fluid_mass_kg * ad + e.force_offset_n;
-    // The filter's output at t_j has seen the force up to t_(j−1), held over each step.
-    run.force_channel_n[j] = e.force_filter_s > 0.0 ? channel_n : f;
+    // Each filter's output at t_j has seen its input up to t_(j−1), held over each step; the
+    // acquisition's anti-alias filter follows the force low-pass.
+    const double stage1 = e.force_filter_s > 0.0 ? channel_n : f;
+    run.force_channel_n[j] = e.delay_filter_s > 0.0 ? aa_n : stage1;
     channel_n += filter_gain * (f - channel_n);
+    aa_n += aa_gain * (stage1 - aa_n);
     if (states) {
       run.coil_current_a[j] = current;
       run.rod_disp_m[j] = xd;
@@ -220,6 +252,7 @@ FineRun simulate(const Scenario& s, Channels channels) {
     }
 
     // Advance the states to t + h.
+    if (impact) xd += h * vd;
     volume_l += std::abs(vd) * kFlowArea_m2 * h * 1000.0;
     const double power_w = std::max(0.0, fd * vd);
     temp_k = e.cooling_time_s > 0.0

@@ -19,15 +19,26 @@ namespace indep {
 struct EffectParams {
   // idle_settling: settling quotient of Eq. 5.5 as a fraction (0 = fully mixed).
   double settling_quotient = 0.0;
+  // idle_settling's second form (> 0): a settled layer that remixes fully,
+  // PR = 1 − (1 − a_PR(SQ)) e^(−V / V_r) with its own recovery volume V_r, L,
+  // instead of Eq. 5.9's PR = b_PR + (a_PR − b_PR) e^(−c_PR V) (which keeps a
+  // lasting deficit 1 − b_PR and recovers at c_PR(SQ)).
+  double settling_recovery_l = 0.0;
   // backlash: total free play between actuator and rod, m; a contact length
   // > 0 makes the engagement smooth (tanh of the penetration over it), given
   // as a fraction of the free play. The rod starts against the side the
   // actuator first moves towards.
   double free_play_m = 0.0;
   double contact_fraction = 0.0;
-  // gas_spring: F += k x (1 + ε x²), x the rod's displacement.
+  // backlash with impact stiffness (> 0, hard play only): at the end of the
+  // play the actuator pushes the rod through a contact spring of this
+  // stiffness, N/m (a rubber or polymer pad, a bolt in bending).
+  double contact_stiffness_n_m = 0.0;
+  // gas_spring: F += F_p + k x (1 + ε x²), x the rod's displacement, F_p the
+  // accumulator's preload (gas pressure on the rod's area at x = 0).
   double gas_stiffness_n_m = 0.0;
   double gas_nonlinearity_per_m2 = 0.0;
+  double gas_preload_n = 0.0;
   // thermal_fade: ΔT from dissipated power into heat capacity C, cooling with
   // time constant τ_cool (0 = adiabatic); yield and viscosity multiplied by
   // 1 − α ΔT (linear) or exp(−α ΔT) (exponential).
@@ -36,10 +47,15 @@ struct EffectParams {
   bool fade_exponential = false;
   double heat_capacity_j_per_k = 60.0e3;
   double cooling_time_s = 0.0;
-  // time_delay: the force channel lags by this much, s.
+  // time_delay: the force channel lags by this much, s; in its second form
+  // behind a first-order anti-alias filter of the acquisition (time constant, s).
   double force_delay_s = 0.0;
-  // coil_lag: both time constants of Eq. 4.5 multiplied by this.
+  double delay_filter_s = 0.0;
+  // coil_lag: both time constants of Eq. 4.5 multiplied by this; with
+  // coil_single_lag, one first-order lag (an L/R coil) of time constant
+  // kCoilMeanTau_s times this instead (Eq. 4.5's mean delay ½·0.7 + ½·0.03 s).
   double coil_tau_scale = 1.0;
+  bool coil_single_lag = false;
   // force_offset: load-cell zero, N.
   double force_offset_n = 0.0;
   // direction_asymmetry: the damper's force multiplied by 1 + a while

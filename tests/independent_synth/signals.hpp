@@ -36,14 +36,26 @@ struct SineComponent {
   double phase_rad;
 };
 
-/// x(t) = offset + ramp·t + Σ A sin(2π f t + φ), m.
+/// A linear sweep A sin(2π (f₀ t + ½ r t²)), r the sweep rate (f₁ − f₀)/T; amplitude 0 = none.
+struct Chirp {
+  double amplitude_m = 0.0;
+  double start_hz = 0.0;
+  double rate_hz_per_s = 0.0;
+
+  [[nodiscard]] double phase_rad(double t_s) const;
+  [[nodiscard]] double frequency_hz(double t_s) const { return start_hz + rate_hz_per_s * t_s; }
+};
+
+/// x(t) = offset + ramp·t + Σ A sin(2π f t + φ) + chirp(t), m.
 struct Motion {
   double offset_m = 0.0;
   double ramp_m_s = 0.0;
   std::vector<SineComponent> sines;
+  Chirp chirp;
 
   [[nodiscard]] double displacement_m(double t_s) const;
   [[nodiscard]] double velocity_m_s(double t_s) const;
+  [[nodiscard]] double acceleration_m_s2(double t_s) const;
 };
 
 /// Commanded current, A: `levels_a[j]` from `start_s[j]` on (start_s[0] = −∞ in effect).
