@@ -27,6 +27,7 @@
 /// whenever the velocity passed the threshold within 1.6e−5 m/s of it.
 
 #include <cmath>
+#include <type_traits>
 
 #include "firmware/core/numeric_formats.hpp"
 #include "mrd/units.hpp"
@@ -66,7 +67,12 @@ class VelocityEstimator {
   Velocity step(float x) noexcept {
     const float dx = x - x_prev_;
     x_prev_ = x;
-    d_ = d_ + num::mul<Velocity>(beta_, num::from_float<Velocity>(dx * stroke_to_velocity_) - d_);
+    if constexpr (std::is_floating_point_v<Velocity>) {
+      // Float and double: s_V = s_D (numeric_formats.hpp), no scaling.
+      d_ = d_ + num::mul<Velocity>(beta_, static_cast<Velocity>(dx) - d_);
+    } else {
+      d_ = d_ + num::mul<Velocity>(beta_, num::from_float<Velocity>(dx * stroke_to_velocity_) - d_);
+    }
     return d_;
   }
 
