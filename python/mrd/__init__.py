@@ -1,10 +1,23 @@
-"""mrd from Python: the closed loop of ``mrd sim`` as a function.
+"""mrd from Python: the closed loop of ``mrd sim`` as a function, many in
+SIMD lanes, your own objects and control law, and the study commands.
 
-``mrd.sim(...)`` runs one closed-loop earthquake run exactly as ``mrd sim``
-does (same options, same checks, same numbers) and returns its summary as a
-dict (summary.json's fields) and its time series as NumPy arrays (timeseries.csv's
-columns, lent by the run without a copy). ``controller=`` puts a control law
-written in Python in the loop in place of the firmware core.
+- ``mrd.sim(...)`` runs one closed-loop earthquake run exactly as ``mrd sim``
+  does (same options, same checks, same numbers) and returns its summary as a
+  dict (summary.json's fields), its PlantSummary as ``peaks`` and its time
+  series as NumPy arrays (timeseries.csv's columns, lent by the run without a
+  copy). ``controller=`` puts a control law written in Python in the loop in
+  place of the firmware core: it costs about a microsecond a tick over the
+  core's passive mode (python/tests/test_controller.py prints the figure).
+- ``mrd.batch(records, scale, idle_years, control, building=...)`` runs many
+  closed loops on one plant in the C++ batch path's SIMD lanes, with the GIL
+  released, and returns one NumPy array per PlantSummary field; its peaks
+  equal mrd.sim's bit for bit (records from ``mrd.load_motion``).
+- ``mrd.Building``, ``mrd.Damper``, ``mrd.Fluid`` (from files or dicts that
+  mirror the files' tables) and ``mrd.Record`` (from an array and its step):
+  checked by the CLI's file readers, accepted wherever a file is.
+- ``mrd.fragility``, ``mrd.risk``, ``mrd.schedule``, ``mrd.calibrate``,
+  ``mrd.discrepancy``: the ``mrd`` program's commands with keyword options,
+  their summary.json as a dict and CSV tables as NumPy arrays.
 
 Bad input raises :class:`mrd.UsageError` (a ValueError) with the message
 ``mrd`` prints after ``mrd: error:``.
@@ -17,9 +30,33 @@ from typing import Any, Callable, Dict, Optional, Union
 
 import numpy as np
 
+from ._batch import PEAK_FIELDS, BatchResult, batch
+from ._cli import CommandResult, calibrate, discrepancy, fragility, risk, run_command, schedule
 from ._mrd import Sensors, UsageError, _sim
+from ._objects import Building, Damper, Fluid, Motion, Record, as_file, load_motion
 
-__all__ = ["sim", "SimResult", "Sensors", "UsageError"]
+__all__ = [
+    "sim",
+    "SimResult",
+    "Sensors",
+    "UsageError",
+    "batch",
+    "BatchResult",
+    "PEAK_FIELDS",
+    "load_motion",
+    "Motion",
+    "Building",
+    "Damper",
+    "Fluid",
+    "Record",
+    "fragility",
+    "risk",
+    "schedule",
+    "calibrate",
+    "discrepancy",
+    "run_command",
+    "CommandResult",
+]
 
 
 class SimResult:
@@ -31,13 +68,17 @@ class SimResult:
         timeseries: dict of read-only float64 NumPy arrays, one per column of
             timeseries.csv, in its order (time_s, ground_accel_m_s2,
             base_disp_m, ..., story_<k>_drift_m); one value per control tick.
+        peaks: the run's plant::PlantSummary as a dict of floats, the fields
+            of mrd.PEAK_FIELDS in SI units (what mrd.batch returns per run).
     """
 
-    __slots__ = ("summary", "timeseries")
+    __slots__ = ("summary", "timeseries", "peaks")
 
-    def __init__(self, summary: Dict[str, Any], timeseries: Dict[str, np.ndarray]) -> None:
+    def __init__(self, summary: Dict[str, Any], timeseries: Dict[str, np.ndarray],
+                 peaks: Optional[Dict[str, float]] = None) -> None:
         self.summary = summary
         self.timeseries = timeseries
+        self.peaks = {} if peaks is None else peaks
 
     def __repr__(self) -> str:
         s = self.summary
@@ -49,7 +90,7 @@ class SimResult:
 
 
 def sim(
-    record: Optional[str] = None,
+    record: Union[None, str, Record] = None,
     pga_g: float = 0.1127,
     control: Optional[str] = None,
     numeric: Optional[str] = None,
@@ -61,15 +102,16 @@ def sim(
     plant: str = "thesis",
     sensor_seed: int = 1,
     offset_mm: float = 3.0,
-    building: Optional[str] = None,
-    damper: Optional[str] = None,
-    fluid: Optional[str] = None,
+    building: Union[None, str, Building] = None,
+    damper: Union[None, str, Damper] = None,
+    fluid: Union[None, str, Fluid] = None,
     controller: Union[None, Callable[[Sensors], float], Any] = None,
 ) -> SimResult:
     """Run one closed loop as ``mrd sim`` does; each argument is its option.
 
     Args:
-        record: ground-motion file (CSV time_s,accel_m_s2 or PEER .AT2); None:
+        record: ground-motion file (CSV time_s,accel_m_s2 or PEER .AT2) or
+            an mrd.Record; None:
             a synthetic Kanai-Tajimi motion (``seed``); "none": no ground motion.
         pga_g: PGA the record is scaled to, g (Table 6.3: 0.1127).
         control: "passive-off" | "passive-on" | "semi-active"; None: passive-off,
@@ -84,7 +126,8 @@ def sim(
         plant: "thesis" | "hardware".
         sensor_seed: seed of the hardware plant's sensor noise.
         offset_mm: hardware plant: damper parked this far off its stroke centre, mm.
-        building, damper, fluid: building, damper and fluid files (None: the thesis's).
+        building, damper, fluid: building, damper and fluid files, or
+            mrd.Building, mrd.Damper, mrd.Fluid (None: the thesis's).
         controller: None for the firmware control core (``control`` mode), or
             a Python control law: a callable, or an object with a
             ``step(sensors)`` method (and optionally ``reset()``, called before
@@ -100,7 +143,7 @@ def sim(
         UsageError: a bad option value or file, with the CLI's message.
     """
     raw = _sim(
-        "" if record is None else record,
+        as_file(record, "record"),
         pga_g,
         control,
         numeric,
@@ -112,11 +155,11 @@ def sim(
         plant,
         sensor_seed,
         offset_mm,
-        "" if building is None else building,
-        "" if damper is None else damper,
-        "" if fluid is None else fluid,
+        as_file(building, "building"),
+        as_file(damper, "damper"),
+        as_file(fluid, "fluid"),
         controller,
     )
     summary = json.loads(raw.summary_json)
     timeseries = {name: np.asarray(column) for name, column in raw.columns}
-    return SimResult(summary, timeseries)
+    return SimResult(summary, timeseries, dict(raw.peaks))

@@ -16,7 +16,9 @@
 #include "host_sim/io/usage_error.hpp"
 #include "host_sim/run/run_outputs.hpp"
 #include "host_sim/run/sim_run.hpp"
+#include "python/src/bindings.hpp"
 #include "python/src/controller_adapter.hpp"
+#include "python/src/peak_fields.hpp"
 
 namespace py = pybind11;
 
@@ -35,9 +37,11 @@ struct Column {
   const std::vector<double>* values;
 };
 
-/// What _sim returns: the summary as JSON text (summary.json's) and the columns.
+/// What _sim returns: the summary as JSON text (summary.json's), the run's
+/// plant::PlantSummary as named numbers (peak_fields.hpp) and the columns.
 struct RawResult {
   std::string summary_json;
+  std::vector<std::pair<std::string, double>> peaks;
   std::vector<std::pair<std::string, Column>> columns;
 };
 
@@ -85,6 +89,8 @@ RawResult sim(const std::string& record, double pga_g, const std::optional<std::
   auto holder = std::make_shared<RunHolder>(RunHolder{run::run_sim(spec, *c)});
   RawResult result;
   result.summary_json = run::sim_summary_json(holder->run).dump();
+  const std::vector<double> values = peak_values(holder->run.summary);
+  for (std::size_t i = 0; i < values.size(); ++i) result.peaks.emplace_back(peak_names()[i], values[i]);
   for (const run::ClosedLoopColumn& col : run::closed_loop_columns(holder->run.record)) {
     result.columns.emplace_back(col.name, Column{holder, col.values});
   }
@@ -127,10 +133,13 @@ PYBIND11_MODULE(_mrd, m) {
 
   py::class_<RawResult>(m, "RawResult")
       .def_readonly("summary_json", &RawResult::summary_json)
+      .def_readonly("peaks", &RawResult::peaks)
       .def_readonly("columns", &RawResult::columns);
 
   m.def("_sim", &sim, py::arg("record"), py::arg("pga_g"), py::arg("control"), py::arg("numeric"), py::arg("board"),
         py::arg("idle_years"), py::arg("duration_s"), py::arg("step_s"), py::arg("seed"), py::arg("plant"),
         py::arg("sensor_seed"), py::arg("offset_mm"), py::arg("building"), py::arg("damper"), py::arg("fluid"),
         py::arg("controller"), "One closed-loop run (see mrd.sim).");
+  add_batch(m);
+  add_objects(m);
 }
