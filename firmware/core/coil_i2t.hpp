@@ -51,6 +51,8 @@ class CoilI2t {
   using Current = typename Formats<Policy>::Current;
   using Square = typename Formats<Policy>::Square;
   using Coef = typename Formats<Policy>::Coef;
+  using Mask = typename LaneTypes<Policy>::Mask;
+  using Count = typename LaneTypes<Policy>::Count;
 
   /// `time_constant_s` τ, `period_s` T, `rated_a` I_r, `derate_fraction` f in (0, 1).
   void init(double time_constant_s, double period_s, double rated_a, double derate_fraction) noexcept {
@@ -63,23 +65,29 @@ class CoilI2t {
     reset();
   }
 
-  void reset() noexcept {
-    mean_square_ = Square{};
-    sum_ = Square{};
-    count_ = 0;
-    ceiling_a_ = rated_a_;
+  void reset(Mask m = num::all_set<Mask>()) noexcept {
+    mean_square_ = num::select(m, Square{}, mean_square_);
+    sum_ = num::select(m, Square{}, sum_);
+    count_ = num::select(m, Count{}, count_);
+    ceiling_a_ = num::select(m, rated_a_, ceiling_a_);
   }
 
-  /// One tick with the measured coil current.
-  void step(Current coil_a) noexcept {
-    sum_ = sum_ + sixteenth_of_square(coil_a);
-    if (++count_ < kCoilI2tDecimation) return;
-    count_ = 0;
-    mean_square_ = mean_square_ + num::mul<Square>(alpha_, sum_ - mean_square_);
-    sum_ = Square{};
+  /// One tick with the measured coil current (in the lanes of `m`; the
+  /// others keep their state).
+  void step(Current coil_a, Mask m = num::all_set<Mask>()) noexcept {
+    sum_ = num::select(m, sum_ + sixteenth_of_square(coil_a), sum_);
+    count_ = num::select(m, count_ + 1u, count_);
+    const Mask full = count_ >= kCoilI2tDecimation;
+    if (!num::any(full)) return;
+    count_ = num::select(full, Count{}, count_);
+    mean_square_ = num::select(full, mean_square_ + num::mul<Square>(alpha_, sum_ - mean_square_), mean_square_);
+    sum_ = num::select(full, Square{}, sum_);
     const Square excess = mean_square_ - derate_from_;
-    ceiling_a_ = excess < Square{} ? rated_a_
-                                   : num::clamp(rated_a_ - num::mul<Current>(slope_, excess), Current{}, rated_a_);
+    ceiling_a_ = num::select(
+        full,
+        num::select(excess < Square{}, rated_a_,
+                    num::clamp(rated_a_ - num::mul<Current>(slope_, excess), Current{}, rated_a_)),
+        ceiling_a_);
   }
 
   /// The steady current allowed now: I_r, derated as the coil heats.
@@ -93,8 +101,8 @@ class CoilI2t {
   /// i²/16 in the Square format. Fixed point: i² rounded once into Q13.18,
   /// whose raw bits read as Q9.22 are i²/16 (no second product).
   static Square sixteenth_of_square(Current i) noexcept {
-    if constexpr (std::is_floating_point_v<Square>) {
-      return i * i * Square{0.0625f};
+    if constexpr (std::is_floating_point_v<Square> || num::LaneVector<Square>) {
+      return i * i * num::splat<Square>(0.0625f);
     } else {
       return Square::from_raw(num::mul<num::Fixed<13, 18>>(i, i).raw());
     }
@@ -107,7 +115,7 @@ class CoilI2t {
   Current slope_{};  ///< A per A²
   Square mean_square_{};
   Square sum_{};
-  std::uint32_t count_ = 0;
+  Count count_{};
   Current ceiling_a_{};
 };
 

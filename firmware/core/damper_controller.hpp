@@ -54,6 +54,7 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
 
 #include "firmware/core/coil_i2t.hpp"
 #include "firmware/core/controller_config.hpp"
@@ -68,29 +69,51 @@ namespace mrd::fw {
 
 /// The control core's own counters and state (what `status()` returns); not
 /// the CAN heartbeat protocol::ControllerStatus, which the control task sends.
-struct DamperControllerStatus {
-  std::uint64_t ticks = 0;  ///< step() calls since reset()
+/// For N lanes (LanePolicy<N>) every counter counts per lane.
+template <int N>
+struct BasicDamperControllerStatus {
+  using Set = LaneSet<N>;
+  using Count = typename Set::Count;
+  using Faults = typename BasicInputGuard<N>::Faults;
+  typename Set::Tick ticks{};  ///< step() calls since reset()
   control::ControlMode mode = control::ControlMode::kPassiveOff;
   bool initialized = false;
   ConfigError config_error = ConfigError::kNone;  ///< the last init()'s verdict
   /// Ticks on which a signal had a fault, by kind (index InputFault; kNone unused).
-  std::array<std::uint32_t, kInputFaultKinds> invalid_by_kind{};
+  std::array<Count, kInputFaultKinds> invalid_by_kind{};
   /// Ticks on which a signal had a fault, by signal (index InputSignal).
-  std::array<std::uint32_t, kInputSignals> invalid_by_signal{};
-  std::uint32_t stale_inputs = 0;           ///< ticks whose sample was stale
-  std::uint32_t drive_fault_ticks = 0;      ///< ticks with the drive's fault line asserted
-  std::uint32_t drive_disabled_ticks = 0;   ///< ticks the drive was disabled (fault + re-enable delay)
-  std::uint32_t held_ticks = 0;             ///< SAFE-2: last command repeated
-  std::uint32_t fallback_ticks = 0;         ///< SAFE-2: fallback current
-  std::uint32_t desired_force_clamps = 0;   ///< ticks with |F_d| clamped to the limit (saturation)
-  std::array<std::uint32_t, kOdbdcoBranches> branch_ticks{};  ///< ODBDCO branch taken (index OdbdcoBranch)
-  InputGuard::Faults last_faults{};         ///< the latest tick's fault per signal
-  bool last_input_stale = false;
+  std::array<Count, kInputSignals> invalid_by_signal{};
+  Count stale_inputs{};           ///< ticks whose sample was stale
+  Count drive_fault_ticks{};      ///< ticks with the drive's fault line asserted
+  Count drive_disabled_ticks{};   ///< ticks the drive was disabled (fault + re-enable delay)
+  Count held_ticks{};             ///< SAFE-2: last command repeated
+  Count fallback_ticks{};         ///< SAFE-2: fallback current
+  Count desired_force_clamps{};   ///< ticks with |F_d| clamped to the limit (saturation)
+  std::array<Count, kOdbdcoBranches> branch_ticks{};  ///< ODBDCO branch taken (index OdbdcoBranch)
+  Faults last_faults{};           ///< the latest tick's fault per signal
+  typename Set::Mask last_input_stale{};
 
-  constexpr std::uint32_t invalid(InputFault k) const noexcept { return invalid_by_kind[static_cast<int>(k)]; }
-  constexpr std::uint32_t invalid(InputSignal s) const noexcept { return invalid_by_signal[static_cast<int>(s)]; }
-  constexpr std::uint32_t branch(OdbdcoBranch b) const noexcept { return branch_ticks[static_cast<int>(b)]; }
+  constexpr Count invalid(InputFault k) const noexcept { return invalid_by_kind[static_cast<int>(k)]; }
+  constexpr Count invalid(InputSignal s) const noexcept { return invalid_by_signal[static_cast<int>(s)]; }
+  constexpr Count branch(OdbdcoBranch b) const noexcept { return branch_ticks[static_cast<int>(b)]; }
+
+  /// Counters and the latest tick's state back to zero in the lanes of `m`.
+  constexpr void clear(typename Set::Mask m) noexcept {
+    const auto zero = [m](auto& v) { v = num::select(m, std::remove_reference_t<decltype(v)>{}, v); };
+    zero(ticks);
+    for (Count& c : invalid_by_kind) zero(c);
+    for (Count& c : invalid_by_signal) zero(c);
+    for (Count* c : {&stale_inputs, &drive_fault_ticks, &drive_disabled_ticks, &held_ticks, &fallback_ticks,
+                     &desired_force_clamps}) {
+      zero(*c);
+    }
+    for (Count& c : branch_ticks) zero(c);
+    for (auto& f : last_faults) zero(f);
+    zero(last_input_stale);
+  }
 };
+
+using DamperControllerStatus = BasicDamperControllerStatus<1>;
 
 template <class Policy>
 class DamperController {
@@ -99,20 +122,31 @@ class DamperController {
   using Velocity = typename Formats<Policy>::Velocity;
   using Force = typename Formats<Policy>::Force;
   using Current = typename Formats<Policy>::Current;
+  static constexpr int kLanes = LaneTypes<Policy>::kLanes;
+  using Mask = typename LaneTypes<Policy>::Mask;
+  using Count = typename LaneTypes<Policy>::Count;
+  using Tick = typename LaneTypes<Policy>::Tick;
+  using Sample = typename LaneTypes<Policy>::Sample;
+  using Guard = BasicInputGuard<kLanes>;
+  using Faults = typename Guard::Faults;
+  using Status = BasicDamperControllerStatus<kLanes>;
+  using Input = typename ControlIo<kLanes>::Input;
+  using Output = typename ControlIo<kLanes>::Output;
 
   /// Validates and applies `config`, then reset(). On an error the
   /// controller is left uninitialized (0 A, drive disabled).
   ConfigError init(const ControllerConfig& config) noexcept;
 
-  /// Starts an episode: filters at rest, counters and tick count at zero.
-  void reset() noexcept;
+  /// Starts an episode: filters at rest, counters and tick count at zero
+  /// (lanes: in the lanes of `m`, the others run on).
+  void reset(Mask m = num::all_set<Mask>()) noexcept;
 
   /// Switches the control mode; the filters keep running.
   bool set_mode(control::ControlMode mode) noexcept;
 
-  control::ControllerOutput step(const control::ControllerInput& in) noexcept;
+  Output step(const Input& in) noexcept;
 
-  const DamperControllerStatus& status() const noexcept { return status_; }
+  const Status& status() const noexcept { return status_; }
   /// The coil I²t estimate (its ceiling and heating); currents in units of
   /// current_scale_a(), squares in its square.
   const CoilI2t<Policy>& coil_i2t() const noexcept { return i2t_; }
@@ -134,7 +168,7 @@ class DamperController {
 
   RildFilter<Policy> rild_{};
   VelocityEstimator<Policy> velocity_{};
-  InputGuard guard_{};
+  Guard guard_{};
   OdbdcoParams<Policy> odbdco_{};
   Odbdco<Policy> law_{};
   CoilI2t<Policy> i2t_{};
@@ -147,31 +181,44 @@ class DamperController {
   float force_out_ = 1.0f;    ///< s_F
   float current_in_ = 1.0f;   ///< 1/s_I
   float current_out_ = 1.0f;  ///< s_I
+  Tick max_input_age_ticks_{};
+  Count drive_reenable_delay_ticks_{};
 
-  std::uint64_t ticks_ = 0;
-  bool have_sample_ = false;
-  std::uint64_t last_sample_tick_ = 0;
-  bool primed_ = false;
-  bool disp_gap_ = false;
+  Tick ticks_{};
+  Mask have_sample_{};
+  Tick last_sample_tick_{};
+  Mask primed_{};
+  Mask disp_gap_{};
   Force desired_n_{};
   Current last_command_a_{};
-  std::uint32_t bad_run_ = 0;
-  std::uint32_t drive_hold_ = 0;
-  DamperControllerStatus status_{};
+  Count bad_run_{};
+  Count drive_hold_{};
+  Status status_{};
 
   // The parts of step(), always inlined: step() stays one function, as
   // measured (bench/) and cross-checked (tests/cross/core_cross_check.sh).
+  // Each is written with masks: `m ? a : b` per lane, and a block of state
+  // changes runs when some lane needs it (`num::any`).
   /// Counts the guard's faults and judges the sample's age; true when stale.
-  [[gnu::always_inline]] bool step_guard(const control::ControllerInput& in, std::uint64_t now,
-                                         const InputGuard::Faults& faults) noexcept;
+  [[gnu::always_inline]] Mask step_guard(const Input& in, Tick now, const Faults& faults) noexcept;
   /// RILD and the velocity estimate on a usable stroke.
-  [[gnu::always_inline]] void step_filters(const control::ControllerInput& in, bool disp_ok) noexcept;
-  /// The mode's command (SAFE-2 in semi-active on bad input); sets F_d in `out`.
-  [[gnu::always_inline]] Current step_law(const control::ControllerInput& in, const InputGuard::Faults& faults,
-                                          bool disp_ok, control::ControllerOutput& out) noexcept;
+  [[gnu::always_inline]] void step_filters(const Input& in, Mask disp_ok) noexcept;
+  /// The mode's command (SAFE-2 in semi-active on bad input) in the lanes of
+  /// `live` (the drive enabled); sets F_d in `out`.
+  [[gnu::always_inline]] Current step_law(const Input& in, const Faults& faults, Mask disp_ok, Mask live,
+                                          Output& out) noexcept;
 
   static constexpr void bump(std::uint32_t& c) noexcept {
     if (c != 0xffffffffu) ++c;
+  }
+  /// counts[index] + 1 where `m` is set (index per lane for lanes).
+  template <std::size_t K, class Index>
+  static constexpr void bump_at(std::array<Count, K>& counts, Index index, Mask m) noexcept {
+    if constexpr (kLanes == 1) {
+      if (m) bump(counts[static_cast<int>(index)]);
+    } else {
+      for (std::size_t k = 0; k < K; ++k) num::bump_where(counts[k], m && index == static_cast<int>(k));
+    }
   }
 };
 
@@ -197,6 +244,8 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
   force_out_ = static_cast<float>(sf);
   current_in_ = static_cast<float>(1.0 / si);
   current_out_ = static_cast<float>(si);
+  max_input_age_ticks_ = num::splat<Tick>(config.max_input_age_ticks);
+  drive_reenable_delay_ticks_ = num::splat<Count>(config.drive_reenable_delay_ticks);
   rild_.init(config.stiffness_n_m * sd / sf, config.loss_factor, config.filter_freq_rad_s, config.period_s);
   const double sv = scales_.velocity_m();
   velocity_.init(config.velocity_cutoff_hz, config.period_s, static_cast<float>(sd / sv));
@@ -228,24 +277,22 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
 }
 
 template <class Policy>
-void DamperController<Policy>::reset() noexcept {
-  rild_.reset();
-  velocity_.reset();
-  law_.reset();
-  i2t_.reset();
-  guard_.reset();
-  ticks_ = 0;
-  have_sample_ = false;
-  last_sample_tick_ = 0;
-  primed_ = false;
-  disp_gap_ = false;
-  desired_n_ = Force{};
-  last_command_a_ = fallback_a_;
-  bad_run_ = 0;
-  drive_hold_ = 0;
-  const ConfigError err = status_.config_error;
-  status_ = DamperControllerStatus{};
-  status_.config_error = err;
+void DamperController<Policy>::reset(Mask m) noexcept {
+  rild_.reset(m);
+  velocity_.reset(m);
+  law_.reset(m);
+  i2t_.reset(m);
+  guard_.reset(m);
+  ticks_ = num::select(m, Tick{}, ticks_);
+  have_sample_ = num::select(m, Mask{}, have_sample_);
+  last_sample_tick_ = num::select(m, Tick{}, last_sample_tick_);
+  primed_ = num::select(m, Mask{}, primed_);
+  disp_gap_ = num::select(m, Mask{}, disp_gap_);
+  desired_n_ = num::select(m, Force{}, desired_n_);
+  last_command_a_ = num::select(m, fallback_a_, last_command_a_);
+  bad_run_ = num::select(m, Count{}, bad_run_);
+  drive_hold_ = num::select(m, Count{}, drive_hold_);
+  status_.clear(m);
   status_.initialized = initialized_;
   status_.mode = mode_;
 }
@@ -258,123 +305,121 @@ bool DamperController<Policy>::set_mode(control::ControlMode mode) noexcept {
   }
   mode_ = mode;
   status_.mode = mode;
-  bad_run_ = 0;
+  bad_run_ = Count{};
   return true;
 }
 
 template <class Policy>
-control::ControllerOutput DamperController<Policy>::step(const control::ControllerInput& in) noexcept {
-  control::ControllerOutput out;
-  const std::uint64_t now = ticks_;
-  ++ticks_;
+typename DamperController<Policy>::Output DamperController<Policy>::step(const Input& in) noexcept {
+  Output out;
+  const Tick now = ticks_;
+  ticks_ = ticks_ + 1u;
   status_.ticks = ticks_;
   if (!initialized_) {
-    out.current_command_a = 0.0f;
-    out.drive_enable = false;
+    out.current_command_a = Sample{};
+    out.drive_enable = Mask{};
     return out;
   }
 
   // 1. Input guard and staleness.
-  const InputGuard::Faults faults = guard_.check(in);
-  const bool stale = step_guard(in, now, faults);
+  const Faults faults = guard_.check(in);
+  const Mask stale = step_guard(in, now, faults);
 
   // 2. Filters on a usable stroke.
-  const bool disp_ok = !stale && faults[InputGuard::idx(InputSignal::kDisp)] == InputFault::kNone;
+  const Mask disp_ok = !stale && faults[Guard::idx(InputSignal::kDisp)] == Guard::fault(InputFault::kNone);
   step_filters(in, disp_ok);
 
   // 3. Output: SAFE-1 (the drive's fault line) first, then the mode's law.
-  if (in.flags.drive_fault) {
-    bump(status_.drive_fault_ticks);
-    drive_hold_ = config_.drive_reenable_delay_ticks;
-  } else if (drive_hold_ > 0) {
-    --drive_hold_;
-  } else {
-    const Current command = step_law(in, faults, disp_ok, out);
-    last_command_a_ = command;
-    out.current_command_a = num::to_float(command) * current_out_;
-    out.drive_enable = true;
-    return out;
+  const Mask drive_fault = in.flags.drive_fault;
+  const Mask holding = !drive_fault && drive_hold_ > 0u;
+  const Mask live = !drive_fault && !holding;
+  if (!num::all(live)) {
+    num::bump_where(status_.drive_fault_ticks, drive_fault);
+    drive_hold_ = num::select(drive_fault, drive_reenable_delay_ticks_,
+                              num::select(holding, drive_hold_ - 1u, drive_hold_));
+    num::bump_where(status_.drive_disabled_ticks, !live);
   }
-  bump(status_.drive_disabled_ticks);
-  last_command_a_ = Current{};
-  out.current_command_a = 0.0f;
-  out.drive_enable = false;
+  Current command{};
+  if (num::any(live)) command = step_law(in, faults, disp_ok, live, out);
+  last_command_a_ = num::select(live, command, Current{});
+  out.current_command_a = num::select(live, num::to_float(command) * current_out_, Sample{});
+  out.drive_enable = live;
   return out;
 }
 
 template <class Policy>
-inline bool DamperController<Policy>::step_guard(const control::ControllerInput& in, std::uint64_t now,
-                                          const InputGuard::Faults& faults) noexcept {
+inline typename DamperController<Policy>::Mask DamperController<Policy>::step_guard(const Input& in, Tick now,
+                                                                              const Faults& faults) noexcept {
   for (int s = 0; s < kInputSignals; ++s) {
-    if (faults[s] != InputFault::kNone) {
-      bump(status_.invalid_by_kind[static_cast<int>(faults[s])]);
-      bump(status_.invalid_by_signal[s]);
+    const Mask bad = faults[s] != Guard::fault(InputFault::kNone);
+    if (num::any(bad)) {
+      bump_at(status_.invalid_by_kind, faults[s], bad);
+      num::bump_where(status_.invalid_by_signal[s], bad);
     }
   }
   status_.last_faults = faults;
-  const bool stale = in.tick > now || now - in.tick > config_.max_input_age_ticks ||
+  const Mask stale = in.tick > now || now - in.tick > max_input_age_ticks_ ||
                      (have_sample_ && in.tick <= last_sample_tick_);
   status_.last_input_stale = stale;
-  if (stale) {
-    bump(status_.stale_inputs);
-  } else {
-    have_sample_ = true;
-    last_sample_tick_ = in.tick;
-  }
+  num::bump_where(status_.stale_inputs, stale);
+  have_sample_ = have_sample_ || !stale;
+  last_sample_tick_ = num::select(stale, last_sample_tick_, in.tick);
   return stale;
 }
 
 template <class Policy>
-inline void DamperController<Policy>::step_filters(const control::ControllerInput& in, bool disp_ok) noexcept {
-  if (disp_ok) {
-    const float x_units = in.damper_disp_m * disp_in_;
+inline void DamperController<Policy>::step_filters(const Input& in, Mask disp_ok) noexcept {
+  if (num::any(disp_ok)) {
+    const Sample x_units = in.damper_disp_m * disp_in_;
     const Disp x = num::from_float<Disp>(x_units);
-    if (!primed_) {
-      rild_.prime(x);
-      velocity_.prime(x_units);
-      primed_ = true;
-    } else if (disp_gap_) {
-      velocity_.resync(x_units);
+    const Mask first = disp_ok && !primed_;
+    if (num::any(first)) {
+      rild_.prime(x, first);
+      velocity_.prime(x_units, first);
+      primed_ = primed_ || first;
     }
-    const Force fd = rild_.step(x);
+    const Mask gap = disp_ok && !first && disp_gap_;
+    if (num::any(gap)) velocity_.resync(x_units, gap);
+    const Force fd = rild_.step(x, disp_ok);
     const Force clamped = num::clamp(fd, -desired_limit_n_, desired_limit_n_);
-    if (!(clamped == fd)) bump(status_.desired_force_clamps);
-    desired_n_ = clamped;
-    (void)velocity_.step(x_units);
+    num::bump_where(status_.desired_force_clamps, disp_ok && !(clamped == fd));
+    desired_n_ = num::select(disp_ok, clamped, desired_n_);
+    (void)velocity_.step(x_units, disp_ok);
   }
   disp_gap_ = !disp_ok;
 }
 
 template <class Policy>
-inline typename DamperController<Policy>::Current DamperController<Policy>::step_law(const control::ControllerInput& in,
-                                                                             const InputGuard::Faults& faults,
-                                                                             bool disp_ok,
-                                                                             control::ControllerOutput& out) noexcept {
-  const bool coil_ok = faults[InputGuard::idx(InputSignal::kCoilCurrent)] == InputFault::kNone;
-  const bool usable = disp_ok && coil_ok && faults[InputGuard::idx(InputSignal::kForce)] == InputFault::kNone;
+inline typename DamperController<Policy>::Current DamperController<Policy>::step_law(const Input& in,
+                                                                             const Faults& faults, Mask disp_ok,
+                                                                             Mask live, Output& out) noexcept {
+  const Mask coil_ok = faults[Guard::idx(InputSignal::kCoilCurrent)] == Guard::fault(InputFault::kNone);
+  const Mask usable =
+      disp_ok && coil_ok && faults[Guard::idx(InputSignal::kForce)] == Guard::fault(InputFault::kNone);
   const Current coil_a = num::from_float<Current>(in.coil_current_a * current_in_);
-  if (coil_ok) i2t_.step(coil_a);
+  const Mask heat = live && coil_ok;
+  if (num::any(heat)) i2t_.step(coil_a, heat);
+  const Mask lawful = live && usable;
   OdbdcoDecision<Policy> d;
-  if (usable) {
+  if (num::any(lawful)) {
     d = law_.step(odbdco_, desired_n_, num::from_float<Force>(in.damper_force_n * force_in_), coil_a,
-                  velocity_.per_tick(), i2t_.ceiling_a());
+                  velocity_.per_tick(), i2t_.ceiling_a(), lawful);
   }
   if (mode_ == control::ControlMode::kPassiveOn) return nominal_a_;
   if (mode_ != control::ControlMode::kSemiActive) return Current{};  // passive-off
-  if (usable) {
-    bad_run_ = 0;
-    bump(status_.branch_ticks[static_cast<int>(d.branch)]);
-    out.desired_force_n = num::to_float(desired_n_) * force_out_;
-    return d.command_a;
+  if (num::any(lawful)) {
+    bad_run_ = num::select(lawful, Count{}, bad_run_);
+    bump_at(status_.branch_ticks, d.branch, lawful);
+    out.desired_force_n = num::select(lawful, num::to_float(desired_n_) * force_out_, out.desired_force_n);
   }
+  if (num::all(usable)) return d.command_a;
   // SAFE-2
-  bump(bad_run_);
-  if (bad_run_ <= config_.fault_hold_ticks) {
-    bump(status_.held_ticks);
-    return last_command_a_;
-  }
-  bump(status_.fallback_ticks);
-  return fallback_a_;
+  const Mask bad = live && !usable;
+  num::bump_where(bad_run_, bad);
+  const Mask held = bad && bad_run_ <= config_.fault_hold_ticks;
+  num::bump_where(status_.held_ticks, held);
+  num::bump_where(status_.fallback_ticks, bad && !held);
+  return num::select(usable, d.command_a, num::select(held, last_command_a_, fallback_a_));
 }
 
 extern template class DamperController<num::Float32Policy>;

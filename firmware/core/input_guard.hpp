@@ -20,7 +20,9 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <type_traits>
 
+#include "firmware/core/numeric_formats.hpp"
 #include "mrd/control/io.hpp"
 
 namespace mrd::fw {
@@ -72,85 +74,144 @@ struct InputGuardLimits {
   float shaking_threshold_m_s2 = 0.1f;  ///< ≈ 0.01 g
 };
 
-class InputGuard {
+/// One tick's input to N controllers side by side (LanePolicy<N>): each
+/// field of control::ControllerInput, one lane per controller; flags are
+/// masks.
+template <int N>
+struct LaneControllerInput {
+  using Set = LaneSet<N>;
+  typename Set::Tick tick{};
+  typename Set::Sample damper_disp_m{};
+  typename Set::Sample damper_force_n{};
+  typename Set::Sample ground_accel_m_s2{};
+  typename Set::Sample base_accel_m_s2{};
+  typename Set::Sample coil_current_a{};
+  struct Flags {
+    typename Set::Mask disp_valid = num::all_set<typename Set::Mask>();
+    typename Set::Mask force_valid = num::all_set<typename Set::Mask>();
+    typename Set::Mask ground_accel_valid = num::all_set<typename Set::Mask>();
+    typename Set::Mask base_accel_valid = num::all_set<typename Set::Mask>();
+    typename Set::Mask drive_fault{};
+  } flags{};
+};
+
+/// One tick's output of N controllers side by side.
+template <int N>
+struct LaneControllerOutput {
+  using Set = LaneSet<N>;
+  typename Set::Sample current_command_a{};
+  typename Set::Mask drive_enable = num::all_set<typename Set::Mask>();
+  typename Set::Sample desired_force_n{};
+};
+
+/// The input and output types for N lanes (N = 1: control::ControllerInput
+/// and control::ControllerOutput).
+template <int N>
+struct ControlIo {
+  using Input = LaneControllerInput<N>;
+  using Output = LaneControllerOutput<N>;
+};
+template <>
+struct ControlIo<1> {
+  using Input = control::ControllerInput;
+  using Output = control::ControllerOutput;
+};
+
+/// The guard for N lanes (`InputGuard` for one controller); the checks are
+/// written with masks, one source for both.
+template <int N>
+class BasicInputGuard {
  public:
-  using Faults = std::array<InputFault, kInputSignals>;
+  using Set = LaneSet<N>;
+  using Mask = typename Set::Mask;
+  using Count = typename Set::Count;
+  using Sample = typename Set::Sample;
+  using Bits = typename Set::Bits;
+  /// A signal's fault: InputFault, or its code per lane.
+  using Fault = std::conditional_t<N == 1, InputFault, typename Set::Int>;
+  using Faults = std::array<Fault, kInputSignals>;
+  using Input = typename ControlIo<N>::Input;
 
   void init(const InputGuardLimits& limits) noexcept {
     limits_ = limits;
     reset();
   }
 
-  void reset() noexcept {
-    last_bits_ = {};
-    same_run_ = {};
-    have_last_ = {};
-    ticks_since_shaking_ = kNever;
+  void reset(Mask m = num::all_set<Mask>()) noexcept {
+    for (int k = 0; k < 2; ++k) {
+      last_bits_[k] = num::select(m, Bits{}, last_bits_[k]);
+      same_run_[k] = num::select(m, Count{}, same_run_[k]);
+      have_last_[k] = num::select(m, Mask{}, have_last_[k]);
+    }
+    ticks_since_shaking_ = num::select(m, num::splat<Count>(kNever), ticks_since_shaking_);
   }
 
   /// Checks one tick's input and returns each signal's fault.
-  Faults check(const control::ControllerInput& in) noexcept {
+  Faults check(const Input& in) noexcept {
     Faults f{};
     f[idx(InputSignal::kDisp)] = basic(in.damper_disp_m, in.flags.disp_valid, limits_.disp_limit_m);
     f[idx(InputSignal::kForce)] = basic(in.damper_force_n, in.flags.force_valid, limits_.force_limit_n);
     f[idx(InputSignal::kGroundAccel)] =
         basic(in.ground_accel_m_s2, in.flags.ground_accel_valid, limits_.accel_limit_m_s2);
     f[idx(InputSignal::kBaseAccel)] = basic(in.base_accel_m_s2, in.flags.base_accel_valid, limits_.accel_limit_m_s2);
-    f[idx(InputSignal::kCoilCurrent)] = basic(in.coil_current_a, true, limits_.coil_current_limit_a);
+    f[idx(InputSignal::kCoilCurrent)] =
+        basic(in.coil_current_a, num::all_set<Mask>(), limits_.coil_current_limit_a);
 
     // Shaking seen by a valid ground-acceleration sensor.
-    if (ticks_since_shaking_ < kNever) ++ticks_since_shaking_;
-    if (f[idx(InputSignal::kGroundAccel)] == InputFault::kNone &&
-        !(in.ground_accel_m_s2 < limits_.shaking_threshold_m_s2 &&
-          -limits_.shaking_threshold_m_s2 < in.ground_accel_m_s2)) {
-      ticks_since_shaking_ = 0;
-    }
-    stuck(InputSignal::kDisp, in.damper_disp_m, f);
-    stuck(InputSignal::kForce, in.damper_force_n, f);
+    const Count t = ticks_since_shaking_;
+    const Mask shaking = f[idx(InputSignal::kGroundAccel)] == fault(InputFault::kNone) &&
+                         !(in.ground_accel_m_s2 < limits_.shaking_threshold_m_s2 &&
+                           -limits_.shaking_threshold_m_s2 < in.ground_accel_m_s2);
+    ticks_since_shaking_ = num::select(shaking, Count{}, num::select(t < kNever, t + 1u, t));
+    stuck(0, in.damper_disp_m, f[idx(InputSignal::kDisp)]);
+    stuck(1, in.damper_force_n, f[idx(InputSignal::kForce)]);
     return f;
   }
 
   static constexpr int idx(InputSignal s) noexcept { return static_cast<int>(s); }
+  /// The fault `k` as a Fault (every lane `k`).
+  static constexpr Fault fault(InputFault k) noexcept { return num::splat<Fault>(k); }
 
  private:
   static constexpr std::uint32_t kNever = 0xffffffffu;
   InputGuardLimits limits_{};
-  std::array<std::uint32_t, 2> last_bits_{};
-  std::array<std::uint32_t, 2> same_run_{};
-  std::array<bool, 2> have_last_{};
-  std::uint32_t ticks_since_shaking_ = kNever;
+  std::array<Bits, 2> last_bits_{};
+  std::array<Count, 2> same_run_{};
+  std::array<Mask, 2> have_last_{};
+  Count ticks_since_shaking_ = num::splat<Count>(kNever);
 
-  static constexpr InputFault basic(float v, bool flagged_valid, float limit) noexcept {
-    if (!flagged_valid) return InputFault::kFlagged;
-    const InputFault c = classify_float(v);
-    if (c != InputFault::kNone) return c;
-    if (!(v <= limit && -limit <= v)) return InputFault::kOutOfRange;
-    return InputFault::kNone;
+  static constexpr Fault basic(Sample v, Mask flagged_valid, float limit) noexcept {
+    const Bits bits = std::bit_cast<Bits>(v);
+    const Mask special = (bits & 0x7f800000u) == 0x7f800000u;  // NaN or infinite (classify_float)
+    Fault f = num::select(!(v <= limit && -limit <= v), fault(InputFault::kOutOfRange), fault(InputFault::kNone));
+    if (num::any(special)) {
+      f = num::select(special,
+                      num::select((bits & 0x007fffffu) != 0u, fault(InputFault::kNotANumber),
+                                  fault(InputFault::kInfinite)),
+                      f);
+    }
+    if (!num::all(flagged_valid)) f = num::select(flagged_valid, f, fault(InputFault::kFlagged));
+    return f;
   }
 
   /// Stuck test for stroke (slot 0) and force (slot 1), only on values that
   /// passed the basic checks.
-  void stuck(InputSignal s, float v, Faults& f) noexcept {
-    const int slot = s == InputSignal::kDisp ? 0 : 1;
-    if (f[idx(s)] != InputFault::kNone) {
-      have_last_[slot] = false;
-      same_run_[slot] = 0;
-      return;
-    }
-    const std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
-    if (have_last_[slot] && bits == last_bits_[slot]) {
-      if (same_run_[slot] < kNever) ++same_run_[slot];
-    } else {
-      same_run_[slot] = 0;
-    }
-    last_bits_[slot] = bits;
-    have_last_[slot] = true;
+  void stuck(int slot, Sample v, Fault& f) noexcept {
+    const Mask bad = f != fault(InputFault::kNone);
+    const Bits bits = std::bit_cast<Bits>(v);
+    const Count run = same_run_[slot];
+    const Mask same = have_last_[slot] && bits == last_bits_[slot];
+    same_run_[slot] = num::select(bad || !same, Count{}, num::select(run < kNever, run + 1u, run));
+    last_bits_[slot] = num::select(bad, last_bits_[slot], bits);
+    have_last_[slot] = !bad;
     // same_run_ counts the repeats after the first sample: the value has been
     // constant for same_run_ + 1 ticks (stuck_ticks ≥ 2, checked at init).
-    if (same_run_[slot] >= limits_.stuck_ticks - 1u && ticks_since_shaking_ <= same_run_[slot]) {
-      f[idx(s)] = InputFault::kStuck;
-    }
+    const Mask stuck_now = !bad && same_run_[slot] >= limits_.stuck_ticks - 1u &&
+                           ticks_since_shaking_ <= same_run_[slot];
+    f = num::select(stuck_now, fault(InputFault::kStuck), f);
   }
 };
+
+using InputGuard = BasicInputGuard<1>;
 
 }  // namespace mrd::fw

@@ -125,6 +125,60 @@ struct Formats<num::Fixed32Policy> {
   using Square = num::Fixed<9, 22>;
 };
 
+/// The float build in N lanes: N independent controllers (one per run of a
+/// batch, host side) stepped together, each lane's numbers and decisions
+/// those of the float build bit for bit. Every role is N floats (GCC vector
+/// extension); the core's branches on data are masks (`LaneTypes`).
+template <int N>
+struct LanePolicy {
+  static constexpr const char* kName = "float32-lanes";
+  static constexpr int kLanes = N;
+};
+
+template <int N>
+struct Formats<LanePolicy<N>> {
+  using Disp = num::LaneFloat<N>;
+  using Velocity = num::LaneFloat<N>;
+  using Force = num::LaneFloat<N>;
+  using Current = num::LaneFloat<N>;
+  using Coef = num::LaneFloat<N>;
+  using Gain = num::LaneFloat<N>;
+  using Square = num::LaneFloat<N>;
+};
+
+/// The types of a build's decisions and counts, by lane count: for one
+/// controller (N = 1) a bool mask, 32-bit counts, an int, a 64-bit tick and
+/// float samples; for N lanes each of them N wide (a tick counts 32 bits per
+/// lane there: 49 days at 1 kHz, far beyond any run a batch steps).
+template <int N>
+struct LaneSet {
+  static constexpr int kLanes = N;
+  using Mask = num::LaneMask<N>;
+  using Count = num::LaneCount<N>;
+  using Int = num::LaneMask<N>;
+  using Tick = num::LaneCount<N>;
+  using Sample = num::LaneFloat<N>;
+  using Bits = num::LaneCount<N>;
+};
+
+template <>
+struct LaneSet<1> {
+  static constexpr int kLanes = 1;
+  using Mask = bool;
+  using Count = std::uint32_t;
+  using Int = int;
+  using Tick = std::uint64_t;
+  using Sample = float;
+  using Bits = std::uint32_t;
+};
+
+/// A build's lane set: one lane for the float, fixed and double builds.
+template <class Policy>
+struct LaneTypes : LaneSet<1> {};
+
+template <int N>
+struct LaneTypes<LanePolicy<N>> : LaneSet<N> {};
+
 /// The double-precision reference build of the idle-time estimator, the
 /// mixing scheduler and the mixing task (host side; their float and fixed
 /// builds use num::Float32Policy and num::Fixed32Policy, with the formats of
@@ -224,9 +278,9 @@ constexpr bool representable(double v) noexcept {
   }
 }
 
-/// s·v for s = −1 (`negative`) or +1, without a multiply.
-template <class T>
-constexpr T signed_by(bool negative, T v) noexcept {
+/// s·v for s = −1 (`negative`) or +1, without a multiply (per lane for a mask).
+template <class M, class T>
+constexpr T signed_by(M negative, T v) noexcept {
   return negative ? -v : v;
 }
 

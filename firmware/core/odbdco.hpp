@@ -85,6 +85,7 @@
 /// [I_bd, I_od], whose ends fit Current by validate_config.
 
 #include <cstdint>
+#include <type_traits>
 
 #include "firmware/core/numeric_formats.hpp"
 
@@ -113,148 +114,156 @@ struct OdbdcoParams {
   std::uint32_t rest_ticks = 0;  ///< ticks of unknown direction before the target goes to 0
 };
 
+/// One tick's command and the branch that gave it (per lane for lanes).
 template <class Policy>
 struct OdbdcoDecision {
+  using Branch = std::conditional_t<LaneTypes<Policy>::kLanes == 1, OdbdcoBranch, typename LaneTypes<Policy>::Int>;
   typename Formats<Policy>::Current command_a{};
-  OdbdcoBranch branch = OdbdcoBranch::kOff;
+  Branch branch = num::splat<Branch>(OdbdcoBranch::kOff);
 };
 
 /// The law above; its state is the direction, the target, the dwell and
-/// rest counters and the previous tick's forcing sign.
+/// rest counters and the previous tick's forcing sign. Written with masks
+/// (`m ? a : b`), so that one source steps one controller and N lanes.
 template <class Policy>
 class Odbdco {
  public:
   using Force = typename Formats<Policy>::Force;
   using Current = typename Formats<Policy>::Current;
   using Velocity = typename Formats<Policy>::Velocity;
+  using Mask = typename LaneTypes<Policy>::Mask;
+  using Count = typename LaneTypes<Policy>::Count;
+  using Int = typename LaneTypes<Policy>::Int;
+  using Branch = typename OdbdcoDecision<Policy>::Branch;
 
-  /// Direction unknown, target 0 A, free to change at once.
-  void reset() noexcept {
-    direction_ = 0;
-    target_ = Target::kZero;
-    latched_a_ = Current{};
-    since_change_ = 0xffffffffu;
-    at_rest_ = 0;
-    forcing_ = 0;
+  /// Direction unknown, target 0 A, free to change at once (in the lanes of `m`).
+  void reset(Mask m = num::all_set<Mask>()) noexcept {
+    direction_ = num::select(m, Int{}, direction_);
+    target_ = num::select(m, num::splat<Int>(kZero), target_);
+    latched_a_ = num::select(m, Current{}, latched_a_);
+    since_change_ = num::select(m, num::splat<Count>(kNever), since_change_);
+    at_rest_ = num::select(m, Count{}, at_rest_);
+    forcing_ = num::select(m, Int{}, forcing_);
   }
 
-  /// One tick. `velocity_per_tick` is the velocity estimate in s_V m per
-  /// tick (VelocityEstimator); `ceiling_a` is I_c.
-  OdbdcoDecision<Policy> step(const OdbdcoParams<Policy>& p, Force desired_n, Force measured_n, Current coil_a,
-                              Velocity velocity_per_tick, Current ceiling_a) noexcept {
+  /// One tick in the lanes of `m` (the others keep their state).
+  /// `velocity_per_tick` is the velocity estimate in s_V m per tick
+  /// (VelocityEstimator); `ceiling_a` is I_c.
+  [[gnu::always_inline]] OdbdcoDecision<Policy> step(const OdbdcoParams<Policy>& p, Force desired_n, Force measured_n, Current coil_a,
+                              Velocity velocity_per_tick, Current ceiling_a,
+                              Mask m = num::all_set<Mask>()) noexcept {
+    const Int zero{};
+    const Int one = num::splat<Int>(1);
+    // Each block of state changes runs where some lane needs it (`num::any`):
+    // one controller takes the branch, lanes take it if any of them does and
+    // pick per lane.
     // Direction with hysteresis.
     const Velocity v = velocity_per_tick;
-    if (p.velocity_on < v) {
-      direction_ = 1;
-    } else if (v < -p.velocity_on) {
-      direction_ = -1;
-    } else if ((direction_ > 0 && v < p.velocity_off) || (direction_ < 0 && -p.velocity_off < v)) {
-      direction_ = 0;
-    }
+    Int direction = direction_;
+    const Mask up = p.velocity_on < v;
+    const Mask down = !up && v < -p.velocity_on;
+    if (num::any(up || down)) direction = (up ? one : (down ? -one : direction));
+    const Mask stops =
+        !up && !down && ((direction_ > 0 && v < p.velocity_off) || (direction_ < 0 && -p.velocity_off < v));
+    if (num::any(stops)) direction = (stops ? zero : direction);
 
     // Wish: +1 more force, −1 less force, −2 no force at all, 0 keep.
-    int wish = 0;
-    int error_sign = 0;  // sign of e = s·F_d − s·F_m
-    if (direction_ != 0) {
-      at_rest_ = 0;
-      const bool neg = direction_ < 0;
+    const Mask moving = direction != 0;
+    Int wish = zero;
+    Int error_sign = zero;  // sign of e = s·F_d − s·F_m
+    Count at_rest = at_rest_;
+    if (num::any(moving)) {
+      const Mask neg = direction < 0;
       const Force achievable = signed_by(neg, desired_n);  // s·F_d
-      if (!(Force{} < achievable)) {
-        wish = -2;
-      } else {
+      const Mask can = moving && Force{} < achievable;
+      wish = (moving ? num::splat<Int>(-2) : wish);
+      if (num::any(can)) {
         const Force e = achievable - signed_by(neg, measured_n);
-        error_sign = Force{} < e ? 1 : (e < Force{} ? -1 : 0);
-        if (p.deadband_n < e) {
-          wish = 1;
-        } else if (e < -p.deadband_n) {
-          wish = -1;
-        }
+        error_sign = (can ? (Force{} < e ? one : (e < Force{} ? -one : zero)) : error_sign);
+        wish = (can ? (p.deadband_n < e ? one : (e < -p.deadband_n ? -one : zero)) : wish);
       }
-    } else if (at_rest_ < p.rest_ticks) {
-      ++at_rest_;
-    } else {
-      wish = -2;
+      at_rest = (moving ? Count{} : at_rest);
+    }
+    if (!num::all(moving)) {
+      const Mask resting = !moving && at_rest_ < p.rest_ticks;
+      at_rest = (resting ? at_rest_ + 1u : at_rest);
+      wish = (!moving && !resting ? num::splat<Int>(-2) : wish);
     }
 
     // Target, with the minimum dwell between changes.
-    if (since_change_ != 0xffffffffu) ++since_change_;
-    Current target = target_a(ceiling_a);
+    Count since = (since_change_ != kNever ? since_change_ + 1u : since_change_);
+    const Current target = target_a(ceiling_a);
     const Current latch = num::clamp(coil_a, Current{}, ceiling_a);
+    Int target_state = target_;
+    Current latched = latched_a_;
     // A move whose force has crossed F_d (e changed sign) ends at the present
     // current, at any time: up (target I_c) and the force is now beyond F_d,
     // or down (target 0) and the force is now short of it.
-    const bool crossed = (error_sign < 0 && target_ == Target::kCeiling && latch < ceiling_a - p.band_a) ||
-                         (error_sign > 0 && target_ == Target::kZero && p.band_a < latch);
-    if (crossed) {
-      target_ = Target::kLatched;
-      latched_a_ = latch;
-      since_change_ = 0;
-    } else if (since_change_ >= p.dwell_ticks) {
-      const bool outside = coil_a < target - p.band_a || target + p.band_a < coil_a;
-      Target next = target_;
-      if (wish == -2 || wish == -1) {
-        next = Target::kZero;
-      } else if (wish == 1) {
-        next = Target::kCeiling;
-      } else if (direction_ != 0 && outside && !(latch == target)) {
-        next = Target::kLatched;  // KEEP while moving: stay at the present current
-        latched_a_ = latch;
-      }
-      if (next != target_ || next == Target::kLatched) {
-        if (next != target_ || !(target == latched_a_)) since_change_ = 0;
-        target_ = next;
-      }
+    const Mask crossed = (error_sign < 0 && target_ == kCeiling && latch < ceiling_a - p.band_a) ||
+                         (error_sign > 0 && target_ == kZero && p.band_a < latch);
+    if (num::any(crossed)) {
+      target_state = (crossed ? num::splat<Int>(kLatched) : target_state);
+      latched = (crossed ? latch : latched);
+      since = (crossed ? Count{} : since);
     }
-    target = target_a(ceiling_a);
+    const Mask free = !crossed && since >= p.dwell_ticks;
+    if (num::any(free)) {
+      const Mask outside = coil_a < target - p.band_a || target + p.band_a < coil_a;
+      // KEEP while moving: stay at the present current.
+      const Mask keep_latch = free && wish == 0 && moving && outside && !(latch == target);
+      const Int next = (wish < 0 ? num::splat<Int>(kZero) : (wish == 1 ? num::splat<Int>(kCeiling) : (keep_latch ? num::splat<Int>(kLatched) : target_)));
+      latched = (keep_latch ? latch : latched);
+      const Mask restart = free && (next != target_ || (next == kLatched && !(target == latched)));
+      since = (restart ? Count{} : since);
+      target_state = (free ? next : target_state);
+    }
+    const Current target_now = target_a(ceiling_a, target_state, latched);
 
     // Command: force the coil towards the target, never straight from one
     // forcing direction to the other.
+    const Int forcing_wanted =
+        (p.band_a < target_now && coil_a < target_now - p.band_a ? one : (target_now + p.band_a < coil_a ? -one : zero));
+    const Int forcing = (forcing_wanted != 0 && forcing_wanted == -forcing_ ? zero : forcing_wanted);
+
     OdbdcoDecision<Policy> d;
-    int forcing = 0;
-    if (p.band_a < target && coil_a < target - p.band_a) {
-      forcing = 1;
-    } else if (target + p.band_a < coil_a) {
-      forcing = -1;
-    }
-    if (forcing != 0 && forcing == -forcing_) forcing = 0;
-    forcing_ = forcing;
-    if (forcing > 0) {
-      d.branch = OdbdcoBranch::kOverDrive;
-      d.command_a = p.overdrive_a;
-    } else if (forcing < 0) {
-      d.branch = OdbdcoBranch::kBackDrive;
-      d.command_a = p.backdrive_a;
-    } else {
-      d.branch = Current{} < target ? OdbdcoBranch::kTarget : OdbdcoBranch::kOff;
-      d.command_a = target;
-    }
+    d.command_a = (forcing > 0 ? p.overdrive_a : (forcing < 0 ? p.backdrive_a : target_now));
+    d.branch = (forcing > 0 ? branch(OdbdcoBranch::kOverDrive) : (forcing < 0 ? branch(OdbdcoBranch::kBackDrive) : (Current{} < target_now ? branch(OdbdcoBranch::kTarget) : branch(OdbdcoBranch::kOff))));
+    direction_ = num::select(m, direction, direction_);
+    at_rest_ = num::select(m, at_rest, at_rest_);
+    since_change_ = num::select(m, since, since_change_);
+    target_ = num::select(m, target_state, target_);
+    latched_a_ = num::select(m, latched, latched_a_);
+    forcing_ = num::select(m, forcing, forcing_);
     return d;
   }
 
   /// −1, 0 (unknown) or +1.
-  int direction() const noexcept { return direction_; }
+  Int direction() const noexcept { return direction_; }
   /// The target I_t for the ceiling `ceiling_a`.
-  Current target_a(Current ceiling_a) const noexcept {
-    switch (target_) {
-      case Target::kCeiling: return ceiling_a;
-      case Target::kLatched: return latched_a_ < ceiling_a ? latched_a_ : ceiling_a;
-      case Target::kZero: break;
-    }
-    return Current{};
-  }
+  Current target_a(Current ceiling_a) const noexcept { return target_a(ceiling_a, target_, latched_a_); }
   /// True when the target is the ceiling I_c.
-  bool target_on() const noexcept { return target_ == Target::kCeiling; }
+  Mask target_on() const noexcept { return target_ == kCeiling; }
   /// True when the target is 0 A.
-  bool target_off() const noexcept { return target_ == Target::kZero; }
+  Mask target_off() const noexcept { return target_ == kZero; }
 
  private:
-  enum class Target : std::uint8_t { kZero, kCeiling, kLatched };
-  int direction_ = 0;
-  Target target_ = Target::kZero;
+  // The target's kind.
+  static constexpr int kZero = 0;
+  static constexpr int kCeiling = 1;
+  static constexpr int kLatched = 2;
+  static constexpr std::uint32_t kNever = 0xffffffffu;
+  Int direction_{};
+  Int target_{};
   Current latched_a_{};
-  std::uint32_t since_change_ = 0xffffffffu;
-  std::uint32_t at_rest_ = 0;
-  int forcing_ = 0;
+  Count since_change_ = num::splat<Count>(kNever);
+  Count at_rest_{};
+  Int forcing_{};
+
+  static constexpr Branch branch(OdbdcoBranch b) noexcept { return num::splat<Branch>(b); }
+
+  static Current target_a(Current ceiling_a, Int kind, Current latched_a) noexcept {
+    return kind == kCeiling ? ceiling_a : (kind == kLatched ? (latched_a < ceiling_a ? latched_a : ceiling_a) : Current{});
+  }
 };
 
 }  // namespace mrd::fw

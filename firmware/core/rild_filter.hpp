@@ -58,6 +58,7 @@ class RildFilter {
   using Force = typename Formats<Policy>::Force;
   using Coef = typename Formats<Policy>::Coef;
   using Gain = typename Formats<Policy>::Gain;
+  using Mask = typename LaneTypes<Policy>::Mask;
 
   /// Designs the filter in double and quantizes once. The caller checks the
   /// ranges (ControllerConfig validation): 0 < ω_f T < π, kη representable.
@@ -67,23 +68,23 @@ class RildFilter {
     reset();
   }
 
-  /// Zero state: as if x had been 0 forever.
-  void reset() noexcept {
-    w_ = Disp{};
-    x_prev_ = Disp{};
+  /// Zero state: as if x had been 0 forever (in the lanes of `m`).
+  void reset(Mask m = num::all_set<Mask>()) noexcept {
+    w_ = num::select(m, Disp{}, w_);
+    x_prev_ = num::select(m, Disp{}, x_prev_);
   }
 
   /// Steady state for a displacement held at `x` forever: w = −x
-  /// (DC gain −1), so a constant input gives no transient.
-  void prime(Disp x) noexcept {
-    w_ = -x;
-    x_prev_ = x;
+  /// (DC gain −1), so a constant input gives no transient (in the lanes of `m`).
+  void prime(Disp x, Mask m = num::all_set<Mask>()) noexcept {
+    w_ = num::select(m, -x, w_);
+    x_prev_ = num::select(m, x, x_prev_);
   }
 
-  /// One period: returns F_d[n] for x[n].
-  Force step(Disp x) noexcept {
-    w_ = num::mul<Disp>(pole_, w_ + x) - x_prev_;
-    x_prev_ = x;
+  /// One period: returns F_d[n] for x[n] (the lanes outside `m` keep their state).
+  Force step(Disp x, Mask m = num::all_set<Mask>()) noexcept {
+    w_ = num::select(m, num::mul<Disp>(pole_, w_ + x) - x_prev_, w_);
+    x_prev_ = num::select(m, x, x_prev_);
     return num::mul<Force>(gain_, w_);
   }
 

@@ -39,6 +39,8 @@ class VelocityEstimator {
  public:
   using Velocity = typename Formats<Policy>::Velocity;
   using Coef = typename Formats<Policy>::Coef;
+  using Mask = typename LaneTypes<Policy>::Mask;
+  using Sample = typename LaneTypes<Policy>::Sample;
 
   /// `stroke_to_velocity` = s_D/s_V, a power of two (1 in float).
   void init(double cutoff_hz, double period_s, float stroke_to_velocity = 1.0f) noexcept {
@@ -47,31 +49,32 @@ class VelocityEstimator {
     reset();
   }
 
-  void reset() noexcept {
-    x_prev_ = 0.0f;
-    d_ = Velocity{};
+  void reset(Mask m = num::all_set<Mask>()) noexcept {
+    x_prev_ = num::select(m, Sample{}, x_prev_);
+    d_ = num::select(m, Velocity{}, d_);
   }
 
-  /// Restarts from `x` (s_D m) at rest (used at the first sample and after a gap).
-  void prime(float x) noexcept {
-    x_prev_ = x;
-    d_ = Velocity{};
+  /// Restarts from `x` (s_D m) at rest (used at the first sample and after a
+  /// gap), in the lanes of `m`.
+  void prime(Sample x, Mask m = num::all_set<Mask>()) noexcept {
+    x_prev_ = num::select(m, x, x_prev_);
+    d_ = num::select(m, Velocity{}, d_);
   }
 
   /// Restarts the difference at `x` but keeps the estimate (after a gap in
   /// the samples, whose difference would span several ticks).
-  void resync(float x) noexcept { x_prev_ = x; }
+  void resync(Sample x, Mask m = num::all_set<Mask>()) noexcept { x_prev_ = num::select(m, x, x_prev_); }
 
   /// One period with the stroke sample `x` (s_D m): returns the filtered
-  /// stroke change per tick, s_V m.
-  Velocity step(float x) noexcept {
-    const float dx = x - x_prev_;
-    x_prev_ = x;
-    if constexpr (std::is_floating_point_v<Velocity>) {
-      // Float and double: s_V = s_D (numeric_formats.hpp), no scaling.
-      d_ = d_ + num::mul<Velocity>(beta_, static_cast<Velocity>(dx) - d_);
+  /// stroke change per tick, s_V m (the lanes outside `m` keep their state).
+  Velocity step(Sample x, Mask m = num::all_set<Mask>()) noexcept {
+    const Sample dx = x - x_prev_;
+    x_prev_ = num::select(m, x, x_prev_);
+    if constexpr (std::is_floating_point_v<Velocity> || num::LaneVector<Velocity>) {
+      // Float, double and float lanes: s_V = s_D (numeric_formats.hpp), no scaling.
+      d_ = num::select(m, d_ + num::mul<Velocity>(beta_, static_cast<Velocity>(dx) - d_), d_);
     } else {
-      d_ = d_ + num::mul<Velocity>(beta_, num::from_float<Velocity>(dx * stroke_to_velocity_) - d_);
+      d_ = num::select(m, d_ + num::mul<Velocity>(beta_, num::from_float<Velocity>(dx * stroke_to_velocity_) - d_), d_);
     }
     return d_;
   }
@@ -81,7 +84,7 @@ class VelocityEstimator {
  private:
   Coef beta_{};
   float stroke_to_velocity_ = 1.0f;
-  float x_prev_ = 0.0f;
+  Sample x_prev_{};
   Velocity d_{};
 };
 

@@ -16,16 +16,105 @@
 ///
 /// Coefficients are designed in double once, at `init()`, then quantized.
 
+#include <bit>
 #include <cstdint>
+#include <type_traits>
 
 #include "mrd/num/fixed.hpp"
 
 namespace mrd::num {
 
+/// Lanes: N values of one role side by side, one per independent run, as a
+/// GCC vector (`LaneFloat<N>`); comparisons give masks (`LaneMask<N>`, 0 or
+/// −1 per lane) and `m ? a : b` picks per lane. A block written with masks
+/// and ternaries instead of data-dependent branches builds for one value
+/// (a `bool` mask, a plain ternary) and for lanes from the same source.
+template <int N>
+using LaneFloat = float __attribute__((vector_size(4 * N)));
+template <int N>
+using LaneMask = std::int32_t __attribute__((vector_size(4 * N)));
+template <int N>
+using LaneCount = std::uint32_t __attribute__((vector_size(4 * N)));
+
+/// A GCC vector type (not a class, not a pointer, subscriptable).
+template <class T>
+concept LaneVector = !std::is_class_v<T> && !std::is_pointer_v<T> && !std::is_arithmetic_v<T> &&
+                     !std::is_enum_v<T> && requires(T v) { v[0]; };
+
+/// The element type of a lane vector.
+template <LaneVector V>
+using LaneElement = std::remove_cvref_t<decltype(V{}[0])>;
+
+/// `m ? a : b`, per lane for a mask of lanes.
+template <class M, class T>
+constexpr T select(M m, T a, T b) noexcept {
+  return m ? a : b;
+}
+
+/// Some lane's / every lane's mask is set (a bool is its own).
+constexpr bool any(bool m) noexcept { return m; }
+constexpr bool all(bool m) noexcept { return m; }
+template <LaneVector M>
+constexpr bool any(M m) noexcept {
+  bool r = false;
+  for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i) r = r || m[i] != 0;
+  return r;
+}
+template <LaneVector M>
+constexpr bool all(M m) noexcept {
+  bool r = true;
+  for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i) r = r && m[i] != 0;
+  return r;
+}
+
+/// `v` in every lane (T a lane vector) or `v` itself.
+template <class T, class S>
+constexpr T splat(S v) noexcept {
+  if constexpr (LaneVector<T>) {
+    T r{};
+    for (std::size_t i = 0; i < sizeof(T) / sizeof(r[0]); ++i) r[i] = static_cast<LaneElement<T>>(v);
+    return r;
+  } else {
+    return static_cast<T>(v);
+  }
+}
+
+/// A true mask of type M (every lane set).
+template <class M>
+constexpr M all_set() noexcept {
+  if constexpr (LaneVector<M>) {
+    return M{} == M{};
+  } else {
+    return true;
+  }
+}
+
+/// Counts one more (saturating at 2^32 − 1) where `m` is set.
+constexpr void bump_where(std::uint32_t& c, bool m) noexcept {
+  if (m && c != 0xffffffffu) ++c;
+}
+template <LaneVector C, LaneVector M>
+constexpr void bump_where(C& c, M m) noexcept {
+  c -= (C)(m && (c != 0xffffffffu));  // a set mask lane is −1
+}
+
+/// A lane value of a scalar role: `v` in lane `l` (1 lane: `v` itself).
+template <class T>
+constexpr auto lane_of(const T& v, int l) noexcept {
+  if constexpr (LaneVector<T>) {
+    return v[l];
+  } else {
+    (void)l;
+    return v;
+  }
+}
+
 template <class T>
 constexpr T from_double(double v) noexcept {
   if constexpr (requires { T::from_double(v); }) {
     return T::from_double(v);
+  } else if constexpr (LaneVector<T>) {
+    return splat<T>(static_cast<LaneElement<T>>(v));
   } else {
     return static_cast<T>(v);
   }
@@ -47,6 +136,13 @@ constexpr Out mul(float a, float b) noexcept {
 template <class Out>
 constexpr Out mul(double a, double b) noexcept {
   static_assert(sizeof(Out) == sizeof(double), "double products stay double");
+  return a * b;
+}
+
+/// Lanes of floats: the float product per lane.
+template <class Out, LaneVector V>
+constexpr Out mul(V a, V b) noexcept {
+  static_assert(std::is_same_v<Out, V>, "lane products stay in their lanes");
   return a * b;
 }
 
@@ -74,9 +170,20 @@ constexpr T from_float(float v) noexcept {
   }
 }
 
+/// Lanes of float samples into lanes of floats: themselves.
+template <class T, LaneVector V>
+constexpr T from_float(V v) noexcept {
+  static_assert(std::is_same_v<T, V>, "lanes of floats only");
+  return v;
+}
+
 /// Run-time conversion back to float (raw·2^−F, rounded to float's 24 bits).
 constexpr float to_float(float v) noexcept { return v; }
 constexpr float to_float(double v) noexcept { return static_cast<float>(v); }
+template <LaneVector V>
+constexpr V to_float(V v) noexcept {
+  return v;
+}
 template <int I, int F>
 constexpr float to_float(Fixed<I, F> v) noexcept {
   return static_cast<float>(v.raw()) * (1.0f / static_cast<float>(std::int64_t{1} << F));
