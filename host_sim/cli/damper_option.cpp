@@ -15,6 +15,7 @@ void add_damper_option(CLI::App& app, std::string& damper_file) {
 damper::DamperFile load_damper(const char* command, const std::string& damper_file) {
   if (damper_file.empty()) return damper::thesis_damper();
   damper::DamperFile d = damper::read_damper_file(damper_file);
+  damper::require_law_for(d, command);
   const std::string label = io::file_label(damper_file);
   for (const std::string& w : d.warnings)
     std::fprintf(stderr, "mrd %s: warning: %s: %s\n", command, label.c_str(), w.c_str());

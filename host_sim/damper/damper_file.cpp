@@ -6,6 +6,7 @@
 #include "host_sim/discrepancy/physical_ranges.hpp"
 #include "host_sim/discrepancy/toml_fields.hpp"
 #include "host_sim/io/text.hpp"
+#include "host_sim/io/usage_error.hpp"
 
 namespace mrd::damper {
 namespace {
@@ -19,6 +20,7 @@ std::string g4(double v) { return io::format_number("%.4g", v); }
 
 physics::ForceLaw force_law(const Baseline& b) {
   if (b.law == BaseLaw::bouc_wen) return physics::ForceLaw::kBoucWen;
+  if (b.law == BaseLaw::spencer) return physics::ForceLaw::kSpencer;
   return b.has_tanh_transition() ? physics::ForceLaw::kBinghamTanh : physics::ForceLaw::kBingham;
 }
 
@@ -37,6 +39,7 @@ physics::MrDamperParams damper_params(const Baseline& b) {
   p.pr = b.pr;
   p.law = force_law(b);
   if (b.law == BaseLaw::bouc_wen) p.bouc_wen = {b.yield_disp_m, b.stiffness_n_m};
+  if (b.law == BaseLaw::spencer) p.spencer = b.spencer;
   return p;
 }
 
@@ -132,13 +135,12 @@ DamperFile thesis_damper() {
 
 DamperFile parse_damper_toml(const std::string& text, const std::string& origin) {
   const BaselineFile f = discrepancy::parse_baseline_toml(text, origin);
-  if (f.baseline.law == BaseLaw::spencer) {
-    const toml::table root = discrepancy::parse_toml(text, origin);
-    discrepancy::fail_at(origin, where(root, "model", "law"), "model.law",
-                         "\"spencer\" is a baseline of `mrd discrepancy`, `mrd synth` and `mrd calibrate`; the "
-                         "closed loop's laws are \"bingham\" and \"bouc_wen\"");
-  }
   DamperFile d;
+  if (f.baseline.law == BaseLaw::spencer) {
+    const toml::source_region at = where(discrepancy::parse_toml(text, origin), "model", "law");
+    d.law_line = static_cast<int>(at.begin.line);
+  }
+  d.origin = origin;
   d.name = f.baseline.name;
   d.params = damper_params(f.baseline);
   d.rating_given = f.rating.has_value();
@@ -153,6 +155,15 @@ DamperFile parse_damper_toml(const std::string& text, const std::string& origin)
 
 DamperFile read_damper_file(const std::filesystem::path& path) {
   return parse_damper_toml(io::read_regular_file(path, discrepancy::kMaxBaselineFileBytes), io::file_label(path));
+}
+
+void require_law_for(const DamperFile& d, const std::string& command) {
+  if (d.params.law != physics::ForceLaw::kSpencer) return;
+  for (const char* ok : {"sim", "sine", "sweep", "study", "settle"})
+    if (command == ok) return;
+  throw io::UsageError(d.origin + ":" + std::to_string(std::max(d.law_line, 1)) + ": model.law: " +
+                       "\"spencer\" runs in the scalar closed loop (mrd sim, sine, sweep, study, settle); mrd " +
+                       command + " models the damper by its Bingham laws (its estimator, board or batch lanes)");
 }
 
 physics::SettlingParams with_geometry(physics::SettlingParams settling, const discrepancy::DamperGeometry& g) {

@@ -12,6 +12,9 @@
 ///   [bingham]       v_tf_m_s → bingham.v_tf_m_s; transition linear → ForceLaw::kBingham,
 ///                   tanh → ForceLaw::kBinghamTanh
 ///   [bouc_wen]      → ForceLaw::kBoucWen with yield_disp_m, stiffness_n_m
+///   [spencer]       → ForceLaw::kSpencer with its model and current laws (SI, as the file
+///                   holds them); [coil] with equal time constants τ is the paper's
+///                   first-order filter, η = 1/τ
 ///   [coil]          the time constants and weights of Eq. 4.5; the circuit (R, L(i)) for the
 ///                   hardware plant
 ///   [participant_ratio]  Table 5.6's coefficients, flow_area_m2, volume_unit_m3
@@ -49,6 +52,8 @@ struct DamperFile {
   /// What the closed loop leaves out of the file or assumed, one sentence
   /// each (printed on stderr by the commands).
   std::vector<std::string> warnings;
+  std::string origin;  ///< the file's label, for refusals after reading
+  int law_line = 0;    ///< the line of [model] law (kSpencer), for require_law_for
 };
 
 /// The thesis damper's cylinder: physics::SettlingParams' defaults.
@@ -68,6 +73,13 @@ struct DamperFile {
 /// discrepancy::kMaxBaselineFileBytes). io::UsageError when it cannot be
 /// read or is invalid.
 [[nodiscard]] DamperFile read_damper_file(const std::filesystem::path& path);
+
+/// Refuses a damper whose law `command` cannot simulate: the spencer law
+/// runs in the scalar closed loop (sim, sine, sweep, study) and settle uses
+/// only the cylinder; configure, schedule and fragility model the damper by
+/// its Bingham laws (the control core's estimator, the board file, the batch
+/// lanes). io::UsageError "origin:LINE: model.law: ...".
+void require_law_for(const DamperFile& d, const std::string& command);
 
 /// `settling` with its geometry fields (bore, shaft, length, fluid volume)
 /// replaced by `g`; the fluid's fields are left as they are.

@@ -238,6 +238,43 @@ TEST(DamperFile, BoucWenMapsItsTwoConstants) {
   EXPECT_EQ(d.params.bingham.fc_b_n, 1500.0);
 }
 
+// law = "spencer": its model and current laws reach the closed loop's damper
+// as the file holds them (SI); the commands that model the damper by its
+// Bingham laws refuse it naming the file, the law's line and the field.
+TEST(DamperFile, SpencerMapsItsModelAndIsRefusedWhereBinghamLawsModelIt) {
+  discrepancy::BaselineFile f;
+  f.baseline = discrepancy::thesis_baseline();
+  f.baseline.law = discrepancy::BaseLaw::spencer;
+  f.baseline.spencer = discrepancy::published_lab_spencer();
+  f.baseline.range = {0.0, 1.0, 0.1, 1500.0, 0.002, 0.025, 0.25, 5.0};
+  f.baseline.expected_gap = 0.2;
+  f.rating = physics::DamperRating{1.0, 2000.0, 0.025, 0.1};
+  const std::string text = discrepancy::baseline_toml(f);
+  const DamperFile d = parse_damper_toml(text, "sp.toml");
+  EXPECT_EQ(d.params.law, physics::ForceLaw::kSpencer);
+  EXPECT_STREQ(physics::force_law_name(d.params.law), "spencer");
+  // The published α(1 A) = −38.152 + 41.508 + 15.221 = 18.577 N/mm, c1(0) = 9.867 N·s/mm.
+  EXPECT_NEAR(d.params.spencer.alpha_at(1.0), 18577.0, 1e-6);
+  EXPECT_NEAR(d.params.spencer.c1_at(0.0), 9867.0, 1e-9);
+  EXPECT_EQ(d.params.rating.current_a, 1.0);
+  for (const char* ok : {"sim", "sine", "sweep", "study", "settle"}) EXPECT_NO_THROW(require_law_for(d, ok)) << ok;
+  const int law_line = line_of(text, "law = ");
+  ASSERT_GT(law_line, 0);
+  for (const char* refused : {"configure", "schedule", "fragility"}) {
+    try {
+      require_law_for(d, refused);
+      ADD_FAILURE() << refused << " took the spencer law";
+    } catch (const io::UsageError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("sp.toml:" + std::to_string(law_line) + ": model.law: \"spencer\" runs in the scalar", 0), 0u)
+          << m;
+      EXPECT_NE(m.find(refused), std::string::npos) << m;
+    }
+  }
+  // The other laws go everywhere.
+  EXPECT_NO_THROW(require_law_for(thesis_damper(), "configure"));
+}
+
 // Without [rating] the rating is what the records covered, said in a warning;
 // without [geometry] the thesis damper's cylinder, said too; and each part of
 // a calibration the closed loop does not simulate is named.

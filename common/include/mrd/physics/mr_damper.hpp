@@ -12,7 +12,9 @@
 ///   F[n]      = TF(v[n]) · ( f_c[n] sgn v[n] + c_0[n] v[n] )                     kBingham: Eq. 4.4, 5.12
 ///             = f_c[n] tanh(v[n]/v_TF) + c_0[n] v[n]                            kBinghamTanh: baseline.hpp
 ///             = f_c[n] z[n] + c_0[n] v[n] + k_0 x[n]                            kBoucWen: baseline.hpp
+///             = c_1 ẏ(y[n], z_s[n], x[n], v[n]) + k_1 (x[n] − x_0)               kSpencer: spencer_law.hpp
 ///   z[n]      = Z(z[n−1], x[n] − x[n−1]),  z = 0 at x = 0 on reset             bouc_wen_z_after
+///   (y, z_s)[n+1] = RK4 of Eq. (9)–(10) from x[n] at v[n] over T,  0 on reset  spencer_state_after
 ///   i[n+1]    = CurrentDynamics(i[n], u[n])                                       Eq. 4.5 (ZOH-exact)
 ///   ∫Q[n+1]   = ∫Q[n] + |v[n]| · A · T                                             Eq. 5.9
 ///   PR[n+1]   = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q[n+1] / unit)                     Eq. 5.9
@@ -23,11 +25,26 @@
 /// z depends on the stroke path only). A caller that knows only the velocity
 /// (step(u, v)) moves the stroke by v[n]·T after the force, as
 /// discrepancy::DamperModel moves z by v·dt. The Bingham laws ignore the stroke.
+///
+/// kSpencer (Spencer et al. 1997's modified Bouc–Wen model) has its own
+/// current laws (SpencerParams, evaluated at |i[n]| and PR[n]); Eq. 4.5's
+/// coil with equal time constants τ is the paper's first-order filter
+/// u̇ = −η (u − v) with η = 1/τ. Its state (y, z) is integrated from the
+/// stroke x[n] at the velocity v[n] over the step (what
+/// discrepancy::DamperModel does per sample), so the force at step n + 1
+/// takes the state the motion reached. Its laws are polynomials fitted over
+/// the records' currents (the laboratory's α turns negative at 1.3 A), so
+/// above the rated current (rating.current_a) they are held at their value
+/// there, as a field that saturates: the coil current itself is not limited.
+
+#include <algorithm>
+#include <cmath>
 
 #include "mrd/physics/bingham.hpp"
 #include "mrd/physics/current_dynamics.hpp"
 #include "mrd/physics/damper_laws.hpp"
 #include "mrd/physics/participant_ratio.hpp"
+#include "mrd/physics/spencer_law.hpp"
 
 namespace mrd::physics {
 
@@ -37,14 +54,16 @@ enum class ForceLaw : unsigned char {
   kBingham,      ///< Eq. 4.4: TF(v)·(f_c sgn v + c_0 v), TF = |v|/v_TF below v_TF, 1 above
   kBinghamTanh,  ///< f_c·tanh(v/v_TF) + c_0·v
   kBoucWen,      ///< f_c·z + c_0·v + k_0·x, z the normalized Bouc–Wen variable of width x_y
+  kSpencer,      ///< Spencer et al. (1997)'s modified Bouc–Wen model with its own current laws
 };
 
 /// The law's name as a damper file and `mrd calibrate` spell it: "bingham",
-/// "bingham_tanh", "bouc_wen".
+/// "bingham_tanh", "bouc_wen", "spencer".
 constexpr const char* force_law_name(ForceLaw law) noexcept {
   switch (law) {
     case ForceLaw::kBinghamTanh: return "bingham_tanh";
     case ForceLaw::kBoucWen: return "bouc_wen";
+    case ForceLaw::kSpencer: return "spencer";
     case ForceLaw::kBingham: break;
   }
   return "bingham";
@@ -70,6 +89,7 @@ struct MrDamperParams {
   ParticipantRatioParams pr{};
   ForceLaw law = ForceLaw::kBingham;
   BoucWenDamperParams bouc_wen{};
+  SpencerParams spencer{};  ///< ForceLaw::kSpencer: its model and current laws (SI)
   DamperRating rating{};
 };
 
@@ -85,6 +105,7 @@ class MrDamper {
     pr_.init(p.pr, sq);
     z_ = 0.0;
     stroke_m_ = 0.0;
+    spencer_state_ = SpencerState{};
     update_coefficients();
   }
 
@@ -96,6 +117,7 @@ class MrDamper {
     coil_.reset(current_a);
     z_ = 0.0;
     stroke_m_ = 0.0;
+    spencer_state_ = SpencerState{};
     update_coefficients();
   }
 
@@ -112,6 +134,7 @@ class MrDamper {
       case ForceLaw::kBoucWen:
         return bouc_wen_force_at_n(velocity_m_s, stroke_m, bouc_wen_z_after(z_, stroke_m - stroke_m_,
                                                                             p_.bouc_wen.yield_disp_m));
+      case ForceLaw::kSpencer: return spencer_force_n(spencer_, spencer_state_, stroke_m, velocity_m_s);
       case ForceLaw::kBingham: break;
     }
     return bingham_force_n(velocity_m_s);
@@ -131,6 +154,10 @@ class MrDamper {
       f = bouc_wen_force_at_n(velocity_m_s, stroke_m, z_);
     } else {
       f = force_n(velocity_m_s, stroke_m);
+      if (p_.law == ForceLaw::kSpencer) {
+        spencer_state_ = spencer_state_after(spencer_, spencer_state_, stroke_m, velocity_m_s, period_s_);
+        stroke_m_ = stroke_m;
+      }
     }
     advance(command_a, velocity_m_s);
     return f;
@@ -144,6 +171,9 @@ class MrDamper {
       const double dx_m = velocity_m_s * period_s_;
       z_ = bouc_wen_z_after(z_, dx_m, p_.bouc_wen.yield_disp_m);
       stroke_m_ += dx_m;
+    } else if (p_.law == ForceLaw::kSpencer) {
+      spencer_state_ = spencer_state_after(spencer_, spencer_state_, stroke_m_, velocity_m_s, period_s_);
+      stroke_m_ += velocity_m_s * period_s_;
     }
     advance(command_a, velocity_m_s);
     return f;
@@ -152,10 +182,12 @@ class MrDamper {
   double current_a() const noexcept { return coil_.current_a(); }
   double participant_ratio() const noexcept { return pr_.pr(); }
   double displaced_volume_m3() const noexcept { return pr_.displaced_volume_m3(); }
-  /// Stroke of the last step (kBoucWen; 0 for the Bingham laws), m.
+  /// Stroke of the last step (kBoucWen, kSpencer; 0 for the Bingham laws), m.
   double stroke_m() const noexcept { return stroke_m_; }
   /// Bouc–Wen variable at stroke_m() (kBoucWen; 0 for the Bingham laws).
   double bouc_wen_z() const noexcept { return z_; }
+  /// Spencer's internal displacement y and variable z (kSpencer), m.
+  const SpencerState& spencer_state() const noexcept { return spencer_state_; }
   const ParticipantRatio& mixing() const noexcept { return pr_; }
   ParticipantRatio& mixing() noexcept { return pr_; }
   const MrDamperParams& params() const noexcept { return p_; }
@@ -170,6 +202,8 @@ class MrDamper {
   double c0_ns_m_ = 0.0;   ///< c_0(|i|, PR), Eq. 5.11
   double z_ = 0.0;         ///< Bouc–Wen variable at stroke_m_ (kBoucWen)
   double stroke_m_ = 0.0;  ///< stroke z_ belongs to, m (kBoucWen)
+  SpencerCoefficients spencer_{};      ///< kSpencer: the model at |i| and PR
+  SpencerState spencer_state_{};       ///< kSpencer: (y, z) after the last step
 
   /// Eq. 4.4 × Eq. 5.12: TF(v) · (f_c sgn v + c_0 v).
   double bingham_force_n(double velocity_m_s) const noexcept {
@@ -197,6 +231,8 @@ class MrDamper {
   void update_coefficients() noexcept {
     fc_n_ = coulomb_force_n(p_.bingham, coil_.current_a(), pr_.pr());
     c0_ns_m_ = viscous_coeff_ns_m(p_.bingham, coil_.current_a(), pr_.pr());
+    if (p_.law == ForceLaw::kSpencer)
+      spencer_ = p_.spencer.at(std::min(std::fabs(coil_.current_a()), p_.rating.current_a), pr_.pr());
   }
 };
 
