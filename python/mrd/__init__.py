@@ -33,7 +33,7 @@ import numpy as np
 from ._batch import PEAK_FIELDS, BatchResult, batch
 from ._cli import CommandResult, calibrate, discrepancy, fragility, risk, run_command, schedule
 from ._mrd import Sensors, UsageError, _sim
-from ._objects import Building, Damper, Fluid, Motion, Record, as_file, load_motion
+from ._objects import Building, Damper, Fluid, Motion, Record, as_file, load_motion, relabel
 
 __all__ = [
     "sim",
@@ -142,24 +142,27 @@ def sim(
     Raises:
         UsageError: a bad option value or file, with the CLI's message.
     """
-    raw = _sim(
-        as_file(record, "record"),
-        pga_g,
-        control,
-        numeric,
-        "" if board is None else board,
-        idle_years,
-        duration_s,
-        step_s,
-        seed,
-        plant,
-        sensor_seed,
-        offset_mm,
-        as_file(building, "building"),
-        as_file(damper, "damper"),
-        as_file(fluid, "fluid"),
-        controller,
-    )
+    try:
+        raw = _sim(
+            as_file(record, "record"),
+            pga_g,
+            control,
+            numeric,
+            "" if board is None else board,
+            idle_years,
+            duration_s,
+            step_s,
+            seed,
+            plant,
+            sensor_seed,
+            offset_mm,
+            as_file(building, "building"),
+            as_file(damper, "damper"),
+            as_file(fluid, "fluid"),
+            controller,
+        )
+    except UsageError as e:
+        raise UsageError(relabel(str(e))) from None
     summary = json.loads(raw.summary_json)
     timeseries = {name: np.asarray(column) for name, column in raw.columns}
     return SimResult(summary, timeseries, dict(raw.peaks))

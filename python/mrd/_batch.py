@@ -9,7 +9,7 @@ from typing import Any, Dict, Optional, Sequence, Union
 import numpy as np
 
 from ._mrd import UsageError, _batch, _lane_isa
-from ._objects import Building, Damper, Fluid, Motion, as_file
+from ._objects import Building, Damper, Fluid, Motion, as_file, relabel
 
 #: The arrays of a BatchResult, one per plant::PlantSummary field, in order.
 PEAK_FIELDS = (
@@ -125,20 +125,23 @@ def batch(
         arrays = [r.accel_m_s2 if isinstance(r, Motion) else r for r in records]
     arrays = [np.ascontiguousarray(a, dtype=np.float64) for a in arrays]
     n = len(arrays)
-    raw = _batch(
-        arrays,
-        _per_run("scale", scale, n, float),
-        _per_run("idle_years", idle_years, n, float),
-        _per_run("control", control, n, str),
-        as_file(building, "building"),
-        as_file(damper, "damper"),
-        as_file(fluid, "fluid"),
-        step_s,
-        numeric,
-        story_drift,
-        threads,
-        isa,
-    )
+    try:
+        raw = _batch(
+            arrays,
+            _per_run("scale", scale, n, float),
+            _per_run("idle_years", idle_years, n, float),
+            _per_run("control", control, n, str),
+            as_file(building, "building"),
+            as_file(damper, "damper"),
+            as_file(fluid, "fluid"),
+            step_s,
+            numeric,
+            story_drift,
+            threads,
+            isa,
+        )
+    except UsageError as e:
+        raise UsageError(relabel(str(e))) from None
     seconds = time.perf_counter() - t0
     cpu_seconds = time.thread_time() - cpu0
     r = BatchResult()

@@ -21,7 +21,7 @@ from typing import Any, Dict, List, Mapping, Optional, Union
 import numpy as np
 
 from ._mrd import UsageError
-from ._objects import Building, Damper, Fluid, Record, _scratch, _TomlObject, as_file
+from ._objects import Building, Damper, Fluid, Record, _labels, _scratch, as_file, relabel
 
 _ERROR = "mrd: error: "
 
@@ -77,6 +77,7 @@ def _measured_csv(columns: Mapping[str, Any], name: str) -> str:
         w.writerow(list(arrays))
         for row in zip(*(a.tolist() for a in arrays.values())):
             w.writerow([repr(v) for v in row])
+    _labels[str(path)] = f"{name}.csv"
     return str(path)
 
 
@@ -144,7 +145,7 @@ def run_command(command: str, out: Union[None, str, "os.PathLike[str]"] = None, 
     lines = p.stderr.splitlines()
     if p.returncode != 0:
         errors = [line[len(_ERROR):] for line in lines if line.startswith(_ERROR)]
-        message = errors[-1] if errors else p.stderr.strip()
+        message = relabel(errors[-1] if errors else p.stderr.strip())
         if p.returncode == 2:
             raise UsageError(message)
         raise RuntimeError(f"mrd {command} failed (exit {p.returncode}): {message}")
@@ -152,7 +153,7 @@ def run_command(command: str, out: Union[None, str, "os.PathLike[str]"] = None, 
     r = CommandResult()
     r.folder = folder
     r.stdout = p.stdout
-    r.warnings = [line[len(prefix):] for line in lines if line.startswith(prefix)]
+    r.warnings = [relabel(line[len(prefix):]) for line in lines if line.startswith(prefix)]
     summary = folder / "summary.json"
     r.summary = json.loads(summary.read_text()) if summary.is_file() else {}
     r.tables = {t.stem: _read_table(t) for t in sorted(folder.glob("*.csv"))}

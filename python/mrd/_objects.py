@@ -32,6 +32,15 @@ from ._mrd import (
 PathLike = Union[str, "os.PathLike[str]"]
 
 _temp_dir: Optional[str] = None
+#: The files written for objects built in Python, and what messages call them.
+_labels: Dict[str, str] = {}
+
+
+def relabel(message: str) -> str:
+    """`message` with each file written for an object built in Python named by its origin."""
+    for path, label in _labels.items():
+        message = message.replace(path, label)
+    return message
 
 
 def _scratch() -> pathlib.Path:
@@ -68,6 +77,7 @@ class _TomlObject:
             target = folder / (_safe(self.name) + self._suffix)
             target.write_text(self.toml)
             self.path = str(target)
+            _labels[self.path] = self.origin
         return self.path
 
     def __repr__(self) -> str:
@@ -241,6 +251,7 @@ class Record:
             target = folder / (_safe(self.name) + ".csv")
             target.write_text(self._csv)
             self.path = str(target)
+            _labels[self.path] = self.name + ".csv"
         return self.path
 
     def __len__(self) -> int:
