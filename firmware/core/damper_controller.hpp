@@ -224,7 +224,7 @@ class DamperController {
 
 template <class Policy>
 ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexcept {
-  const ConfigError e = validate_config<Policy>(config);
+  const ConfigError e = validate_config<LaneScalarPolicy<Policy>>(config);
   if (e != ConfigError::kNone) {
     initialized_ = false;
     reset();
@@ -235,7 +235,7 @@ ConfigError DamperController<Policy>::init(const ControllerConfig& config) noexc
   mode_ = config.mode;
   // Unit scales: powers of two, so every division below and every float
   // product with disp_in_ … current_out_ is exact.
-  scales_ = core_scales<Policy>(config);
+  scales_ = core_scales<LaneScalarPolicy<Policy>>(config);
   const double sd = scales_.disp_m();
   const double sf = scales_.force_n();
   const double si = scales_.current_a();

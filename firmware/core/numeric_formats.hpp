@@ -146,6 +146,20 @@ struct Formats<LanePolicy<N>> {
   using Square = num::LaneFloat<N>;
 };
 
+/// The one-controller build whose numbers each lane of `Policy` carries: the
+/// policy itself, and the float build for LanePolicy<N> (its configuration
+/// is checked and scaled as the float build's).
+template <class Policy>
+struct LaneScalar {
+  using type = Policy;
+};
+template <int N>
+struct LaneScalar<LanePolicy<N>> {
+  using type = num::Float32Policy;
+};
+template <class Policy>
+using LaneScalarPolicy = typename LaneScalar<Policy>::type;
+
 /// The types of a build's decisions and counts, by lane count: for one
 /// controller (N = 1) a bool mask, 32-bit counts, an int, a 64-bit tick and
 /// float samples; for N lanes each of them N wide (a tick counts 32 bits per

@@ -29,12 +29,20 @@ namespace mrd::num {
 /// −1 per lane) and `m ? a : b` picks per lane. A block written with masks
 /// and ternaries instead of data-dependent branches builds for one value
 /// (a `bool` mask, a plain ternary) and for lanes from the same source.
+/// (Member typedefs: GCC keeps a dependent vector_size there, not on an
+/// alias template.)
 template <int N>
-using LaneFloat = float __attribute__((vector_size(4 * N)));
+struct LaneVectors {
+  typedef float Float __attribute__((vector_size(4 * N)));
+  typedef std::int32_t Mask __attribute__((vector_size(4 * N)));
+  typedef std::uint32_t Count __attribute__((vector_size(4 * N)));
+};
 template <int N>
-using LaneMask = std::int32_t __attribute__((vector_size(4 * N)));
+using LaneFloat = typename LaneVectors<N>::Float;
 template <int N>
-using LaneCount = std::uint32_t __attribute__((vector_size(4 * N)));
+using LaneMask = typename LaneVectors<N>::Mask;
+template <int N>
+using LaneCount = typename LaneVectors<N>::Count;
 
 /// A GCC vector type (not a class, not a pointer, subscriptable).
 template <class T>
