@@ -68,6 +68,33 @@ void validate_isolator(const Isolator& iso, std::size_t i) {
   require(std::isfinite(fp.weight_n) && fp.weight_n >= 0.0, name + ".weight_n must be finite and >= 0");
 }
 
+/// A full N×N matrix given by the user: N² finite entries, symmetric within
+/// 1e-9 of its largest entry, and positive definite (`definite`) or
+/// semi-definite within 1e-9 of its largest eigenvalue.
+void validate_full(const std::vector<double>& v, std::size_t n, const std::string& name, bool definite) {
+  require(v.size() == n * n, name + " must have N*N = " + std::to_string(n * n) + " entries");
+  double largest = 0.0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    require(std::isfinite(v[i]), name + " entry " + std::to_string(i) + " must be finite");
+    largest = std::max(largest, std::fabs(v[i]));
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      require(std::fabs(v[i * n + j] - v[j * n + i]) <= 1e-9 * largest,
+              name + " must be symmetric: [" + std::to_string(i) + "][" + std::to_string(j) + "] differs from [" +
+                  std::to_string(j) + "][" + std::to_string(i) + "]");
+  const Eigen::Map<const Matrix> m(v.data(), static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  Eigen::SelfAdjointEigenSolver<Matrix> es(m, Eigen::EigenvaluesOnly);
+  const double lo = es.eigenvalues().minCoeff();
+  const double hi = std::max(es.eigenvalues().maxCoeff(), 0.0);
+  if (definite)
+    require(lo > 1e-12 * hi && hi > 0.0, name + " must be positive definite (its smallest eigenvalue is " +
+                                            std::to_string(lo) + ")");
+  else
+    require(lo >= -1e-9 * hi, name + " must be positive semi-definite (its smallest eigenvalue is " +
+                                  std::to_string(lo) + ")");
+}
+
 }  // namespace
 
 void validate(const BuildingParams& p) {
@@ -79,11 +106,20 @@ void validate(const BuildingParams& p) {
   for (std::size_t i = 0; i < n; ++i) {
     require(finite_positive(p.mass_kg[i]), at("mass_kg", i) + " must be finite and > 0");
     const double k = p.story_stiffness_n_m[i];
-    require(std::isfinite(k) && (k > 0.0 || (i == 0 && k == 0.0)), at("stiffness_n_m", i) + " must be finite and > 0");
-    if (!p.rayleigh) {
+    if (p.stiffness_matrix_n_m.empty())
+      require(std::isfinite(k) && (k > 0.0 || (i == 0 && k == 0.0)), at("stiffness_n_m", i) + " must be finite and > 0");
+    if (!p.rayleigh && p.damping_matrix_n_s_m.empty()) {
       const double c = p.story_damping_n_s_m[i];
       require(std::isfinite(c) && c >= 0.0, at("damping_n_s_m", i) + " must be finite and >= 0");
     }
+  }
+  if (!p.stiffness_matrix_n_m.empty()) {
+    validate_full(p.stiffness_matrix_n_m, n, "stiffness_matrix_n_m", true);
+    require(p.isolators.empty(), "a building with a full stiffness matrix has no isolators");
+  }
+  if (!p.damping_matrix_n_s_m.empty()) {
+    require(!p.rayleigh, "damping_matrix_n_s_m and rayleigh exclude each other");
+    validate_full(p.damping_matrix_n_s_m, n, "damping_matrix_n_s_m", false);
   }
   if (p.rayleigh) {
     const RayleighDamping& r = *p.rayleigh;
@@ -94,7 +130,8 @@ void validate(const BuildingParams& p) {
   }
   require(p.isolators.empty() || p.base == BaseKind::kIsolated, "a fixed-base building has no isolators");
   for (std::size_t i = 0; i < p.isolators.size(); ++i) validate_isolator(p.isolators[i], i);
-  bool restoring = p.story_stiffness_n_m.empty() || p.story_stiffness_n_m[0] > 0.0;
+  bool restoring =
+      !p.stiffness_matrix_n_m.empty() || p.story_stiffness_n_m.empty() || p.story_stiffness_n_m[0] > 0.0;
   for (const Isolator& iso : p.isolators) restoring = restoring || isolator_linear_stiffness(p, iso) > 0.0;
   require(restoring, "no restoring force at element 0: stiffness_n_m[0] is 0 and no isolator restores");
   for (std::size_t i = 0; i < p.dampers.size(); ++i) {
@@ -111,12 +148,16 @@ Matrix mass_matrix(const BuildingParams& p) {
 }
 
 Matrix stiffness_matrix(const BuildingParams& p) {
+  if (!p.stiffness_matrix_n_m.empty())
+    return Eigen::Map<const Matrix>(p.stiffness_matrix_n_m.data(), p.dofs(), p.dofs()).transpose();
   Matrix k = assemble_chain(p.story_stiffness_n_m);
   for (const Isolator& iso : p.isolators) k(kBaseDof, kBaseDof) += isolator_linear_stiffness(p, iso);
   return k;
 }
 
 Matrix damping_matrix(const BuildingParams& p) {
+  if (!p.damping_matrix_n_s_m.empty())
+    return Eigen::Map<const Matrix>(p.damping_matrix_n_s_m.data(), p.dofs(), p.dofs()).transpose();
   if (!p.rayleigh) return assemble_chain(p.story_damping_n_s_m);
   const Matrix m = mass_matrix(p);
   const Matrix k = stiffness_matrix(p);

@@ -44,12 +44,14 @@ Matrix mass_matrix(const BuildingParams& p);
 /// the isolators' linear parts (count·k_p for a lead-rubber bearing,
 /// count·W/R for a friction pendulum) on element 0.
 /// K(i,i) = k_i + k_{i+1} (k_N = 0), K(i,i+1) = K(i+1,i) = −k_{i+1}.
+/// A building with a full stiffness_matrix_n_m returns that matrix.
 Matrix stiffness_matrix(const BuildingParams& p);
 
 /// Damping matrix C, N·s/m: the element dashpots in the pattern of
 /// stiffness_matrix(), or Rayleigh C = a0·M + a1·K with the ratio ζ exact at
 /// the undamped modes ω_a, ω_b of (M, K):
-/// a0 = 2ζ·ω_a·ω_b/(ω_a + ω_b), a1 = 2ζ/(ω_a + ω_b).
+/// a0 = 2ζ·ω_a·ω_b/(ω_a + ω_b), a1 = 2ζ/(ω_a + ω_b); or the full
+/// damping_matrix_n_s_m when given.
 Matrix damping_matrix(const BuildingParams& p);
 
 /// Sum of the lumped masses, kg.

@@ -298,8 +298,81 @@ RayleighDamping read_rayleigh(const Value& v, const std::string& origin, std::si
   return out;
 }
 
+/// True when the N×N row-major `a` + shift·I has a Cholesky factor (all
+/// pivots > 0): positive definite for shift 0, semi-definite within `shift`.
+bool cholesky_ok(std::vector<double> a, std::size_t n, double shift) {
+  for (std::size_t i = 0; i < n; ++i) a[i * n + i] += shift;
+  for (std::size_t j = 0; j < n; ++j) {
+    double d = a[j * n + j];
+    for (std::size_t k = 0; k < j; ++k) d -= a[j * n + k] * a[j * n + k];
+    if (!(d > 0.0)) return false;
+    const double l = std::sqrt(d);
+    a[j * n + j] = l;
+    for (std::size_t i = j + 1; i < n; ++i) {
+      double s = a[i * n + j];
+      for (std::size_t k = 0; k < j; ++k) s -= a[i * n + k] * a[j * n + k];
+      a[i * n + j] = s / l;
+    }
+  }
+  return true;
+}
+
+/// A full N×N matrix: N rows of N finite numbers, symmetric within 1e-9 of
+/// its largest entry, positive definite (`definite`, a stiffness) or
+/// semi-definite within 1e-9 of its largest entry (a damping). Row-major.
+std::vector<double> read_full_matrix(const Value& v, const std::string& origin, std::size_t dofs, bool definite,
+                                     const char* unit) {
+  const toml::array& rows = v.array();
+  if (rows.size() != dofs)
+    v.refuse("expected " + std::to_string(dofs) + " rows (one per mass of building.mass_kg), found " +
+             std::to_string(rows.size()));
+  std::vector<double> out;
+  out.reserve(dofs * dofs);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < dofs; ++i) {
+    const Value row(rows[i], v.field() + "[" + std::to_string(i) + "]", origin);
+    require_length(row, dofs);
+    for (const double x : numbers(row, origin, [&](const Value& e) { return e.number(); })) {
+      out.push_back(x);
+      largest = std::max(largest, std::fabs(x));
+    }
+  }
+  for (std::size_t i = 0; i < dofs; ++i) {
+    const Value row(rows[i], v.field() + "[" + std::to_string(i) + "]", origin);
+    const double d = out[i * dofs + i];
+    if (definite ? !(d > 0.0) : !(d >= 0.0))
+      Value(*row.array().get(i), row.field() + "[" + std::to_string(i) + "]", origin)
+          .refuse(std::string("expected a diagonal entry ") + (definite ? "> 0 " : ">= 0 ") + unit + ", found " +
+                  num(d));
+    for (std::size_t j = 0; j < i; ++j) {
+      const double a = out[i * dofs + j];
+      const double b = out[j * dofs + i];
+      if (std::fabs(a - b) > 1e-9 * largest)
+        Value(*row.array().get(j), row.field() + "[" + std::to_string(j) + "]", origin)
+            .refuse("expected a symmetric matrix: " + num(a) + " here, " + num(b) + " at [" + std::to_string(j) +
+                    "][" + std::to_string(i) + "]");
+    }
+  }
+  if (definite && !cholesky_ok(out, dofs, 0.0))
+    v.refuse(std::string("expected a positive definite matrix ") + unit +
+             " (every floor restrained): a Cholesky pivot is <= 0");
+  if (!definite && !cholesky_ok(out, dofs, 1e-9 * largest + 1e-300))
+    v.refuse(std::string("expected a positive semi-definite matrix ") + unit +
+             " (a damping that dissipates): a Cholesky pivot is < 0");
+  return out;
+}
+
+/// The chain of element stiffnesses seen from a full matrix: k_i = −K(i,i−1)
+/// for i ≥ 1, k_0 = K(0,0) − k_1 (the shear chain's own relation).
+std::vector<double> chain_seen_from(const std::vector<double>& k, std::size_t n) {
+  std::vector<double> e(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) e[i] = -k[i * n + i - 1];
+  e[0] = k[0] - (n > 1 ? e[1] : 0.0);
+  return e;
+}
+
 /// [building]: name, base, the arrays and the damping form. Returns the node
-/// of element 0's stiffness.
+/// of element 0's stiffness (the full matrix's first entry).
 const toml::node& read_building(const toml::table& root, const std::string& origin, BuildingParams& out) {
   const toml::node* n = root.get("building");
   if (!n) fail(origin, 1, "building", "missing table [building]");
@@ -308,15 +381,34 @@ const toml::node& read_building(const toml::table& root, const std::string& orig
   if (const auto v = b.find("base")) out.base = base_named(*v);
   out.mass_kg = read_masses(b, origin);
   const std::size_t dofs = out.mass_kg.size();
-  out.story_stiffness_n_m = read_stiffness(b, origin, dofs, out.base);
+  const std::optional<Value> k_matrix = b.find("stiffness_matrix_n_m");
+  const toml::node* first_k = nullptr;
+  if (k_matrix) {
+    if (const auto chain = b.find("stiffness_n_m"))
+      chain->refuse("not allowed with building.stiffness_matrix_n_m: give one of the two stiffness forms");
+    out.stiffness_matrix_n_m = read_full_matrix(*k_matrix, origin, dofs, true, "N/m");
+    out.story_stiffness_n_m = chain_seen_from(out.stiffness_matrix_n_m, dofs);
+    first_k = k_matrix->array().get(0)->as_array()->get(0);
+  } else {
+    out.story_stiffness_n_m = read_stiffness(b, origin, dofs, out.base);
+    first_k = b.need("stiffness_n_m", "").array().get(0);
+  }
   const std::optional<Value> damping = b.find("damping_n_s_m");
   const std::optional<Value> rayleigh = b.find("rayleigh");
+  const std::optional<Value> c_matrix = b.find("damping_matrix_n_s_m");
   if (damping && rayleigh)
-    rayleigh->refuse("not allowed with building.damping_n_s_m: give one of the two damping forms");
-  if (!damping && !rayleigh)
+    rayleigh->refuse("not allowed with building.damping_n_s_m: give one of the damping forms");
+  if (c_matrix && (damping || rayleigh))
+    c_matrix->refuse("not allowed with building.damping_n_s_m or [building.rayleigh]: give one of the damping forms");
+  if (!damping && !rayleigh && !c_matrix)
     fail(origin, b.table(), "building.damping_n_s_m",
-         "missing key: give the element dashpots damping_n_s_m or a [building.rayleigh] table");
-  if (damping) {
+         "missing key: give the element dashpots damping_n_s_m, a [building.rayleigh] table or a full "
+         "damping_matrix_n_s_m");
+  if (c_matrix) {
+    out.damping_matrix_n_s_m = read_full_matrix(*c_matrix, origin, dofs, false, "N s/m");
+    out.story_damping_n_s_m.assign(dofs, 0.0);  // unused with a full matrix
+    out.rayleigh.reset();
+  } else if (damping) {
     require_length(*damping, dofs);
     out.story_damping_n_s_m =
         numbers(*damping, origin, [](const Value& e) { return e.non_negative("N s/m (a dashpot)"); });
@@ -325,8 +417,9 @@ const toml::node& read_building(const toml::table& root, const std::string& orig
     out.rayleigh = read_rayleigh(*rayleigh, origin, dofs);
     out.story_damping_n_s_m.assign(dofs, 0.0);  // unused with Rayleigh damping
   }
-  b.refuse_unknown("name, base, mass_kg, stiffness_n_m, damping_n_s_m, rayleigh");
-  return *b.need("stiffness_n_m", "").array().get(0);
+  b.refuse_unknown(
+      "name, base, mass_kg, stiffness_n_m, stiffness_matrix_n_m, damping_n_s_m, damping_matrix_n_s_m, rayleigh");
+  return *first_k;
 }
 
 unsigned isolator_count(Keys& t) {
@@ -514,6 +607,12 @@ void check_isolators(const BuildingParams& b, const std::vector<IsolatorSource>&
 /// lead-rubber bearing's post-yield stiffness or a friction pendulum.
 void check_restoring(const BuildingParams& b, const std::vector<IsolatorSource>& src, const std::string& origin,
                      const toml::node& stiffness0) {
+  if (!b.stiffness_matrix_n_m.empty()) {
+    if (!src.empty())
+      fail(origin, *src.front().table, src.front().name,
+           "not allowed with building.stiffness_matrix_n_m (isolators act on element 0 of a shear chain)");
+    return;  // a positive definite matrix restores every floor
+  }
   if (b.base == BaseKind::kFixed) return;
   const double mass_kg = total_mass_kg(b);
   const double weight_n = mass_kg * kGravity_m_s2;
@@ -663,9 +762,25 @@ std::string building_toml(const BuildingParams& b) {
   t += std::string("base = ") + (b.base == BaseKind::kFixed ? "\"fixed\"" : "\"isolated\"") + "\n";
   t += "# lumped masses, kg, DOF 0 first\n";
   t += "mass_kg = " + toml_array(b.mass_kg) + "\n";
-  t += "# element i joins DOF i to DOF i-1; element 0 joins DOF 0 to the ground\n";
-  t += "stiffness_n_m = " + toml_array(b.story_stiffness_n_m) + "\n";
-  if (b.rayleigh) {
+  const auto full = [&](const std::vector<double>& m) {
+    const std::size_t n = b.mass_kg.size();
+    std::string s = "[";
+    for (std::size_t i = 0; i < n; ++i)
+      s += "\n  " + toml_array(std::vector<double>(m.begin() + static_cast<std::ptrdiff_t>(i * n),
+                                                   m.begin() + static_cast<std::ptrdiff_t>((i + 1) * n))) + ",";
+    return s + "\n]";
+  };
+  if (!b.stiffness_matrix_n_m.empty()) {
+    t += "# the full stiffness matrix, N/m, row i for DOF i\n";
+    t += "stiffness_matrix_n_m = " + full(b.stiffness_matrix_n_m) + "\n";
+  } else {
+    t += "# element i joins DOF i to DOF i-1; element 0 joins DOF 0 to the ground\n";
+    t += "stiffness_n_m = " + toml_array(b.story_stiffness_n_m) + "\n";
+  }
+  if (!b.damping_matrix_n_s_m.empty()) {
+    t += "# the full damping matrix, N s/m, row i for DOF i\n";
+    t += "damping_matrix_n_s_m = " + full(b.damping_matrix_n_s_m) + "\n";
+  } else if (b.rayleigh) {
     t += "\n[building.rayleigh]  # C = a0 M + a1 K, the ratio exact at the two modes\n";
     t += "ratio = " + toml_float(b.rayleigh->ratio) + "\n";
     t += "modes = [" + std::to_string(b.rayleigh->mode_a) + ", " + std::to_string(b.rayleigh->mode_b) + "]\n";

@@ -7,6 +7,10 @@
 ///                       base = "isolated" (default) | "fixed"
 ///                       mass_kg, stiffness_n_m: N numbers each, DOF / element 0 first
 ///                       damping_n_s_m (N numbers) or [building.rayleigh]: exactly one of the two
+///                       or, for a frame that is not a shear chain (a condensed frame):
+///                       stiffness_matrix_n_m (N rows of N, symmetric, positive definite) instead of
+///                       stiffness_n_m, damping_matrix_n_s_m (N rows of N, symmetric, positive
+///                       semi-definite) instead of the two damping forms; no isolators with it
 ///   [building.rayleigh] ratio (0 < ratio < 1), modes = [i, j] (two different modes in 1..N)
 ///   [[isolator]]        kind = "lead_rubber": count, characteristic_strength_n,
 ///                         post_yield_stiffness_n_m, yield_displacement_m,

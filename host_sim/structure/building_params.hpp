@@ -100,6 +100,15 @@ struct BuildingParams {
   std::optional<RayleighDamping> rayleigh;
   std::vector<Isolator> isolators;
   std::vector<DamperPlacement> dampers{DamperPlacement{}};
+  /// A full stiffness matrix K, N/m, N×N row-major (a condensed frame, whose
+  /// floors are not a chain): when not empty it replaces the shear chain of
+  /// story_stiffness_n_m, which then holds the chain seen from it
+  /// (k_i = −K(i,i−1) for i ≥ 1, k_0 = K(0,0) − k_1) for the readers that
+  /// need one element's stiffness. No isolators with it.
+  std::vector<double> stiffness_matrix_n_m;
+  /// A full damping matrix C, N·s/m, N×N row-major: when not empty it replaces
+  /// the element dashpots (and excludes `rayleigh`).
+  std::vector<double> damping_matrix_n_s_m;
 
   /// Number of degrees of freedom.
   int dofs() const noexcept { return static_cast<int>(mass_kg.size()); }
