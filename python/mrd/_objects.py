@@ -172,6 +172,7 @@ class Damper(_TomlObject):
 
     @classmethod
     def from_file(cls, path: PathLike) -> "Damper":
+        """Reads a damper file (``mrd sim --damper``'s reader); its warnings are in ``info``."""
         p = os.fspath(path)
         return cls(_read_damper(p), p, None, p)
 
@@ -194,6 +195,7 @@ class Fluid(_TomlObject):
 
     @classmethod
     def from_file(cls, path: PathLike) -> "Fluid":
+        """Reads a fluid file (``mrd sim --fluid``'s reader); its warnings are in ``info``."""
         p = os.fspath(path)
         return cls(_read_fluid(p), p, None, p)
 

@@ -9,13 +9,16 @@ import pytest
 pytest.importorskip("matplotlib")
 
 
-@pytest.mark.parametrize("script, figure", [
-    ("chapter6_comparison.py", "chapter6_comparison.png"),
-    ("clipped_optimal.py", "clipped_optimal.png"),
+@pytest.mark.parametrize("script, figure, options", [
+    ("chapter6_comparison.py", "chapter6_comparison.png", ["--record", "{record}"]),
+    ("clipped_optimal.py", "clipped_optimal.png", ["--record", "{record}"]),
+    ("damper_size_sweep.py", "damper_size_sweep.png",
+     ["--records", "{record}", "--duration-s", "10", "--factors", "0.5,1,2"]),
 ])
-def test_example_writes_its_figure(script, figure, source_dir, elcentro, tmp_path):
+def test_example_writes_its_figure(script, figure, options, source_dir, elcentro, tmp_path):
     env = dict(os.environ, MPLCONFIGDIR=str(tmp_path / "mpl"))
-    p = subprocess.run([sys.executable, str(source_dir / "examples" / "python" / script), "--record", elcentro,
+    args = [o.format(record=elcentro) for o in options]
+    p = subprocess.run([sys.executable, str(source_dir / "examples" / "python" / script), *args,
                         "--out", str(tmp_path)], capture_output=True, text=True, env=env)
     assert p.returncode == 0, p.stderr
     png = tmp_path / figure
