@@ -7,6 +7,7 @@
 #include "host_sim/cli/options.hpp"
 #include "host_sim/discrepancy/discrepancy_report.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
+#include "host_sim/discrepancy/baseline_file.hpp"
 #include "host_sim/discrepancy/synth.hpp"
 #include "host_sim/io/usage_error.hpp"
 
@@ -23,6 +24,13 @@ constexpr CommandHelp kSynthHelp{
 20 ms correlated part 0.1-0.5 kN), LVDT noise (5-20 um) and 16-bit quantization. Parameters are
 drawn again until each effect changes the force by at least 4x the noise RMS.
 
+--baseline damper.toml makes the record from that damper instead (any law: bingham, bouc_wen,
+spencer), the draws put on it: half ranges, dominant frequencies and velocities inside its
+[validity], currents up to its largest, and the force noise, the load cell's range and the
+effects' forces (offset, gas spring) scaled by its force scale over the thesis damper's, the LVDT
+noise and range and the effects' lengths (free play, pre-yield) by its largest half range over
+40 mm.
+
 Files: DIR/measured.csv (time_s, displacement_m, current_cmd_A, force_N; velocity_m_s with
 --velocity-column) or DIR/measured.mat with --format mat, and DIR/summary.json, the truth:
   effects, parameters (per effect, with effect_rms_n), input, current, force_noise_rms_n,
@@ -35,6 +43,7 @@ struct SynthCliOptions {
   std::string input = "random";
   std::string current = "random";
   std::string format = "csv";
+  std::string baseline;
   double duration_s = 20.0;
   double rate_hz = 1000.0;
   double jitter = 0.0;
@@ -112,6 +121,7 @@ discrepancy::SynthSpec synth_spec(const SynthCliOptions& o) {
     spec.params = parse_params(o.params);
     check_params(spec);
   }
+  if (!o.baseline.empty()) spec.baseline = discrepancy::read_baseline_file(o.baseline).baseline;
   return spec;
 }
 
@@ -128,6 +138,8 @@ void add_options(CLI::App& app, SynthCliOptions& o) {
   add_seed_option(app, o.seed, "Seed of every random draw");
   app.add_flag("--velocity-column", o.velocity_column, "Also write a measured velocity column");
   app.add_option("--format", o.format, "csv | mat")->capture_default_str();
+  app.add_option("--baseline", o.baseline,
+                 "damper.toml the record is made from (any law; default: the thesis damper)");
   add_out_option(app, o.out_dir, "Folder for measured.csv/.mat and summary.json")->required();
 }
 

@@ -364,7 +364,7 @@ json synth_json(const SynthCase& c, const SynthSpec& spec) {
   for (std::size_t i = 0; i < c.effects.size(); ++i) {
     params[std::string(effect_name(c.effects[i]))]["effect_rms_n"] = c.effect_rms_n[i];
   }
-  return json{{"effects", effects_json(c.effects)},
+  json j{{"effects", effects_json(c.effects)},
               {"parameters", params},
               {"input", c.input_description},
               {"current", c.current_description},
@@ -377,6 +377,8 @@ json synth_json(const SynthCase& c, const SynthSpec& spec) {
               {"rate_hz", spec.rate_hz},
               {"jitter", spec.jitter},
               {"samples", c.data.size()}};
+  if (spec.baseline) j["baseline"] = {{"name", spec.baseline->name}, {"law", baseline_form_name(*spec.baseline)}};
+  return j;
 }
 
 std::filesystem::path write_synth_outputs(const std::filesystem::path& dir, const SynthCase& c, const SynthSpec& spec,

@@ -54,6 +54,43 @@ constexpr double kRamp_s = 1.0;
 constexpr double kNoiseCorrelation_s = 0.020;
 constexpr int kMaxDraws = 50;
 
+/// What the draws are put on: the thesis damper's ranges, or a baseline's
+/// (SynthSpec::baseline).
+struct SynthScale {
+  double amp_lo_m = 0.005, amp_hi_m = 0.040;  ///< sine half range; broadband peak
+  double sine_lo_hz = 0.25, sine_hi_hz = 2.0;
+  double band_lo_hz = 0.1, band_hi_hz = 2.5;  ///< broadband components
+  double v_max_m_s = kMaxVelocity_m_s;
+  double i_max_a = 2.5;  ///< constant currents in [0.2, 1] of it, steps in [0.1, 1]
+  double force = 1.0;    ///< forces (noise, channel range, offsets) over the thesis damper's
+  double length = 1.0;   ///< lengths (LVDT noise and range, free play) over the thesis's
+  [[nodiscard]] double force_lsb_n() const { return kForceLsb_n * force; }
+  [[nodiscard]] double disp_lsb_m() const { return kDispLsb_m * length; }
+};
+
+SynthScale scale_of(const std::optional<Baseline>& b) {
+  SynthScale s;
+  if (!b) return s;
+  const ValidityRange& r = b->range;
+  if (r.amplitude_max_m > 0.0) {
+    s.amp_hi_m = r.amplitude_max_m;
+    s.amp_lo_m = r.amplitude_min_m > 0.0 ? std::min(r.amplitude_min_m, r.amplitude_max_m) : 0.125 * r.amplitude_max_m;
+    s.length = r.amplitude_max_m / 0.040;
+  }
+  if (r.frequency_max_hz > 0.0) {
+    s.sine_hi_hz = r.frequency_max_hz;
+    s.sine_lo_hz = r.frequency_min_hz > 0.0 ? std::min(r.frequency_min_hz, r.frequency_max_hz) : 0.125 * s.sine_hi_hz;
+    s.band_lo_hz = 0.4 * s.sine_lo_hz;
+    s.band_hi_hz = s.sine_hi_hz;
+  }
+  if (r.velocity_max_m_s > 0.0) s.v_max_m_s = 0.9 * r.velocity_max_m_s;
+  const double i_max = std::max(std::fabs(r.current_min_a), std::fabs(r.current_max_a));
+  if (i_max > 0.0) s.i_max_a = i_max;
+  const double f = b->force_scale_n();
+  if (f > 0.0 && std::isfinite(f)) s.force = f / thesis_force_scale_n();
+  return s;
+}
+
 struct Motion {
   std::vector<double> x, v;
   std::string description;
@@ -79,27 +116,27 @@ void taper(const std::vector<double>& t, std::vector<double>& x, std::vector<dou
   }
 }
 
-Motion make_motion(SynthInput kind, const std::vector<double>& t, Rng& rng) {
+Motion make_motion(SynthInput kind, const std::vector<double>& t, Rng& rng, const SynthScale& sc) {
   Motion m;
   const std::size_t n = t.size();
   m.x.assign(n, 0.0);
   m.v.assign(n, 0.0);
   char buf[160];
   if (kind == SynthInput::sine) {
-    const double amp = rng.uniform(0.005, 0.040);
-    double f = rng.uniform(0.25, 2.0);
-    f = std::min(f, kMaxVelocity_m_s / (2.0 * units::kPi * amp));
+    const double amp = rng.uniform(sc.amp_lo_m, sc.amp_hi_m);
+    double f = rng.uniform(sc.sine_lo_hz, sc.sine_hi_hz);
+    f = std::min(f, sc.v_max_m_s / (2.0 * units::kPi * amp));
     const double ph = rng.uniform(0.0, 2.0 * units::kPi);
     const double w = 2.0 * units::kPi * f;
     for (std::size_t k = 0; k < n; ++k) {
       m.x[k] = amp * std::sin(w * t[k] + ph);
       m.v[k] = amp * w * std::cos(w * t[k] + ph);
     }
-    std::snprintf(buf, sizeof buf, "sine %.1f mm, %.3f Hz", amp * 1e3, f);
+    std::snprintf(buf, sizeof buf, "sine %.*f mm, %.3f Hz", amp < 0.005 ? 2 : 1, amp * 1e3, f);
   } else {
     constexpr int kComponents = 12;
     for (int c = 0; c < kComponents; ++c) {
-      const double f = rng.uniform(0.1, 2.5);
+      const double f = rng.uniform(sc.band_lo_hz, sc.band_hi_hz);
       const double a = rng.uniform(0.5, 1.0) / f;
       const double ph = rng.uniform(0.0, 2.0 * units::kPi);
       const double w = 2.0 * units::kPi * f;
@@ -110,27 +147,29 @@ Motion make_motion(SynthInput kind, const std::vector<double>& t, Rng& rng) {
     }
     double xmax = 0.0;
     for (const double x : m.x) xmax = std::max(xmax, std::fabs(x));
-    const double target = rng.uniform(0.010, 0.040);
+    const double target = rng.uniform(0.25 * sc.amp_hi_m, sc.amp_hi_m);
     double scale = target / xmax;
     double vmax = 0.0;
     for (const double v : m.v) vmax = std::max(vmax, std::fabs(v * scale));
-    if (vmax > kMaxVelocity_m_s) scale *= kMaxVelocity_m_s / vmax;
+    if (vmax > sc.v_max_m_s) scale *= sc.v_max_m_s / vmax;
     for (std::size_t k = 0; k < n; ++k) {
       m.x[k] *= scale;
       m.v[k] *= scale;
     }
-    std::snprintf(buf, sizeof buf, "broadband 0.1-2.5 Hz, peak %.1f mm", target * 1e3 * std::min(1.0, scale * xmax / target));
+    std::snprintf(buf, sizeof buf, "broadband %.3g-%.3g Hz, peak %.*f mm", sc.band_lo_hz, sc.band_hi_hz,
+                  target < 0.005 ? 2 : 1, target * 1e3 * std::min(1.0, scale * xmax / target));
   }
   taper(t, m.x, m.v);
   m.description = buf;
   return m;
 }
 
-std::vector<double> make_current(SynthCurrent kind, const std::vector<double>& t, Rng& rng, std::string& description) {
+std::vector<double> make_current(SynthCurrent kind, const std::vector<double>& t, Rng& rng, std::string& description,
+                                 const SynthScale& sc) {
   std::vector<double> i(t.size());
   char buf[120];
   if (kind == SynthCurrent::constant) {
-    const double level = rng.uniform(0.5, 2.5);
+    const double level = rng.uniform(0.2 * sc.i_max_a, sc.i_max_a);
     std::fill(i.begin(), i.end(), level);
     std::snprintf(buf, sizeof buf, "constant %.2f A", level);
   } else {
@@ -139,13 +178,13 @@ std::vector<double> make_current(SynthCurrent kind, const std::vector<double>& t
     int steps = 0;
     for (std::size_t k = 0; k < t.size(); ++k) {
       if (t[k] >= next_change) {
-        level = rng.uniform(0.25, 2.5);
+        level = rng.uniform(0.1 * sc.i_max_a, sc.i_max_a);
         next_change = t[k] + rng.uniform(2.0, 6.0);
         ++steps;
       }
       i[k] = level;
     }
-    std::snprintf(buf, sizeof buf, "%d steps of 2-6 s, 0.25-2.5 A", steps);
+    std::snprintf(buf, sizeof buf, "%d steps of 2-6 s, %.3g-%.3g A", steps, 0.1 * sc.i_max_a, sc.i_max_a);
   }
   description = buf;
   return i;
@@ -167,7 +206,7 @@ std::vector<double> sample_times(const SynthSpec& spec, Rng& rng) {
 
 /// Parameters of every effect of `set` drawn from synth_range (and the sign
 /// of a force offset), packed in its order.
-std::vector<double> draw_params(const EffectSet& set, Rng& rng) {
+std::vector<double> draw_params(const EffectSet& set, Rng& rng, const SynthScale& sc) {
   std::vector<double> params;
   for (const Effect e : set.effects) {
     for (std::size_t p = 0; p < effect_info(e).params.size(); ++p) {
@@ -178,6 +217,11 @@ std::vector<double> draw_params(const EffectSet& set, Rng& rng) {
       }
       double v = rng.uniform(lo, hi);
       if ((e == Effect::force_offset || e == Effect::direction_asymmetry) && rng.uniform() < 0.5) v = -v;
+      // The thesis damper's ranges put on the baseline's damper: forces,
+      // stiffnesses (force over length) and lengths scale with it.
+      if (e == Effect::force_offset) v *= sc.force;
+      if (e == Effect::gas_spring) v *= sc.force / sc.length;
+      if ((e == Effect::backlash && p == 0) || e == Effect::preyield_hysteresis) v *= sc.length;
       params.push_back(v);
     }
   }
@@ -219,7 +263,7 @@ struct Noise {
 /// `noise`, quantized to 16 bits, and a velocity column when asked for.
 MeasuredData measure(const SynthSpec& spec, const std::vector<double>& t, const Motion& m,
                      const std::vector<double>& i_cmd, const std::vector<double>& f_true, const Noise& noise,
-                     Rng& rng) {
+                     Rng& rng, const SynthScale& sc) {
   const std::size_t n = t.size();
   MeasuredData d;
   char label[64];
@@ -234,12 +278,13 @@ MeasuredData measure(const SynthSpec& spec, const std::vector<double>& t, const 
   double colored = noise.colored_n * rng.normal();
   for (std::size_t k = 0; k < n; ++k) {
     colored = a_c * colored + innov * rng.normal();
-    d.force_n[k] = quantize(f_true[k] + noise.white_n * rng.normal() + colored, kForceLsb_n);
-    d.displacement_m[k] = quantize(m.x[k] + noise.disp_m * rng.normal(), kDispLsb_m);
+    d.force_n[k] = quantize(f_true[k] + noise.white_n * rng.normal() + colored, sc.force_lsb_n());
+    d.displacement_m[k] = quantize(m.x[k] + noise.disp_m * rng.normal(), sc.disp_lsb_m());
   }
   if (spec.velocity_column) {
     d.velocity_m_s.resize(n);
-    for (std::size_t k = 0; k < n; ++k) d.velocity_m_s[k] = m.v[k] + 0.5e-3 * rng.normal();
+    const double v_noise_m_s = 0.5e-3 * (sc.v_max_m_s / kMaxVelocity_m_s);
+    for (std::size_t k = 0; k < n; ++k) d.velocity_m_s[k] = m.v[k] + v_noise_m_s * rng.normal();
   }
   return d;
 }
@@ -291,6 +336,7 @@ SynthCase synthesize(const SynthSpec& spec) {
   Rng rng(spec.seed * 0x2545F4914F6CDD1Dull + 12345u);
   const std::vector<double> t = sample_times(spec, rng);
 
+  const SynthScale sc = scale_of(spec.baseline);
   SynthCase out;
   for (int draw = 1; draw <= kMaxDraws; ++draw) {
     const SynthInput input =
@@ -300,17 +346,19 @@ SynthCase synthesize(const SynthSpec& spec) {
       // A current that never changes hides coil_lag: the generator then steps it.
       cur = set.contains(Effect::coil_lag) || rng.uniform() < 0.65 ? SynthCurrent::steps : SynthCurrent::constant;
     }
-    Motion m = make_motion(input, t, rng);
+    Motion m = make_motion(input, t, rng, sc);
     std::string cur_desc;
-    std::vector<double> i_cmd = make_current(cur, t, rng, cur_desc);
-    const std::vector<double> params = spec.params.empty() ? draw_params(set, rng) : spec.params;
+    std::vector<double> i_cmd = make_current(cur, t, rng, cur_desc, sc);
+    const std::vector<double> params = spec.params.empty() ? draw_params(set, rng, sc) : spec.params;
     Noise noise;
-    noise.white_n = spec.force_noise_n >= 0.0 ? spec.force_noise_n : rng.uniform(200.0, 1000.0);
-    noise.colored_n = spec.force_noise_n >= 0.0 ? 0.0 : rng.uniform(100.0, 500.0);
-    noise.disp_m = spec.disp_noise_m >= 0.0 ? spec.disp_noise_m : rng.uniform(5e-6, 20e-6);
+    noise.white_n = spec.force_noise_n >= 0.0 ? spec.force_noise_n : sc.force * rng.uniform(200.0, 1000.0);
+    noise.colored_n = spec.force_noise_n >= 0.0 ? 0.0 : sc.force * rng.uniform(100.0, 500.0);
+    noise.disp_m = spec.disp_noise_m >= 0.0 ? spec.disp_noise_m : sc.length * rng.uniform(5e-6, 20e-6);
     const double noise_rms = std::hypot(noise.white_n, noise.colored_n);
 
-    const DamperModel truth(ModelInput{t, m.x, m.v, i_cmd, false, {}, {}});  // the thesis baseline needs no |a|
+    // |ā| is filled by the model when the baseline's transition time needs it.
+    const ModelInput input_of_truth{t, m.x, m.v, i_cmd, false, {}, {}};
+    const DamperModel truth = spec.baseline ? DamperModel(input_of_truth, *spec.baseline) : DamperModel(input_of_truth);
     ModelWorkspace ws;
     std::vector<double> f_true, f_base;
     truth.simulate(set, params, ws, f_true);
@@ -330,7 +378,7 @@ SynthCase synthesize(const SynthSpec& spec) {
     out.effect_rms_n = effect_rms;
     out.true_gap = normalized_rms_gap(f_true, f_base);
     out.draws = draw;
-    out.data = measure(spec, t, m, i_cmd, f_true, noise, rng);
+    out.data = measure(spec, t, m, i_cmd, f_true, noise, rng, sc);
     break;
   }
   return out;

@@ -5,10 +5,12 @@
 /// proven on these (it is not told what was added).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "host_sim/discrepancy/baseline.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/measured_data.hpp"
 
@@ -36,6 +38,14 @@ struct SynthSpec {
   /// Each effect's contribution must reach this multiple of the force-noise
   /// RMS; parameters and input are drawn again (up to 50 times) until it does.
   double min_effect_to_noise = 4.0;
+  /// The damper the record is made from: the thesis's 200 kN damper when
+  /// absent, else this baseline (a damper.toml, any law). With a baseline the
+  /// draws are put on its damper: motions inside its [validity] half ranges,
+  /// dominant frequencies and velocity, currents up to its largest one, and
+  /// the sensor noise, the 16-bit channels' ranges and the effects' forces
+  /// and lengths scaled from the thesis damper's by its force scale
+  /// (Baseline::force_scale_n) and by its largest half range over 40 mm.
+  std::optional<Baseline> baseline;
 };
 
 struct SynthCase {

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -206,6 +207,49 @@ TEST_F(SpencerDamperCli, PublishedFitRunsInTheClosedLoop) {
   EXPECT_NEAR(f_peak, estimate, 0.03 * estimate) << "peak velocity " << v_peak << " m/s";
   const auto j = nlohmann::json::parse(slurp(sim / "summary.json"));
   EXPECT_NEAR(j.at("peak_damper_force_kn").get<double>(), 1e-3 * f_peak, 1e-3 * 0.001 * f_peak);
+}
+
+// `mrd synth --baseline` with the spencer damper: a constant-current sine
+// record of the laboratory damper's size (inside its [validity]: ±25 mm,
+// 0–1 A), whose peak force is the steady Spencer force at the sine's peak
+// velocity 2π f X (from the motion summary.json names) within 3 % (the
+// load cell's noise, scaled to this damper, is a few newtons of about a
+// kilonewton); `mrd discrepancy` with the same file finds nothing in it.
+TEST_F(SpencerDamperCli, SynthMakesARecordOfItsDamper) {
+  const fs::path damper = file("spencer.toml", kSpencerDamper);
+  const fs::path syn = out_.path() / "synth";
+  const auto r = run_mrd("synth --baseline " + damper.string() +
+                             " --effects none --input sine --current constant --seed 4 --out " + syn.string(),
+                         scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(syn / "summary.json"));
+  EXPECT_EQ(j.at("baseline").at("law"), "spencer");
+  double amp_mm = 0.0, freq_hz = 0.0, current_a = 0.0;
+  ASSERT_EQ(std::sscanf(j.at("input").get<std::string>().c_str(), "sine %lf mm, %lf Hz", &amp_mm, &freq_hz), 2)
+      << j.at("input");
+  ASSERT_EQ(std::sscanf(j.at("current").get<std::string>().c_str(), "constant %lf A", &current_a), 1)
+      << j.at("current");
+  EXPECT_GE(current_a, 0.2);
+  EXPECT_LE(current_a, 1.0);
+  EXPECT_GE(amp_mm, 1.6);
+  EXPECT_LE(amp_mm, 25.0);
+  const std::string csv = slurp(syn / "measured.csv");
+  const std::vector<double> x = column(csv, "displacement_m"), f = column(csv, "force_N");
+  ASSERT_GT(f.size(), 1000u);
+  double x_peak = 0.0, f_peak = 0.0;
+  for (const double v : x) x_peak = std::max(x_peak, std::fabs(v));
+  for (const double v : f) f_peak = std::max(f_peak, std::fabs(v));
+  EXPECT_NEAR(x_peak, 1e-3 * amp_mm, 0.05e-3 * amp_mm + 2e-5);
+  const double v_peak = 2.0 * std::numbers::pi * freq_hz * 1e-3 * amp_mm;
+  const double estimate = steady_spencer_force_n(v_peak, current_a);
+  EXPECT_NEAR(f_peak, estimate, 0.03 * estimate) << "peak velocity " << v_peak << " m/s";
+
+  const fs::path dis = out_.path() / "discrepancy";
+  const auto d = run_mrd("discrepancy --measured " + (syn / "measured.csv").string() + " --baseline " +
+                             damper.string() + " --out " + dis.string(),
+                         scratch_.path());
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dis / "summary.json")).at("verdict"), "none") << d.out;
 }
 
 TEST_F(SpencerDamperCli, CommandsOfTheBinghamLawsRefuseItNamingTheLine) {
