@@ -33,13 +33,14 @@ class ClippedOptimal:
     def reset(self) -> None:
         self.last_disp_m = None
 
-    def step(self, s: mrd.Sensors) -> float:
+    def step(self, s: mrd.Sensors) -> tuple:
         disp_m = s.damper_disp_m
         v_m_s = 0.0 if self.last_disp_m is None else (disp_m - self.last_disp_m) / STEP_S
         self.last_disp_m = disp_m
         desired_n = self.gain_n_s_m * v_m_s
         force_n = s.damper_force_n
-        return RATED_CURRENT_A if desired_n * force_n > 0.0 and abs(desired_n) > abs(force_n) else 0.0
+        current_a = RATED_CURRENT_A if desired_n * force_n > 0.0 and abs(desired_n) > abs(force_n) else 0.0
+        return current_a, desired_n  # the desired force fills the run's desired_force_n column
 
 
 def main() -> None:

@@ -134,7 +134,9 @@ def sim(
             a Python control law: a callable, or an object with a
             ``step(sensors)`` method (and optionally ``reset()``, called before
             the run), given each tick's :class:`Sensors` and returning the coil
-            current command, A (the core's float; drive enabled). It runs in
+            current command, A, or a pair (current command, A; desired force,
+            N: the desired_force_n column, else 0), each converted to the
+            core's float, the drive enabled. It runs in
             the same plant as the core; the summary's "control" field still
             names ``control``.
 

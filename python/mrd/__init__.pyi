@@ -23,8 +23,10 @@ class Sensors:
     @property
     def coil_current_a(self) -> float: ...
 
+_Command = Union[float, Tuple[float, float]]
+
 class ControllerObject(Protocol):
-    def step(self, sensors: Sensors) -> float: ...
+    def step(self, sensors: Sensors) -> _Command: ...
 
 class Building:
     info: Dict[str, Any]
@@ -135,7 +137,7 @@ def sim(
     building: Union[None, str, Building] = ...,
     damper: Union[None, str, Damper] = ...,
     fluid: Union[None, str, Fluid] = ...,
-    controller: Union[None, Callable[[Sensors], float], ControllerObject] = ...,
+    controller: Union[None, Callable[[Sensors], _Command], ControllerObject] = ...,
 ) -> SimResult: ...
 
 PEAK_FIELDS: Tuple[str, ...]

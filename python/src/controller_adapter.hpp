@@ -20,9 +20,11 @@ struct Sensors {
 };
 
 /// Calls `step(sensors)` (the object's step method, or the object itself when
-/// it is a callable) once per tick; the GIL stays held. The returned number is
-/// the current command, A (converted to the core's float, drive enabled,
-/// desired force 0). reset() calls the object's reset() when it has one.
+/// it is a callable) once per tick; the GIL stays held. It returns the
+/// current command, A, or a pair (current command, A; desired force, N, the
+/// desired_force_n column), each converted to the core's float, the drive
+/// enabled; without a pair the desired force is 0. reset() calls the
+/// object's reset() when it has one.
 class PythonController final : public run::Controller {
  public:
   /// Throws io::UsageError when `controller` is neither callable nor has a step method.

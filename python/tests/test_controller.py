@@ -30,6 +30,15 @@ def test_python_passive_on_gives_the_passive_on_peaks(elcentro):
     assert python.summary["peak_base_displacement_m"] > 0.0
 
 
+def test_a_pair_gives_the_desired_force_column(elcentro):
+    core = mrd.sim(record=elcentro, control="passive-on", duration_s=2.0)
+    python = mrd.sim(record=elcentro, duration_s=2.0, controller=lambda sensors: (PASSIVE_ON_A, 1234.5))
+    assert python.peaks == core.peaks
+    assert (python.timeseries["desired_force_n"] == 1234.5).all()  # 1234.5 is exact in float
+    with pytest.raises(mrd.UsageError, match="controller: step returned a tuple of 3 values"):
+        mrd.sim(record=elcentro, duration_s=1.0, controller=lambda s: (1.0, 2.0, 3.0))
+
+
 class CountingController:
     """An object with step and reset: reset is called before the run."""
 
