@@ -168,5 +168,7 @@ def sim(
     except UsageError as e:
         raise UsageError(relabel(str(e))) from None
     summary = json.loads(raw.summary_json)
+    if isinstance(summary.get("record"), str):  # a Record made in Python: its name, not its scratch file
+        summary["record"] = relabel(summary["record"])
     timeseries = {name: np.asarray(column) for name, column in raw.columns}
     return SimResult(summary, timeseries, dict(raw.peaks))

@@ -58,6 +58,7 @@ def test_record_from_an_array_runs_as_its_file(elcentro):
     a = mrd.sim(record=copy, duration_s=3.0, control="passive-on")
     b = mrd.sim(record=elcentro, duration_s=3.0, control="passive-on")
     assert a.peaks == b.peaks
+    assert a.summary["record"] == "copy.csv"
 
 
 def _cli_message(mrd_binary, args):
