@@ -70,11 +70,10 @@ namespace mrd::fw {
 /// The control core's own counters and state (what `status()` returns); not
 /// the CAN heartbeat protocol::ControllerStatus, which the control task sends.
 /// For N lanes (LanePolicy<N>) every counter counts per lane.
-template <int N>
+template <class Set>
 struct BasicDamperControllerStatus {
-  using Set = LaneSet<N>;
   using Count = typename Set::Count;
-  using Faults = typename BasicInputGuard<N>::Faults;
+  using Faults = typename BasicInputGuard<Set>::Faults;
   typename Set::Tick ticks{};  ///< step() calls since reset()
   control::ControlMode mode = control::ControlMode::kPassiveOff;
   bool initialized = false;
@@ -113,7 +112,7 @@ struct BasicDamperControllerStatus {
   }
 };
 
-using DamperControllerStatus = BasicDamperControllerStatus<1>;
+using DamperControllerStatus = BasicDamperControllerStatus<LaneSet<1>>;
 
 template <class Policy>
 class DamperController {
@@ -127,11 +126,12 @@ class DamperController {
   using Count = typename LaneTypes<Policy>::Count;
   using Tick = typename LaneTypes<Policy>::Tick;
   using Sample = typename LaneTypes<Policy>::Sample;
-  using Guard = BasicInputGuard<kLanes>;
+  using Set = typename LaneTypes<Policy>::Self;
+  using Guard = BasicInputGuard<Set>;
   using Faults = typename Guard::Faults;
-  using Status = BasicDamperControllerStatus<kLanes>;
-  using Input = typename ControlIo<kLanes>::Input;
-  using Output = typename ControlIo<kLanes>::Output;
+  using Status = BasicDamperControllerStatus<Set>;
+  using Input = typename ControlIo<Set>::Input;
+  using Output = typename ControlIo<Set>::Output;
 
   /// Validates and applies `config`, then reset(). On an error the
   /// controller is left uninitialized (0 A, drive disabled).

@@ -74,12 +74,11 @@ struct InputGuardLimits {
   float shaking_threshold_m_s2 = 0.1f;  ///< ≈ 0.01 g
 };
 
-/// One tick's input to N controllers side by side (LanePolicy<N>): each
+/// One tick's input to N controllers side by side (LanePolicy<N>, lane set `Set`): each
 /// field of control::ControllerInput, one lane per controller; flags are
 /// masks.
-template <int N>
+template <class Set>
 struct LaneControllerInput {
-  using Set = LaneSet<N>;
   typename Set::Tick tick{};
   typename Set::Sample damper_disp_m{};
   typename Set::Sample damper_force_n{};
@@ -96,33 +95,32 @@ struct LaneControllerInput {
 };
 
 /// One tick's output of N controllers side by side.
-template <int N>
+template <class Set>
 struct LaneControllerOutput {
-  using Set = LaneSet<N>;
   typename Set::Sample current_command_a{};
   typename Set::Mask drive_enable = num::all_set<typename Set::Mask>();
   typename Set::Sample desired_force_n{};
 };
 
-/// The input and output types for N lanes (N = 1: control::ControllerInput
-/// and control::ControllerOutput).
-template <int N>
+/// The input and output types for a lane set (one lane:
+/// control::ControllerInput and control::ControllerOutput).
+template <class Set>
 struct ControlIo {
-  using Input = LaneControllerInput<N>;
-  using Output = LaneControllerOutput<N>;
+  using Input = LaneControllerInput<Set>;
+  using Output = LaneControllerOutput<Set>;
 };
 template <>
-struct ControlIo<1> {
+struct ControlIo<LaneSet<1>> {
   using Input = control::ControllerInput;
   using Output = control::ControllerOutput;
 };
 
-/// The guard for N lanes (`InputGuard` for one controller); the checks are
-/// written with masks, one source for both.
-template <int N>
+/// The guard for a lane set (`InputGuard` for one controller); the checks
+/// are written with masks, one source for both.
+template <class Set>
 class BasicInputGuard {
  public:
-  using Set = LaneSet<N>;
+  static constexpr int N = Set::kLanes;
   using Mask = typename Set::Mask;
   using Count = typename Set::Count;
   using Sample = typename Set::Sample;
@@ -130,7 +128,7 @@ class BasicInputGuard {
   /// A signal's fault: InputFault, or its code per lane.
   using Fault = std::conditional_t<N == 1, InputFault, typename Set::Int>;
   using Faults = std::array<Fault, kInputSignals>;
-  using Input = typename ControlIo<N>::Input;
+  using Input = typename ControlIo<Set>::Input;
 
   void init(const InputGuardLimits& limits) noexcept {
     limits_ = limits;
@@ -181,7 +179,7 @@ class BasicInputGuard {
   Count ticks_since_shaking_ = num::splat<Count>(kNever);
 
   static constexpr Fault basic(Sample v, Mask flagged_valid, float limit) noexcept {
-    const Bits bits = std::bit_cast<Bits>(v);
+    const Bits bits = __builtin_bit_cast(Bits, v);
     const Mask special = (bits & 0x7f800000u) == 0x7f800000u;  // NaN or infinite (classify_float)
     Fault f = num::select(!(v <= limit && -limit <= v), fault(InputFault::kOutOfRange), fault(InputFault::kNone));
     if (num::any(special)) {
@@ -198,7 +196,7 @@ class BasicInputGuard {
   /// passed the basic checks.
   void stuck(int slot, Sample v, Fault& f) noexcept {
     const Mask bad = f != fault(InputFault::kNone);
-    const Bits bits = std::bit_cast<Bits>(v);
+    const Bits bits = __builtin_bit_cast(Bits, v);
     const Count run = same_run_[slot];
     const Mask same = have_last_[slot] && bits == last_bits_[slot];
     same_run_[slot] = num::select(bad || !same, Count{}, num::select(run < kNever, run + 1u, run));
@@ -212,6 +210,6 @@ class BasicInputGuard {
   }
 };
 
-using InputGuard = BasicInputGuard<1>;
+using InputGuard = BasicInputGuard<LaneSet<1>>;
 
 }  // namespace mrd::fw

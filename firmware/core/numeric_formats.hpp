@@ -129,14 +129,17 @@ struct Formats<num::Fixed32Policy> {
 /// batch, host side) stepped together, each lane's numbers and decisions
 /// those of the float build bit for bit. Every role is N floats (GCC vector
 /// extension); the core's branches on data are masks (`LaneTypes`).
-template <int N>
+/// `Tag` tells apart builds of the same width compiled for different
+/// instruction sets (a type of an unnamed namespace keeps each build's
+/// functions to its own file).
+template <int N, class Tag = void>
 struct LanePolicy {
   static constexpr const char* kName = "float32-lanes";
   static constexpr int kLanes = N;
 };
 
-template <int N>
-struct Formats<LanePolicy<N>> {
+template <int N, class Tag>
+struct Formats<LanePolicy<N, Tag>> {
   using Disp = num::LaneFloat<N>;
   using Velocity = num::LaneFloat<N>;
   using Force = num::LaneFloat<N>;
@@ -153,8 +156,8 @@ template <class Policy>
 struct LaneScalar {
   using type = Policy;
 };
-template <int N>
-struct LaneScalar<LanePolicy<N>> {
+template <int N, class Tag>
+struct LaneScalar<LanePolicy<N, Tag>> {
   using type = num::Float32Policy;
 };
 template <class Policy>
@@ -164,8 +167,9 @@ using LaneScalarPolicy = typename LaneScalar<Policy>::type;
 /// controller (N = 1) a bool mask, 32-bit counts, an int, a 64-bit tick and
 /// float samples; for N lanes each of them N wide (a tick counts 32 bits per
 /// lane there: 49 days at 1 kHz, far beyond any run a batch steps).
-template <int N>
+template <int N, class Tag = void>
 struct LaneSet {
+  using Self = LaneSet;
   static constexpr int kLanes = N;
   using Mask = num::LaneMask<N>;
   using Count = num::LaneCount<N>;
@@ -177,6 +181,7 @@ struct LaneSet {
 
 template <>
 struct LaneSet<1> {
+  using Self = LaneSet;
   static constexpr int kLanes = 1;
   using Mask = bool;
   using Count = std::uint32_t;
@@ -190,8 +195,8 @@ struct LaneSet<1> {
 template <class Policy>
 struct LaneTypes : LaneSet<1> {};
 
-template <int N>
-struct LaneTypes<LanePolicy<N>> : LaneSet<N> {};
+template <int N, class Tag>
+struct LaneTypes<LanePolicy<N, Tag>> : LaneSet<N, Tag> {};
 
 /// The double-precision reference build of the idle-time estimator, the
 /// mixing scheduler and the mixing task (host side; their float and fixed
@@ -294,7 +299,7 @@ constexpr bool representable(double v) noexcept {
 
 /// s·v for s = −1 (`negative`) or +1, without a multiply (per lane for a mask).
 template <class M, class T>
-constexpr T signed_by(M negative, T v) noexcept {
+[[gnu::always_inline]] constexpr T signed_by(M negative, T v) noexcept {
   return negative ? -v : v;
 }
 

@@ -23,6 +23,7 @@ class AnyLanes {
   AnyLanes& operator=(const AnyLanes&) = delete;
 
   int lanes() const noexcept { return kernel_.lanes; }
+  const LaneKernel& kernel() const noexcept { return kernel_; }
   /// Lane l at rest (Plant::init) with settling quotient `sq`, reading 0 m/s².
   void rest(int l, double sq);
   /// Lane l reads a_g[n] = scale · ground[n].

@@ -15,6 +15,7 @@
 #endif
 
 #include "host_sim/batch/any_lanes.hpp"
+#include "host_sim/batch/core_lanes.hpp"
 #include "host_sim/batch/lane_block.hpp"
 #include "host_sim/batch/lane_stepper.hpp"
 #include "host_sim/structure/discrete_building.hpp"
@@ -197,11 +198,13 @@ class ThesisLanes {
         kernel_(kernel),
         model_(shared_model(spec)),
         block_(std::make_unique<LaneBlock>()),
-        run_(story_drift ? kernel.run : kernel.run_without_drift) {
+        run_(story_drift ? kernel.run : kernel.run_without_drift),
+        core_run_(story_drift ? kernel.core_run : kernel.core_run_without_drift) {
     for (int l = 0; l < kMaxLanes; ++l) rest(l, 1.0);
   }
 
   int lanes() const noexcept { return kernel_.lanes; }
+  const LaneKernel& kernel() const noexcept { return kernel_; }
 
   void rest(int l, double sq) {
     LaneBlock& b = *block_;
@@ -236,6 +239,10 @@ class ThesisLanes {
   void set_command(int l, double current_a) noexcept { block_->command_a[l] = current_a; }
 
   void run(std::size_t ticks) { run_(model_, *block_, ticks); }
+  /// `ticks` ticks with the control core's lanes in the loop (LaneKernel::core_run).
+  void run_core(void* core, std::size_t ticks, const std::uint32_t* tick0, const std::int32_t* active) {
+    core_run_(model_, *block_, core, ticks, tick0, active);
+  }
   void sense() { kernel_.sense(model_, *block_); }
   void advance() { kernel_.advance(model_, *block_); }
 
@@ -273,6 +280,7 @@ class ThesisLanes {
   SharedModel model_;
   std::unique_ptr<LaneBlock> block_;
   void (*run_)(const SharedModel&, LaneBlock&, std::size_t);
+  void (*core_run_)(const SharedModel&, LaneBlock&, void*, std::size_t, const std::uint32_t*, const std::int32_t*);
 };
 
 /// Steps the runs of one queue through one set of lanes, a lane taking the
@@ -299,7 +307,9 @@ class Batch {
         tick_by_tick = tick_by_tick || r.record != nullptr || !passive(r.mode);
       }
       if (left == std::numeric_limits<std::size_t>::max()) return;  // every lane idle
-      if (tick_by_tick) {
+      if (tick_by_tick && core_lanes_only()) {
+        run_core_lanes(left);
+      } else if (tick_by_tick) {
         tick();
         left = 1;
       } else {
@@ -324,7 +334,21 @@ class Batch {
     double sq = 0.0;
     double desired_force_n = 0.0;  ///< the passive core's F_d (0)
     double command_a = 0.0;        ///< u[n]: the passive core's for the run, the semi-active core's this tick
-    run::Controller* controller = nullptr;  ///< semi-active only
+    run::Controller* controller = nullptr;  ///< semi-active, fixed or double build: the lane's own core
+    bool in_core_lanes = false;             ///< semi-active, float build: lane l of the core's lanes
+  };
+
+  /// The float build's control core in lanes (core_lanes.hpp), built for the
+  /// kernel's instruction set: lane l is lane l's controller.
+  struct CoreLanes {
+    const LaneKernel* kernel = nullptr;
+    void* core = nullptr;
+    CoreLanes() = default;
+    CoreLanes(const CoreLanes&) = delete;
+    CoreLanes& operator=(const CoreLanes&) = delete;
+    ~CoreLanes() {
+      if (core) kernel->core_destroy(core);
+    }
   };
 
   const plant::PlantSpec& spec_;
@@ -336,6 +360,53 @@ class Batch {
   std::array<std::array<std::unique_ptr<run::Controller>, kModes>, kMaxLanes> controllers_{};
   const std::vector<std::size_t>* queue_ = nullptr;
   std::size_t next_ = 0;
+  CoreLanes core_lanes_;
+
+  /// Every running lane is a semi-active lane of the core's lanes, none
+  /// records, and the lanes can run the core in their loop.
+  bool core_lanes_only() const {
+    if constexpr (requires(Lanes& s) { s.run_core(nullptr, 0, nullptr, nullptr); }) {
+      for (int l = 0; l < lanes_.lanes(); ++l) {
+        const Lane& lane = lane_[l];
+        if (lane.run != kNone && (!lane.in_core_lanes || runs_[lane.run].record)) return false;
+      }
+      return true;
+    } else {
+      return false;
+    }
+  }
+
+  /// `ticks` ticks of the lanes with the core's lanes in the loop.
+  void run_core_lanes(std::size_t ticks) {
+    if constexpr (requires(Lanes& s) { s.run_core(nullptr, 0, nullptr, nullptr); }) {
+      std::uint32_t tick0[kMaxLanes] = {};
+      std::int32_t active[kMaxLanes] = {};
+      for (int l = 0; l < lanes_.lanes(); ++l) {
+        if (lane_[l].run == kNone) continue;
+        tick0[l] = static_cast<std::uint32_t>(lane_[l].tick);
+        active[l] = -1;
+      }
+      lanes_.run_core(core_lanes(), ticks, tick0, active);
+    }
+  }
+
+  /// The core's lanes, configured as run::make_controller configures the
+  /// float build (which names what a rejected period breaks).
+  void* core_lanes() {
+    if (!core_lanes_.core) {
+      (void)run::make_controller(control::ControlMode::kSemiActive, spec_.step_s, run::NumericKind::kFloat);
+      const auto prototype = std::make_unique<CoreLanesPrototype>();
+      if (prototype->init(fw::default_controller_config(control::ControlMode::kSemiActive, spec_.step_s)) !=
+          fw::ConfigError::kNone) {
+        throw std::invalid_argument("the control core's lanes reject the plant's step");
+      }
+      const LaneKernel& k = lanes_.kernel();
+      core_lanes_.core = k.core_make(prototype.get(), sizeof(CoreLanesPrototype));
+      if (!core_lanes_.core) throw std::logic_error("the kernel's control core lanes differ from the prototype");
+      core_lanes_.kernel = &k;
+    }
+    return core_lanes_.core;
+  }
 
   run::Controller& controller(int l, control::ControlMode mode) {
     auto& c = controllers_[l][static_cast<int>(mode)];
@@ -360,6 +431,12 @@ class Batch {
         continue;
       }
       lanes_.start(l, r.ground_accel_m_s2.data(), r.ground_scale);
+      if (!passive(r.mode) && options_.numeric == run::NumericKind::kFloat) {
+        void* core = core_lanes();
+        core_lanes_.kernel->core_reset(core, l);
+        lane.in_core_lanes = true;
+        return;
+      }
       run::Controller& c = controller(l, r.mode);
       c.reset();
       if (passive(r.mode)) {
@@ -392,12 +469,13 @@ class Batch {
     lanes_.sense();
     std::array<LaneSensed, kMaxLanes> sensed{};
     std::array<double, kMaxLanes> desired{};
+    CoreLanesIn core_in;
+    bool core_lanes_run = false;
     for (int l = 0; l < lanes_.lanes(); ++l) {
       Lane& lane = lane_[l];
       if (lane.run == kNone) continue;
       sensed[l] = lanes_.sensed(l);
       desired[l] = lane.desired_force_n;
-      if (!lane.controller) continue;
       const LaneSensed& s = sensed[l];
       control::ControllerInput in;
       in.tick = lane.tick;
@@ -406,10 +484,33 @@ class Batch {
       in.ground_accel_m_s2 = static_cast<float>(s.ground_accel_m_s2);
       in.base_accel_m_s2 = static_cast<float>(s.base_accel_m_s2);
       in.coil_current_a = static_cast<float>(s.current_a);
+      if (lane.in_core_lanes) {
+        core_lanes_run = true;
+        core_in.tick[l] = static_cast<std::uint32_t>(in.tick);
+        core_in.disp_m[l] = in.damper_disp_m;
+        core_in.force_n[l] = in.damper_force_n;
+        core_in.ground_accel_m_s2[l] = in.ground_accel_m_s2;
+        core_in.base_accel_m_s2[l] = in.base_accel_m_s2;
+        core_in.coil_current_a[l] = in.coil_current_a;
+        continue;
+      }
+      if (!lane.controller) continue;
       const control::ControllerOutput o = lane.controller->step(in);
       lane.command_a = plant::command_stage_a(run::coil_drive(o));
       lanes_.set_command(l, lane.command_a);
       desired[l] = o.desired_force_n;
+    }
+    if (core_lanes_run) {
+      CoreLanesOut o;
+      core_lanes_.kernel->core_step(core_lanes(), core_in, o);
+      for (int l = 0; l < lanes_.lanes(); ++l) {
+        Lane& lane = lane_[l];
+        if (lane.run == kNone || !lane.in_core_lanes) continue;
+        // run::coil_drive and plant::command_stage_a, per lane.
+        lane.command_a = o.drive_enable[l] != 0 ? static_cast<double>(o.command_a[l]) : 0.0;
+        lanes_.set_command(l, lane.command_a);
+        desired[l] = o.desired_force_n[l];
+      }
     }
     lanes_.advance();
     if constexpr (requires(Lanes& s, run::ClosedLoopRecord& r) { s.record_after(0, r); }) {

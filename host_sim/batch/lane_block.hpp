@@ -81,6 +81,8 @@ struct alignas(64) LaneBlock {
 
 struct AnyModel;  // lane_block_any.hpp
 struct AnyBlock;
+struct CoreLanesIn;  // core_lanes.hpp
+struct CoreLanesOut;
 
 /// One instruction set's kernel.
 struct LaneKernel {
@@ -100,6 +102,18 @@ struct LaneKernel {
   void (*any_sense)(const AnyModel&, AnyBlock&) = nullptr;
   void (*any_advance)(const AnyModel&, AnyBlock&) = nullptr;
   void (*any_run)(const AnyModel&, AnyBlock&, std::size_t ticks) = nullptr;
+  /// The float control core in kMaxLanes lanes, built for this instruction set (core_lanes.hpp).
+  void* (*core_make)(const void* prototype, std::size_t bytes) = nullptr;
+  void (*core_destroy)(void* core) = nullptr;
+  void (*core_reset)(void* core, int lane) = nullptr;
+  void (*core_step)(void* core, const CoreLanesIn& in, CoreLanesOut& out) = nullptr;
+  /// `ticks` × (sense, the core's step, advance) on the thesis-shape lanes, the
+  /// controllers' ticks from tick0[l]; lanes with active[l] = 0 keep their command.
+  void (*core_run)(const SharedModel&, LaneBlock&, void* core, std::size_t ticks, const std::uint32_t* tick0,
+                   const std::int32_t* active) = nullptr;
+  /// core_run() leaving peak_story_drift_m untouched.
+  void (*core_run_without_drift)(const SharedModel&, LaneBlock&, void* core, std::size_t ticks,
+                                 const std::uint32_t* tick0, const std::int32_t* active) = nullptr;
 };
 
 /// The kernels this build has. The x86-64-v3 and -v4 kernels run only on

@@ -4,13 +4,16 @@
 #define MRD_BATCH_FMA_EXP 0
 #include "host_sim/batch/lane_kernel.hpp"
 #include "host_sim/batch/lane_kernel_any.hpp"
+#include "host_sim/batch/core_lanes_kernel.hpp"
 
 namespace mrd::batch {
 
 LaneKernel generic_lane_kernel() noexcept {
   return LaneKernel{"generic", generic::kW * generic::kInterleave, &generic::sense, &generic::advance, &generic::run,
                     &generic::run_without_drift, &generic::exp_n,
-                    &generic::any_sense, &generic::any_advance, &generic::any_run};
+                    &generic::any_sense, &generic::any_advance, &generic::any_run,
+                    &generic::core_make, &generic::core_destroy, &generic::core_reset, &generic::core_step,
+                    &generic::core_run, &generic::core_run_without_drift};
 }
 
 }  // namespace mrd::batch

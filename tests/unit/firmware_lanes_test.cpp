@@ -79,13 +79,13 @@ struct LanesTestWorld {
     }
     // Single-tick faults of every kind, on every signal.
     constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-    constexpr float kInf = std::numeric_limits<float>::infinity();
+    constexpr float inf_f = std::numeric_limits<float>::infinity();
     float* signals[] = {&in.damper_disp_m, &in.damper_force_n, &in.ground_accel_m_s2, &in.base_accel_m_s2,
                         &in.coil_current_a};
     for (float* s : signals) {
       if (stuck_left > 0) break;  // a fault would end the frozen run
       if (rng.chance(2e-3)) *s = kNan;
-      if (rng.chance(1e-3)) *s = rng.chance(0.5) ? kInf : -kInf;
+      if (rng.chance(1e-3)) *s = rng.chance(0.5) ? inf_f : -inf_f;
       if (rng.chance(1e-3)) *s = 1.0e7f;
     }
     if (stuck_left == 0 && rng.chance(2e-3)) in.flags.disp_valid = false;
@@ -146,7 +146,7 @@ void expect_lanes_equal_float_build(ControlMode mode, std::uint64_t seed, int ti
       }
     }
     if (num::any(restart)) lanes.reset(restart);
-    LaneControllerInput<N> in;
+    typename DamperController<LanePolicy<N>>::Input in;
     std::array<control::ControllerInput, N> scalar_in;
     for (int l = 0; l < N; ++l) {
       const control::ControllerInput s = world[l].next();
@@ -163,7 +163,7 @@ void expect_lanes_equal_float_build(ControlMode mode, std::uint64_t seed, int ti
       in.flags.base_accel_valid[l] = s.flags.base_accel_valid ? -1 : 0;
       in.flags.drive_fault[l] = s.flags.drive_fault ? -1 : 0;
     }
-    const LaneControllerOutput<N> out = lanes.step(in);
+    const typename DamperController<LanePolicy<N>>::Output out = lanes.step(in);
     for (int l = 0; l < N; ++l) {
       const control::ControllerOutput o = one[l].step(scalar_in[l]);
       ASSERT_TRUE(lanes_test_same_bits(out.current_command_a[l], o.current_command_a))

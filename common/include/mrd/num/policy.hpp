@@ -55,29 +55,37 @@ using LaneElement = std::remove_cvref_t<decltype(V{}[0])>;
 
 /// `m ? a : b`, per lane for a mask of lanes.
 template <class M, class T>
-constexpr T select(M m, T a, T b) noexcept {
+[[gnu::always_inline]] constexpr T select(M m, T a, T b) noexcept {
   return m ? a : b;
 }
 
 /// Some lane's / every lane's mask is set (a bool is its own).
 constexpr bool any(bool m) noexcept { return m; }
 constexpr bool all(bool m) noexcept { return m; }
+/// (Lanes: the mask's bytes as 64-bit words, OR-ed or AND-ed: no lane by
+/// lane extraction.)
 template <LaneVector M>
-constexpr bool any(M m) noexcept {
-  bool r = false;
-  for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i) r = r || m[i] != 0;
-  return r;
+[[gnu::always_inline]] inline bool any(M m) noexcept {
+  static_assert(sizeof(M) % 8 == 0, "masks of an even number of 32-bit lanes");
+  std::uint64_t w[sizeof(M) / 8];
+  __builtin_memcpy(w, &m, sizeof m);
+  std::uint64_t r = 0;
+  for (std::uint64_t x : w) r |= x;
+  return r != 0;
 }
 template <LaneVector M>
-constexpr bool all(M m) noexcept {
-  bool r = true;
-  for (std::size_t i = 0; i < sizeof(M) / sizeof(m[0]); ++i) r = r && m[i] != 0;
-  return r;
+[[gnu::always_inline]] inline bool all(M m) noexcept {
+  static_assert(sizeof(M) % 8 == 0, "masks of an even number of 32-bit lanes");
+  std::uint64_t w[sizeof(M) / 8];
+  __builtin_memcpy(w, &m, sizeof m);
+  std::uint64_t r = ~std::uint64_t{0};
+  for (std::uint64_t x : w) r &= x;
+  return r == ~std::uint64_t{0};
 }
 
 /// `v` in every lane (T a lane vector) or `v` itself.
 template <class T, class S>
-constexpr T splat(S v) noexcept {
+[[gnu::always_inline]] constexpr T splat(S v) noexcept {
   if constexpr (LaneVector<T>) {
     T r{};
     for (std::size_t i = 0; i < sizeof(T) / sizeof(r[0]); ++i) r[i] = static_cast<LaneElement<T>>(v);
@@ -89,7 +97,7 @@ constexpr T splat(S v) noexcept {
 
 /// A true mask of type M (every lane set).
 template <class M>
-constexpr M all_set() noexcept {
+[[gnu::always_inline]] constexpr M all_set() noexcept {
   if constexpr (LaneVector<M>) {
     return M{} == M{};
   } else {
@@ -102,7 +110,7 @@ constexpr void bump_where(std::uint32_t& c, bool m) noexcept {
   if (m && c != 0xffffffffu) ++c;
 }
 template <LaneVector C, LaneVector M>
-constexpr void bump_where(C& c, M m) noexcept {
+[[gnu::always_inline]] constexpr void bump_where(C& c, M m) noexcept {
   c -= (C)(m && (c != 0xffffffffu));  // a set mask lane is −1
 }
 
@@ -149,13 +157,13 @@ constexpr Out mul(double a, double b) noexcept {
 
 /// Lanes of floats: the float product per lane.
 template <class Out, LaneVector V>
-constexpr Out mul(V a, V b) noexcept {
+[[gnu::always_inline]] constexpr Out mul(V a, V b) noexcept {
   static_assert(std::is_same_v<Out, V>, "lane products stay in their lanes");
   return a * b;
 }
 
 template <class T>
-constexpr T clamp(T v, T lo, T hi) noexcept {
+[[gnu::always_inline]] constexpr T clamp(T v, T lo, T hi) noexcept {
   return v < lo ? lo : (hi < v ? hi : v);
 }
 
@@ -180,7 +188,7 @@ constexpr T from_float(float v) noexcept {
 
 /// Lanes of float samples into lanes of floats: themselves.
 template <class T, LaneVector V>
-constexpr T from_float(V v) noexcept {
+[[gnu::always_inline]] constexpr T from_float(V v) noexcept {
   static_assert(std::is_same_v<T, V>, "lanes of floats only");
   return v;
 }
@@ -189,7 +197,7 @@ constexpr T from_float(V v) noexcept {
 constexpr float to_float(float v) noexcept { return v; }
 constexpr float to_float(double v) noexcept { return static_cast<float>(v); }
 template <LaneVector V>
-constexpr V to_float(V v) noexcept {
+[[gnu::always_inline]] constexpr V to_float(V v) noexcept {
   return v;
 }
 template <int I, int F>
