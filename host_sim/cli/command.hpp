@@ -63,6 +63,7 @@ Command add_schedule_command(CLI::App& parent);
 Command add_fragility_command(CLI::App& parent);
 Command add_risk_command(CLI::App& parent);
 Command add_configure_command(CLI::App& parent);
+Command add_rths_command(CLI::App& parent);
 
 /// Checks the list options of the parsed subcommand `sub` (`args`: the
 /// command line after the program name): an empty item ("0.1,,0.2") or a value

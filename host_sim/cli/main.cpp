@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   commands.push_back(mrd::cli::add_fragility_command(app));
   commands.push_back(mrd::cli::add_risk_command(app));
   commands.push_back(mrd::cli::add_configure_command(app));
+  commands.push_back(mrd::cli::add_rths_command(app));
 
   try {
     app.parse(argc, argv);
