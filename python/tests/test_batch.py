@@ -57,25 +57,36 @@ def test_threads_and_lengths(elcentro):
 
 
 def test_batch_releases_the_gil(elcentro):
-    """Another Python thread runs while a batch steps."""
+    """Another Python thread runs while a batch steps. With a long switch
+    interval the other thread gets the GIL only when this one gives it up,
+    so it counts inside the batch call only if the batch releases the GIL
+    (a call that holds it, such as a long re.match, sees no count)."""
+    import sys
     import threading
+    import time
 
     a = mrd.load_motion(elcentro, duration_s=40.0).accel_m_s2
-    ticks = []
+    stamps = []
     done = threading.Event()
 
     def counter():
         while not done.is_set():
-            ticks.append(1)
+            stamps.append(time.perf_counter())
 
-    t = threading.Thread(target=counter)
-    t.start()
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(0.2)
     try:
-        mrd.batch([a] * 8, control="passive-on", threads=1)
-    finally:
+        t = threading.Thread(target=counter)
+        t.start()
+        t0 = time.perf_counter()
+        mrd.batch([a] * 16, control="passive-on", threads=1)
+        t1 = time.perf_counter()
         done.set()
         t.join()
-    assert len(ticks) > 100
+    finally:
+        done.set()
+        sys.setswitchinterval(interval)
+    assert any(t0 < s < t1 for s in stamps)
 
 
 def _cli_message(mrd_binary, args):
