@@ -14,6 +14,8 @@ pytest.importorskip("matplotlib")
     ("clipped_optimal.py", "clipped_optimal.png", ["--record", "{record}"]),
     ("damper_size_sweep.py", "damper_size_sweep.png",
      ["--records", "{record}", "--duration-s", "10", "--factors", "0.5,1,2"]),
+    ("odbdco_v_on_sweep.py", "odbdco_v_on_sweep.png",
+     ["--records", "{record}", "--duration-s", "10", "--v-on-mm-s", "2,6,20"]),
 ])
 def test_example_writes_its_figure(script, figure, options, source_dir, elcentro, tmp_path):
     env = dict(os.environ, MPLCONFIGDIR=str(tmp_path / "mpl"))
