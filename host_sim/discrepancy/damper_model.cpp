@@ -119,6 +119,29 @@ void DamperModel::coil_current(double tau_scale, std::vector<double>& current_a)
   }
 }
 
+double DamperModel::coil_mean_delay_s() const noexcept {
+  const double w = p_.coil.weight_slow + p_.coil.weight_fast;
+  return w > 0.0 ? (p_.coil.weight_slow * p_.coil.tau_slow_s + p_.coil.weight_fast * p_.coil.tau_fast_s) / w
+                 : p_.coil.tau_slow_s;
+}
+
+void DamperModel::single_lag_current(double tau_s, std::vector<double>& current_a) const {
+  // di/dt = (u − i)/τ with u held over each step: i[k+1] = a i[k] + (1 − a) u[k], a = e^(−dt/τ);
+  // steady at the first input. From a measured coil current as from the command.
+  const std::vector<double>& u_a = in_.current_meas_a.empty() ? in_.current_cmd_a : in_.current_meas_a;
+  const std::size_t n = size();
+  current_a.resize(n);
+  if (n == 0) return;
+  const double tau = std::max(tau_s, 1e-6);
+  double y = u_a[0];
+  double a = std::exp(-step_s_[0] / tau);
+  for (std::size_t k = 0; k < n; ++k) {
+    current_a[k] = y;
+    if (!uniform_) a = std::exp(-step_s_[k] / tau);
+    y = a * y + (1.0 - a) * u_a[k];
+  }
+}
+
 void DamperModel::coefficients(const std::vector<double>& current_a, std::vector<double>& a_y,
                                std::vector<double>& b_y, std::vector<double>& a_c, std::vector<double>& b_c) const {
   // Eq. 5.10–5.11 rearranged: Y = Y_a e + PR Y_b (1 − e), e = exp(−Y_c |i|); same for C.
@@ -177,6 +200,30 @@ double soft_contact_step(double dx, double u, double h, double c, double x_new) 
     w = lengths < 700.0 ? h - (h - std::min(w, h)) * std::exp(-lengths) : h;
   }
   return x_new - w * sgn;
+}
+
+/// The rod's velocity over one step through free play of half width h_m
+/// ending in a contact spring of compliance s_m_per_n: backward Euler on
+///   F(v) = dz(u − dt v) / s,   u = x_a(t + dt) − x_rod(t),
+/// dz the dead zone of ±h_m, F the Bingham law Y sgn v + C v, its yield
+/// taken up linearly over |v| < v_tf (Eq. 4.4), at the step's Y and C. F is odd
+/// and increasing and the spring's side falls with v, so the root is unique:
+/// 0 inside the dead zone; beyond it, with w = |u| − h_m, s F(v) + dt v = w,
+/// closed form on either piece of F. s = 0 is the hard play (v = w/dt).
+double impact_rod_velocity(double u_m, double h_m, double s_m_per_n, double dt_s, double yield_n, double visc_ns_m,
+                           double v_tf_m_s) {
+  const double w = std::fabs(u_m) - h_m;
+  if (w <= 0.0 || dt_s <= 0.0) return 0.0;
+  const double sgn = u_m > 0.0 ? 1.0 : -1.0;
+  // Beyond the band: s (Y + C v) + dt v = w.
+  double v = (w - s_m_per_n * yield_n) / (s_m_per_n * visc_ns_m + dt_s);
+  if (!(v >= v_tf_m_s) && v_tf_m_s > 0.0) {
+    // In the band: a v² + b v − w = 0, a = s C / v_tf, b = s Y / v_tf + dt; the positive root.
+    const double a = s_m_per_n * visc_ns_m / v_tf_m_s;
+    const double b = s_m_per_n * yield_n / v_tf_m_s + dt_s;
+    v = 2.0 * w / (b + std::sqrt(b * b + 4.0 * a * w));
+  }
+  return sgn * std::max(v, 0.0);
 }
 
 /// Play operator of half width half_gap_m on x, with a soft contact over the
@@ -248,7 +295,11 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double* b_c = base_b_c_.data();
   const double* coil_a = base_current_a_.data();
   if (set.contains(Effect::coil_lag)) {
-    coil_current(tau_scale, ws.current_a);
+    if (set.form(Effect::coil_lag) == kCoilSingleLag) {
+      single_lag_current(tau_scale * coil_mean_delay_s(), ws.current_a);
+    } else {
+      coil_current(tau_scale, ws.current_a);
+    }
     coefficients(ws.current_a, ws.a_y, ws.b_y, ws.a_c, ws.b_c);
     a_y = ws.a_y.data();
     b_y = ws.b_y.data();
@@ -260,8 +311,23 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   // Damper motion: the actuator's, or through the free play of the mounting.
   const double* xd = in_.disp_m.data();
   const double* vd = in_.vel_m_s.data();
-  if (set.contains(Effect::backlash)) {
+  // With an impact spring at the end of the play the rod's motion follows the
+  // force, and is found sample by sample in the loop below.
+  const bool impact = set.contains(Effect::backlash) && set.form(Effect::backlash) == kBacklashImpactSpring;
+  const double impact_half_gap_m = impact ? 0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0) : 0.0;
+  const double impact_compliance_m_per_n =
+      impact ? std::max(param(Effect::backlash, 1, 0.0), 0.0) / std::max(p_.force_scale_n(), 1e-9) : 0.0;
+  double rod_m = n > 0 ? in_.disp_m[0] : 0.0;
+  if (impact) {
+    ws.disp_m.resize(n);
+    ws.vel_m_s.resize(n);
+  } else if (set.contains(Effect::backlash)) {
     backlash_motion(0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0), param(Effect::backlash, 1, 0.0), ws);
+    xd = ws.disp_m.data();
+    vd = ws.vel_m_s.data();
+  }
+
+  if (impact) {
     xd = ws.disp_m.data();
     vd = ws.vel_m_s.data();
   }
@@ -269,7 +335,14 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const bool idle = set.contains(Effect::idle_settling);
   physics::PrCoefficients pr_c;
   if (idle) pr_c = physics::pr_coefficients(p_.pr, param(Effect::idle_settling, 0, 0.0));  // Eq. 5.6–5.8
-  const double q_per_m = p_.pr.flow_area_m2 / p_.pr.volume_unit_m3;
+  // Full recovery over V_r: PR = 1 − (1 − a_PR) e^(−V/V_r), V = ∫|v| A dt in m³.
+  const bool full_recovery = idle && set.form(Effect::idle_settling) == kSettlingFullRecovery;
+  if (full_recovery) {
+    pr_c.b_pr = 1.0;
+    pr_c.c_pr = 1.0 / std::max(param(Effect::idle_settling, 1, 1.0), 1e-9);
+  }
+  // Eq. 5.9 counts ∫Q dt in its volume units; the full recovery in m³.
+  const double q_per_m = full_recovery ? p_.pr.flow_area_m2 : p_.pr.flow_area_m2 / p_.pr.volume_unit_m3;
 
   const bool thermal = set.contains(Effect::thermal_fade);
   const double alpha_y = std::max(param(Effect::thermal_fade, 0, 0.0), 0.0) / kThermalCapacity_j_per_k;
@@ -296,8 +369,9 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   if (lost_motion) {
     ws.lm_half_gap.resize(n);
     for (std::size_t k = 0; k < n; ++k) ws.lm_half_gap[k] = 0.5 * p_.lost_motion_m_per_n * std::fabs(a_y[k] + b_y[k]);
-    play_operator(in_.time_s, std::span<const double>(xd, n), ws.lm_half_gap, 0.0, ws.lm_driven, ws.lm_engaged,
-                  ws.lm_factor);
+    // Through an impact spring the rod's motion is found in the loop: the lost motion then on the actuator's.
+    play_operator(in_.time_s, std::span<const double>(impact ? in_.disp_m.data() : xd, n), ws.lm_half_gap, 0.0,
+                  ws.lm_driven, ws.lm_engaged, ws.lm_factor);
   }
 
   ws.force_n.resize(n);
@@ -307,12 +381,10 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   double z = 0.0;      // Bouc–Wen variable; the record starts unloaded
   // spencer: (y, z) from rest at the first stroke, its coefficients
   // recomputed when the current, the participant ratio or the fade changes.
-  physics::SpencerState sp{n > 0 ? xd[0] : 0.0, 0.0};
+  physics::SpencerState sp{n > 0 ? in_.disp_m[0] : 0.0, 0.0};  // the rod's first position (any play centred)
   physics::SpencerCoefficients sc;
   double sc_key[4] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0};
   for (std::size_t k = 0; k < n; ++k) {
-    const double v = vd[k];
-    const double av = std::fabs(v);
     if (idle) pr = pr_c.b_pr + (pr_c.a_pr - pr_c.b_pr) * decay;  // Eq. 5.9
     double fy = a_y[k] + pr * b_y[k];                             // Eq. 5.10
     double cv = a_c[k] + pr * b_c[k];                             // Eq. 5.11
@@ -321,6 +393,21 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       cv *= std::max(1.0 - alpha_v * energy_j, 0.0);
     }
     const double dt = step_s_[k];
+    if (impact) {
+      // The step centred on the sample: rod_m is the rod at t_k − dt/2, the
+      // actuator's target at t_k + dt/2, so that v_rod is the velocity at t_k
+      // (on a hard stop, the actuator's central difference) and not half a
+      // step ahead of it.
+      const double x_half = k + 1 < n ? 0.5 * (in_.disp_m[k] + in_.disp_m[k + 1])
+                                      : in_.disp_m[k] + 0.5 * dt * in_.vel_m_s[k];
+      const double v_rod = impact_rod_velocity(x_half - rod_m, impact_half_gap_m, impact_compliance_m_per_n, dt,
+                                               std::fabs(fy), std::fabs(cv), v_tf);
+      ws.disp_m[k] = rod_m + 0.5 * dt * v_rod;
+      ws.vel_m_s[k] = v_rod;
+      rod_m += dt * v_rod;
+    }
+    const double v = vd[k];
+    const double av = std::fabs(v);
     double fb = 0.0;
     double elastic = 0.0;
     if (spencer) {

@@ -8,6 +8,7 @@
 /// Per sample k (step dt_k = t_{k+1} − t_k, inputs held over the step):
 /// <pre>
 ///   i[k+1]   = Eq. 4.5 (ZOH-exact, unity DC gain), τ's scaled by tau_scale   (coil_lag)
+///              or one first-order lag, τ = lag_tau_scale (w_s τ_s + w_f τ_f)   (coil_lag, single_lag)
 ///              from the command; from a measured coil current i_m, only the
 ///              slow branch (the field lagging the current, as the hardware
 ///              plant's coil): i[k] = w_fast i_m[k] + w_slow slow[k]
@@ -15,7 +16,13 @@
 ///              last contact_share of the gap is a compliant stop (the rod takes
 ///              up the motion over that length), the engagement averaged over
 ///              ±3 ms                                                          (backlash)
+///            = the rod pushed through a contact spring at the end of the play:
+///              F_Bingham(v_d) = dz(x̄_a − r − dt v_d) / s, backward Euler centred on the
+///              sample (r the rod at t_k − dt/2, x̄_a the actuator at t_k + dt/2),
+///              s = stop_deflection_m / force_scale   (backlash, impact_spring; the
+///              rod's motion from the Bingham law whatever the baseline's form)
 ///   PR[k]    = b_PR + (a_PR − b_PR) exp(−c_PR ∫Q dt),  Eq. 5.6–5.9           (idle_settling)
+///            = 1 − (1 − a_PR) exp(−∫Q dt / V_r), ∫Q dt in m³        (idle_settling, full_recovery)
 ///   φ_y, φ_v = 1 − α_y ΔT, 1 − α_v ΔT,  ΔT = E[k] / C                        (thermal_fade)
 ///   F_b[k]   = TF(v_d) (φ_y Y(i, PR) sgn v_d + φ_v C(i, PR) v_d),  Eq. 4.1–4.4, 5.10–5.12   (bingham)
 ///            = φ_y Y(i, PR) tanh(v_d / v_TF) + φ_v C(i, PR) v_d     (bingham, tanh transition)
@@ -112,6 +119,12 @@ class DamperModel {
 
   /// Coil current with both time constants of Eq. 4.5 scaled by `tau_scale`.
   void coil_current(double tau_scale, std::vector<double>& current_a) const;
+  /// Coil current through one first-order lag of time constant `tau_s`
+  /// (coil_lag's single_lag form), ZOH-exact, steady at the first input.
+  void single_lag_current(double tau_s, std::vector<double>& current_a) const;
+  /// Eq. 4.5's mean delay, (w_s τ_s + w_f τ_f)/(w_s + w_f), s: the unit of
+  /// the single lag's time constant.
+  [[nodiscard]] double coil_mean_delay_s() const noexcept;
 
  private:
   /// Fills ws.force_n with F[k] before any delay.

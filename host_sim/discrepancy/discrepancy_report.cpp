@@ -19,6 +19,7 @@ namespace {
 using nlohmann::json;
 
 json effects_json(const std::vector<Effect>& effects);
+json effect_params_json(const std::vector<Effect>& effects, std::span<const double> params, const EffectForms& forms);
 
 /// {parameter: flag} for the flagged parameters only.
 json flags_json(Effect e, const std::vector<std::string>& flags) {
@@ -48,7 +49,7 @@ json candidate_json(const CandidateResult& c) {
               {"held_out_reduction", c.held_out_reduction},
               {"gap", c.gap},
               {"effective_samples", c.n_eff},
-              {"parameters", params_json(c.effect, c.params)},
+              {"parameters", effect_params_json({c.effect}, c.params, c.forms)[std::string(effect_name(c.effect))]},
               {"flags", flags_json(c.effect, c.flags)},
               {"plausible", c.plausible},
               {"chosen", c.chosen},
@@ -106,12 +107,22 @@ json settings_json(const DiscrepancyResult& r, const DiscrepancyOptions& o) {
 }
 
 /// {effect: params_json} for `effects`, whose parameters `params` holds packed in that order.
-json effect_params_json(const std::vector<Effect>& effects, std::span<const double> params) {
+/// `forms`: the effects' forms, by which the parameters are packed (EffectSet::forms).
+json effect_params_json(const std::vector<Effect>& effects, std::span<const double> params,
+                        const EffectForms& forms) {
   json out = json::object();
-  const EffectSet set{effects};
+  const EffectSet set{effects, forms};
   for (const Effect e : effects) {
     const auto off = *set.offset(e);
-    out[std::string(effect_name(e))] = params_json(e, params.subspan(off, effect_info(e).params.size()));
+    const auto own = set.params_of(e);
+    json j = params_json(e, params.subspan(off, own.size()));
+    if (set.form(e) != 0) {
+      // A form other than the first: its parameters by their own names.
+      j = json::object();
+      for (std::size_t i = 0; i < own.size(); ++i) j[std::string(own[i].name)] = params[off + i];
+    }
+    j["form"] = std::string(form_name(e, set.form(e)));
+    out[std::string(effect_name(e))] = j;
   }
   return out;
 }
@@ -209,13 +220,14 @@ std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
         pct(r.gap_validation_after) + " after.\n\n";
   if (!r.effects.empty()) {
     md += "| effect | parameter | value |\n|---|---|---:|\n";
-    const EffectSet set{r.effects};
+    const EffectSet set{r.effects, r.forms};
     for (const Effect e : r.effects) {
       const auto off = *set.offset(e);
       const auto& info = effect_info(e);
-      for (std::size_t i = 0; i < info.params.size(); ++i) {
-        md += "| " + std::string(info.name) + " | " + std::string(info.params[i].name) + " | " +
-              g4(r.params[off + i]) + " |\n";
+      const auto own = set.params_of(e);
+      for (std::size_t i = 0; i < own.size(); ++i) {
+        md += "| " + std::string(info.name) + " (" + std::string(form_name(e, set.form(e))) + ") | " +
+              std::string(own[i].name) + " | " + g4(r.params[off + i]) + " |\n";
       }
     }
     md += "\n";
@@ -310,9 +322,9 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
   j["gap_validation_before"] = r.gap_validation_before;
   j["gap_validation_after"] = r.gap_validation_after;
   j["gap_reduction"] = r.gap_before > 0.0 ? 1.0 - r.gap_after / r.gap_before : 0.0;
-  j["parameters"] = effect_params_json(r.effects, r.params);
+  j["parameters"] = effect_params_json(r.effects, r.params, r.forms);
   j["rejected"] = effects_json(r.rejected);
-  j["rejected_parameters"] = effect_params_json(r.rejected, r.rejected_params);
+  j["rejected_parameters"] = effect_params_json(r.rejected, r.rejected_params, r.forms);
   j["residual_before"] = signatures_json(r.signatures_before);
   j["residual_after"] = signatures_json(r.signatures_after);
   j["candidates"] = json::array();
@@ -360,7 +372,7 @@ std::vector<std::string> write_discrepancy_outputs(const std::filesystem::path& 
 }
 
 json synth_json(const SynthCase& c, const SynthSpec& spec) {
-  json params = effect_params_json(c.effects, c.params);
+  json params = effect_params_json(c.effects, c.params, EffectForms{});
   for (std::size_t i = 0; i < c.effects.size(); ++i) {
     params[std::string(effect_name(c.effects[i]))]["effect_rms_n"] = c.effect_rms_n[i];
   }

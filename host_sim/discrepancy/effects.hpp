@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -69,14 +70,38 @@ inline constexpr double kAssumedCoilMinScale = 0.005;
 /// sides of 1; `p` itself otherwise.
 [[nodiscard]] ParamInfo scaled_param(const ParamInfo& p, const ParamScale& scale) noexcept;
 
-struct EffectInfo {
-  Effect effect;
+/// One physical form of an effect: what it describes and its parameters
+/// (a form may have more or fewer than another).
+struct EffectForm {
   std::string_view name;
   std::string_view description;
   std::span<const ParamInfo> params;
 };
 
+struct EffectInfo {
+  Effect effect;
+  std::string_view name;
+  std::string_view description;
+  std::span<const ParamInfo> params;  ///< the first form's
+  /// Every form, the first the catalogue's original (params above); at least one.
+  std::span<const EffectForm> forms;
+};
+
+/// Per effect (indexed by the enum), the index of its form in
+/// EffectInfo::forms; 0 is the first form.
+using EffectForms = std::array<std::uint8_t, kEffectCount>;
+
+/// Forms of the effects with more than one (EffectInfo::forms), by index:
+/// coil_lag's, idle_settling's and backlash's second forms.
+inline constexpr std::uint8_t kCoilSingleLag = 1;      ///< coil_lag: one first-order lag of fitted tau
+inline constexpr std::uint8_t kSettlingFullRecovery = 1;  ///< idle_settling: full recovery over its own volume
+inline constexpr std::uint8_t kBacklashImpactSpring = 1;  ///< backlash: a contact spring at the end of the play
+
 [[nodiscard]] const EffectInfo& effect_info(Effect e) noexcept;
+/// Parameters of effect `e` in its form `form` (the first form's when out of range).
+[[nodiscard]] std::span<const ParamInfo> form_params(Effect e, std::size_t form) noexcept;
+/// Name of effect `e`'s form `form` ("" when out of range).
+[[nodiscard]] std::string_view form_name(Effect e, std::size_t form) noexcept;
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;
 [[nodiscard]] std::optional<Effect> effect_from_name(std::string_view name) noexcept;
 
@@ -89,8 +114,14 @@ inline constexpr double kThermalCapacity_j_per_k = 60.0e3;
 /// An ordered set of effects with their parameters packed one after the other.
 struct EffectSet {
   std::vector<Effect> effects;
+  /// The form of each effect (EffectInfo::forms); parameters are packed by it.
+  EffectForms forms{};
 
   [[nodiscard]] bool contains(Effect e) const noexcept;
+  /// Form index of `e` (0 for an effect with one form).
+  [[nodiscard]] std::size_t form(Effect e) const noexcept { return forms[static_cast<std::size_t>(e)]; }
+  /// Parameters of `e` in its form here.
+  [[nodiscard]] std::span<const ParamInfo> params_of(Effect e) const noexcept { return form_params(e, form(e)); }
   /// Index of the first parameter of `e` in the packed vector; nullopt if absent.
   [[nodiscard]] std::optional<std::size_t> offset(Effect e) const noexcept;
   [[nodiscard]] std::size_t param_count() const noexcept;
@@ -98,6 +129,8 @@ struct EffectSet {
   [[nodiscard]] std::vector<double> null_params() const;
   /// "a+b" or "none".
   [[nodiscard]] std::string label() const;
+  /// "backlash (impact_spring)" for the effects not in their first form, joined by "; "; "" when none is.
+  [[nodiscard]] std::string form_label() const;
 };
 
 /// Parses "none", "" or a comma-separated list of effect names. Throws

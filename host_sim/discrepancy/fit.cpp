@@ -18,7 +18,7 @@ struct Bound {
 std::vector<Bound> bounds_of(const EffectSet& set, const ParamScale& scale) {
   std::vector<Bound> b;
   for (const Effect e : set.effects) {
-    for (const auto& info : effect_info(e).params) {
+    for (const auto& info : set.params_of(e)) {
       const ParamInfo p = scaled_param(info, scale);
       b.push_back({p.lower, p.upper - p.lower});
     }
@@ -194,7 +194,7 @@ FitOutcome fit_effects(const FitData& data, const EffectSet& set, std::vector<do
   starts.emplace_back(fit_rss(data, set, start, ws), start);
   if (grid_effect != nullptr) {
     if (const auto off = set.offset(*grid_effect)) {
-      const auto& params = effect_info(*grid_effect).params;
+      const auto params = set.params_of(*grid_effect);
       std::size_t combos = 1;
       for (std::size_t i = 0; i < params.size(); ++i) combos *= params[i].init_grid.size();
       std::vector<double> trial = start;

@@ -227,6 +227,7 @@ SignatureAnalysis analyse_residual(const SignatureInput& in, std::span<const std
     if (in.model_has_coil_lag && name.starts_with("current_lag")) return false;
     if (in.model_has_settling && name.starts_with("volume_recovery")) return false;
     if (in.model_has_fade && name == "heating") return false;
+    if (in.offset_wanders && name == "offset") return false;
     return true;
   };
   std::vector<double> counted_shares;

@@ -76,6 +76,12 @@ struct SignatureInput {
   bool model_has_coil_lag = false;
   bool model_has_settling = false;
   bool model_has_fade = false;
+  /// The residual's mean wanders from span to span of the record (the slow
+  /// part of coloured noise, workflow.hpp's offset_wander): the offset
+  /// signature is then reported but not counted in structured_share, as a
+  /// force_offset that wanders is not earned (the caller also takes the
+  /// residual's mean out).
+  bool offset_wanders = false;
 };
 
 /// Fits on `train` and judges on `held_out` (sample indices).

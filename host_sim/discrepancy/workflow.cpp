@@ -23,6 +23,9 @@ constexpr double kNullFraction = 1e-4;
 /// Candidates refitted from several starting points in rounds after the first.
 constexpr std::size_t kRefitted = 2;
 constexpr std::size_t kStarts = 3;
+/// Effects whose other forms are fitted in a round: those of the best
+/// fits in their first form (other_forms).
+constexpr std::size_t kFormCandidates = 3;
 /// Round-1 effects (earned, best first, other than the round-1 winner) whose
 /// pairs round 2 weighs as alternative models.
 constexpr std::size_t kAlternativeSources = 3;
@@ -32,7 +35,7 @@ using io::format_number;
 /// Parameters of effect `e` inside a packed vector for `set`.
 std::vector<double> own_params(const EffectSet& set, std::span<const double> all, Effect e) {
   const auto off = set.offset(e);
-  const std::size_t k = effect_info(e).params.size();
+  const std::size_t k = set.params_of(e).size();
   return {all.begin() + static_cast<std::ptrdiff_t>(*off), all.begin() + static_cast<std::ptrdiff_t>(*off + k)};
 }
 
@@ -41,9 +44,9 @@ std::vector<double> own_params(const EffectSet& set, std::span<const double> all
 std::vector<double> carry_params(const EffectSet& set, const EffectSet& from, std::span<const double> from_params) {
   std::vector<double> p = set.null_params();
   for (const Effect e : set.effects) {
-    if (const auto src = from.offset(e)) {
+    if (const auto src = from.offset(e); src && from.form(e) == set.form(e)) {
       const auto dst = set.offset(e);
-      for (std::size_t i = 0; i < effect_info(e).params.size(); ++i) p[*dst + i] = from_params[*src + i];
+      for (std::size_t i = 0; i < set.params_of(e).size(); ++i) p[*dst + i] = from_params[*src + i];
     }
   }
   return p;
@@ -85,11 +88,11 @@ struct Trial {
 
 }  // namespace
 
-std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale) {
-  const auto& info = effect_info(e);
+std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale, std::size_t form) {
+  const auto info_params = form_params(e, form);
   bool all_null = true;
-  for (std::size_t i = 0; i < info.params.size(); ++i) {
-    const ParamInfo p = scaled_param(info.params[i], scale);
+  for (std::size_t i = 0; i < info_params.size(); ++i) {
+    const ParamInfo p = scaled_param(info_params[i], scale);
     const double range = p.upper - p.lower;
     const double v = params[i];
     if (std::fabs(v - p.null_value) > kNullFraction * range) all_null = false;
@@ -106,11 +109,12 @@ std::string implausibility(Effect e, std::span<const double> params, const Param
   return {};
 }
 
-std::vector<std::string> bound_flags(Effect e, std::span<const double> params, const ParamScale& scale) {
-  const auto& info = effect_info(e);
-  std::vector<std::string> flags(info.params.size());
-  for (std::size_t i = 0; i < info.params.size(); ++i) {
-    const ParamInfo p = scaled_param(info.params[i], scale);
+std::vector<std::string> bound_flags(Effect e, std::span<const double> params, const ParamScale& scale,
+                                     std::size_t form) {
+  const auto info_params = form_params(e, form);
+  std::vector<std::string> flags(info_params.size());
+  for (std::size_t i = 0; i < info_params.size(); ++i) {
+    const ParamInfo p = scaled_param(info_params[i], scale);
     const double range = p.upper - p.lower;
     const double v = params[i];
     if (v - p.lower <= kAtBoundFraction * range && p.lower != p.null_value) {
@@ -230,6 +234,48 @@ std::string collapse_reason(const SelectionContext& ctx, const FitOutcome& f) {
   return {};
 }
 
+/// An effect with several physical forms (EffectInfo::forms: a coil of one
+/// time constant, a settled layer that recovers fully, ...) is fitted in
+/// each of its other forms: in the first round always (a first form the
+/// data do not follow may not fit at all, as Eq. 4.5's slow branch does not
+/// a single lag of a third of its time constant), in later rounds when its
+/// first form is among the kFormCandidates best fits of the round. The form kept is the one with
+/// the lower BIC (one effective sample count, that of the first form's
+/// residual; a form with more parameters pays for them).
+void other_forms(const SelectionContext& ctx, const Selection& current, const std::vector<Effect>& todo,
+                 std::vector<FitOutcome>& fits) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < todo.size(); ++i) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return fits[a].rss_n2 < fits[b].rss_n2; });
+  if (!current.set.effects.empty()) order.resize(std::min<std::size_t>(order.size(), kFormCandidates));
+  struct Job {
+    std::size_t trial;
+    std::uint8_t form;
+  };
+  std::vector<Job> jobs;
+  for (const std::size_t i : order) {
+    const auto& forms = effect_info(todo[i]).forms;
+    for (std::size_t f = 1; f < forms.size(); ++f) jobs.push_back({i, static_cast<std::uint8_t>(f)});
+  }
+  if (jobs.empty()) return;
+  std::vector<FitOutcome> alt(jobs.size());
+  parallel_for(jobs.size(), ctx.opt.threads, [&](std::size_t j) {
+    EffectSet s = current.set;
+    s.effects.push_back(todo[jobs[j].trial]);
+    s.forms[static_cast<std::size_t>(todo[jobs[j].trial])] = jobs[j].form;
+    alt[j] = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params), &todo[jobs[j].trial],
+                         current.set.effects.empty() ? 1 : kStarts);
+  });
+  const auto n = static_cast<std::size_t>(ctx.fd.index.size());
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    FitOutcome& now = fits[jobs[j].trial];
+    const double n_eff = std::max(now.n_eff, 1.0);
+    if (bic(alt[j].rss_n2, n, n_eff, alt[j].set.param_count()) < bic(now.rss_n2, n, n_eff, now.set.param_count()))
+      now = std::move(alt[j]);
+  }
+}
+
 /// Fits the model plus each effect of `todo`. In rounds after the first,
 /// next to effects already in the model, whose values may have absorbed
 /// part of the new one, the valleys of two effects that act alike (such as
@@ -257,6 +303,7 @@ std::vector<Trial> forward_trials(const SelectionContext& ctx, const Selection& 
       if (f.rss_n2 < fits[i].rss_n2) fits[i] = std::move(f);
     });
   }
+  other_forms(ctx, current, todo, fits);
   std::vector<Trial> trials;
   for (std::size_t i = 0; i < todo.size(); ++i) trials.push_back({todo[i], std::move(fits[i]), false});
   return trials;
@@ -277,6 +324,8 @@ std::vector<Trial> alternative_trials(const SelectionContext& ctx, const Selecti
   for (std::size_t a = 0; a < sources.size(); ++a) {
     for (std::size_t b = a + 1; b < sources.size(); ++b) {
       EffectSet pair{{sources[a]->effect, sources[b]->effect}};
+      pair.forms[static_cast<std::size_t>(sources[a]->effect)] = sources[a]->fit.set.forms[static_cast<std::size_t>(sources[a]->effect)];
+      pair.forms[static_cast<std::size_t>(sources[b]->effect)] = sources[b]->fit.set.forms[static_cast<std::size_t>(sources[b]->effect)];
       std::vector<double> start = sources[a]->fit.params;
       start.insert(start.end(), sources[b]->fit.params.begin(), sources[b]->fit.params.end());
       alts.push_back({sources[b]->effect, FitOutcome{pair, start, 0.0, 0.0, 0, false}, true});
@@ -314,7 +363,7 @@ std::vector<std::string> implausibility_reasons(const SelectionContext& ctx, con
       }
     }
     for (const Effect e : f.set.effects) {
-      const std::string w = implausibility(e, own_params(f.set, f.params, e), scale);
+      const std::string w = implausibility(e, own_params(f.set, f.params, e), scale, f.set.form(e));
       if (w.empty()) continue;
       if (trials[i].alternative) {
         why[i] = std::string(effect_name(e)) + ": " + w;
@@ -349,10 +398,11 @@ CandidateResult score_trial(const SelectionContext& ctx, const Selection& curren
   CandidateResult c;
   c.effect = t.effect;
   c.model = f.set.effects;
+  c.forms = f.set.forms;
   c.alternative = t.alternative;
   c.all_params = f.params;
   c.params = own_params(f.set, f.params, t.effect);
-  c.flags = bound_flags(t.effect, c.params, ctx.fd.model->param_scale());
+  c.flags = bound_flags(t.effect, c.params, ctx.fd.model->param_scale(), f.set.form(t.effect));
   c.n_eff = n_eff;
   c.rss_reduction = current.rss > 0.0 ? 1.0 - f.rss_n2 / current.rss : 0.0;
   ModelWorkspace ws;
@@ -434,6 +484,7 @@ void forward_selection(const SelectionContext& ctx, Selection& current, ModelWor
     round.chosen = win.effect;
     round.model_after = win.model;
     current.set.effects = win.model;
+    current.set.forms = win.forms;
     current.params = win.all_params;
     current.rss = fit_rss(ctx.fd, current.set, current.params, ws);
     current.rss_held = fit_rss(ctx.held, current.set, current.params, ws);
@@ -457,7 +508,7 @@ void backward_check(const SelectionContext& ctx, Selection& current, ModelWorksp
       EffectSet s = current.set;
       s.effects.erase(s.effects.begin() + static_cast<std::ptrdiff_t>(i));
       FitOutcome f = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params));
-      const double k = static_cast<double>(effect_info(current.set.effects[i]).params.size());
+      const double k = static_cast<double>(current.set.params_of(current.set.effects[i]).size());
       const double score = n_eff * std::log(std::max(f.rss_n2, 1e-300) / std::max(current.rss, 1e-300)) -
                            k * std::log(std::max(n_eff, 1.0));
       const double reduction = f.rss_n2 > 0.0 ? 1.0 - current.rss / f.rss_n2 : 0.0;
@@ -473,6 +524,27 @@ void backward_check(const SelectionContext& ctx, Selection& current, ModelWorksp
     current = Selection{weakest_fit.set, weakest_fit.params, weakest_fit.rss_n2,
                         fit_rss(ctx.held, weakest_fit.set, weakest_fit.params, ws)};
   }
+}
+
+/// A force_offset left in the model after the backward check is judged as
+/// in the rounds (offset_wander): the effect it was chosen beside may have
+/// held the slow part of the noise that made it look constant, and without
+/// that effect it can wander again. A wandering offset is then dropped too,
+/// the rest refitted.
+void drop_wandering_offset(const SelectionContext& ctx, Selection& current, ModelWorkspace& ws,
+                           std::vector<Effect>& dropped, std::vector<std::string>& findings) {
+  const auto off = current.set.offset(Effect::force_offset);
+  if (!off) return;
+  std::vector<double> resid;
+  (void)fit_rss(ctx.fd, current.set, current.params, ws, &resid);
+  const std::string w = offset_wander(ctx.fit_times_s, resid, current.params[*off]);
+  if (w.empty()) return;
+  EffectSet s = current.set;
+  s.effects.erase(std::find(s.effects.begin(), s.effects.end(), Effect::force_offset));
+  FitOutcome f = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params));
+  dropped.push_back(Effect::force_offset);
+  findings.push_back("force_offset dropped after the backward check: " + w + ".");
+  current = Selection{f.set, f.params, f.rss_n2, fit_rss(ctx.held, f.set, f.params, ws)};
 }
 
 /// Normalized RMS gap of `model` against the measured force over `index`.
@@ -516,6 +588,21 @@ SignatureAnalysis signatures_of(const DiscrepancyResult& res, const MeasuredData
   in.model_has_coil_lag = named.contains(Effect::coil_lag);
   in.model_has_settling = named.contains(Effect::idle_settling);
   in.model_has_fade = named.contains(Effect::thermal_fade);
+  // Whether the residual's mean over the moving samples wanders from span to span (offset_wander).
+  std::vector<double> t_moving, r_moving;
+  for (const std::size_t k : split.train) {
+    t_moving.push_back(data.time_s[k]);
+    r_moving.push_back(resid[k]);
+  }
+  double mean_n = 0.0;
+  for (const double r : r_moving) mean_n += r / static_cast<double>(std::max<std::size_t>(r_moving.size(), 1));
+  for (double& r : r_moving) r -= mean_n;
+  in.offset_wanders = !offset_wander(t_moving, r_moving, mean_n).empty();
+  // A mean that is not a zero offset is noise: taken out, so that no other
+  // signature with a mean of its own (|F|, an asymmetry) stands in for it.
+  if (in.offset_wanders) {
+    for (double& r : resid) r -= mean_n;
+  }
   return analyse_residual(in, split.train, split.held_out);
 }
 
@@ -559,8 +646,43 @@ void describe_rejections(DiscrepancyResult& res) {
   if (!rejected.empty()) res.findings.push_back("Candidates rejected in round 1: " + rejected + ".");
 }
 
+/// The forms the selection chose for effects that have several, in words
+/// with their physical values; "" when every effect is in its first form.
+std::string form_sentence(const EffectSet& set, std::span<const double> params, const DamperModel& model) {
+  std::string s;
+  for (const Effect e : set.effects) {
+    if (effect_info(e).forms.size() < 2) continue;
+    const std::vector<double> p = own_params(set, params, e);
+    std::string what;
+    if (e == Effect::coil_lag) {
+      what = set.form(e) == kCoilSingleLag
+                 ? "one first-order lag (an L/R coil) of time constant " +
+                       format_number("%.3g", p[0] * model.coil_mean_delay_s()) + " s"
+                 : "Eq. 4.5 with both time constants scaled by " + format_number("%.3g", p[0]);
+    } else if (e == Effect::idle_settling) {
+      what = set.form(e) == kSettlingFullRecovery
+                 ? "a settled layer (SQ " + format_number("%.3g", p[0]) + ") recovering fully over " +
+                       format_number("%.3g", p[1] * 1e3) + " L of displaced fluid"
+                 : "Eq. 5.9 (SQ " + format_number("%.3g", p[0]) + "): a deficit that recovers at Eq. 5.8's rate";
+    } else if (e == Effect::backlash) {
+      what = "free play " + format_number("%.3g", p[0] * 1e3) + " mm" +
+             (set.form(e) == kBacklashImpactSpring
+                  ? " ending in a contact spring that deflects " + format_number("%.3g", p[1] * 1e3) +
+                        " mm under the baseline's force scale " + format_number("%.3g", model.baseline().force_scale_n()) +
+                        " N"
+                  : " taken up over " + format_number("%.3g", p[1] * 100.0) + " % of it");
+    } else {
+      what = std::string(form_name(e, set.form(e)));
+    }
+    if (!s.empty()) s += "; ";
+    s += std::string(effect_name(e)) + " in its " + std::string(form_name(e, set.form(e))) + " form, " + what;
+  }
+  return s.empty() ? s : "Forms chosen by BIC: " + s + ".";
+}
+
 /// `n_fit`, `n_held`: the samples behind baseline.rss and baseline.rss_held.
-void decide_verdict(DiscrepancyResult& res, const Selection& current, const Selection& baseline, std::size_t n_fit,
+void decide_verdict(DiscrepancyResult& res, const DamperModel& model, const Selection& current,
+                    const Selection& baseline, std::size_t n_fit,
                     std::size_t n_held) {
   const double tolerance = kExpectedGapFactor * res.expected_gap;
   const double p_before = baseline.rss_held;
@@ -627,9 +749,11 @@ void decide_verdict(DiscrepancyResult& res, const Selection& current, const Sele
                            " lower). A compliance in the force path is not in the catalogue.");
   }
   const bool not_a_delay = fc.lowpass_better || fc.compliance_better;
+  const std::string forms = form_sentence(current.set, current.params, model);
   if (!not_a_delay && (left <= kLeftOverNoise * noise || left <= kLeftOverRemoved * removed)) {
     res.verdict = Verdict::explained;
     res.findings.push_back(label + " " + numbers + ".");
+    if (!forms.empty()) res.findings.push_back(forms);
     if (sa.structured_share >= kStructuredShare) describe_residual(res, sa, true);
     return;
   }
@@ -639,6 +763,7 @@ void decide_verdict(DiscrepancyResult& res, const Selection& current, const Sele
   res.params.clear();
   res.findings.push_back(label + " was fitted and " + numbers + " (limits " + percent(kLeftOverNoise) + " and " +
                          percent(kLeftOverRemoved) + "): it is not the explanation.");
+  if (!forms.empty()) res.findings.push_back(forms);
   // A calibrated baseline leaves a gap on the very records it was fitted to
   // (its model-form error, res.expected_gap, the largest of them). A record
   // whose gap is within it has no discrepancy to explain, whatever shape the
@@ -711,6 +836,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
     const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * check.amplitude_m, base_rms};
     forward_selection(ctx, current, ws, res.rounds);
     backward_check(ctx, current, ws, res.dropped);
+    drop_wandering_offset(ctx, current, ws, res.dropped, res.findings);
     if (current.set.contains(Effect::time_delay) || current.set.contains(Effect::preyield_hysteresis)) {
       std::vector<double> resid;
       (void)fit_rss(fd, current.set, current.params, ws, &resid);
@@ -723,6 +849,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   }
   res.effects = current.set.effects;
   res.params = current.params;
+  res.forms = current.set.forms;
   add_traces_and_regions(res, model, data, current, split, ws);
   const double band = model.baseline().v_tf_m_s;
   res.signatures_before = signatures_of(res, data, res.baseline_force_n, split, band, EffectSet{});
@@ -742,7 +869,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
     }
     for (const auto& r : res.baseline_check.reasons) res.findings.push_back(r);
   } else {
-    decide_verdict(res, current, baseline, fd.index.size(), held.index.size());
+    decide_verdict(res, model, current, baseline, fd.index.size(), held.index.size());
   }
   for (const auto& r : res.baseline_check.outside_coverage) res.findings.push_back(r);
   return res;

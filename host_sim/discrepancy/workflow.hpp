@@ -122,6 +122,7 @@ struct DiscrepancyOptions {
 struct CandidateResult {
   Effect effect{};
   std::vector<Effect> model;       ///< every effect of the fitted model (model so far + effect)
+  EffectForms forms{};             ///< the forms of `model`'s effects (params packed by them)
   /// Round 2 only: a pair of other round-1 effects that would replace the
   /// model (`model` holds the pair, `effect` its second member).
   bool alternative = false;
@@ -156,7 +157,11 @@ struct DiscrepancyResult {
   /// concentrates, what it looks like, what was rejected and why.
   std::vector<std::string> findings;
   std::vector<Effect> effects;     ///< the explanation (empty unless explained), in the order added
-  std::vector<double> params;      ///< their parameters, packed in that order
+  std::vector<double> params;      ///< their parameters, packed in that order (and by their forms)
+  /// The forms of `effects` and of `rejected` (EffectInfo::forms): the
+  /// selection fits each form of an effect that has several and keeps the one
+  /// with the lower BIC.
+  EffectForms forms{};
   /// Effects the selection took but the verdict does not accept (unexplained).
   std::vector<Effect> rejected;
   std::vector<double> rejected_params;
@@ -186,7 +191,7 @@ struct DiscrepancyResult {
   // Traces at the record's samples, for reports and plots.
   std::vector<double> disp_m, vel_m_s, coil_current_a, baseline_force_n, updated_force_n;
 
-  [[nodiscard]] EffectSet effect_set() const { return EffectSet{effects}; }
+  [[nodiscard]] EffectSet effect_set() const { return EffectSet{effects, forms}; }
 };
 
 [[nodiscard]] DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOptions& options = {});
@@ -195,7 +200,9 @@ struct DiscrepancyResult {
 /// plausible, else the reason (at its null value, or pinned at a bound).
 /// `scale`: DamperModel::param_scale() (force-valued bounds scale; an
 /// assumed coil may be faster).
-[[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale = {});
+/// `form`: the effect's form (EffectInfo::forms), whose parameters `params` are.
+[[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale = {},
+                                         std::size_t form = 0);
 
 /// A fitted force_offset against the slow part of the noise. A load-cell
 /// zero offset is the same in every part of the record; coloured noise
@@ -214,6 +221,6 @@ inline constexpr double kOffsetBlockT = 4.0;
 
 /// Per parameter of effect `e`: "" or "at its lower/upper bound …".
 [[nodiscard]] std::vector<std::string> bound_flags(Effect e, std::span<const double> params,
-                                                   const ParamScale& scale = {});
+                                                   const ParamScale& scale = {}, std::size_t form = 0);
 
 }  // namespace mrd::discrepancy

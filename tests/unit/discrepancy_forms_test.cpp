@@ -1,0 +1,136 @@
+// The second physical forms of the catalogue's effects against hand
+// calculations: a coil of one first-order lag, a settled layer that recovers
+// fully over its own displaced volume, free play ending in a contact spring,
+// and the packing of parameters by form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "host_sim/discrepancy/damper_model.hpp"
+#include "host_sim/discrepancy/effects.hpp"
+
+namespace mrd::discrepancy {
+namespace {
+
+constexpr double kFormsDt = 1e-3;
+
+/// Constant velocity `v` from x = 0, the command `current_a` before sample
+/// `step_at` and `current_after_a` from it on.
+ModelInput forms_ramp_input(std::size_t n, double v, double current_a, double current_after_a, std::size_t step_at) {
+  ModelInput in;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * kFormsDt;
+    in.time_s.push_back(t);
+    in.disp_m.push_back(v * t);
+    in.vel_m_s.push_back(v);
+    in.current_cmd_a.push_back(k < step_at ? current_a : current_after_a);
+  }
+  return in;
+}
+
+// The thesis coil (Eq. 4.5): weights ½ and ½, τ 0.7 s and 30 ms, so its mean
+// delay is ½ · 0.7 + ½ · 0.03 = 0.365 s. One first-order lag of that time
+// constant (lag_tau_scale 1) answers a step of the command from 0 to 2 A at
+// sample k0 with i = 2 (1 − e^(−t/τ)), held over each 1 ms step:
+//   i[k0]       = 0                              (the step not yet seen)
+//   i[k0 + 365] = 2 (1 − e^(−1)) = 1.264241 A    (t = τ: 63.2 % of the step)
+//   i[k0 + 730] = 2 (1 − e^(−2)) = 1.729329 A
+// and with lag_tau_scale 2 (τ = 0.73 s), at k0 + 730: 1.264241 A again.
+TEST(DiscrepancyForms, SingleLagCoilStepReachesSixtyThreePercentAtItsTimeConstant) {
+  constexpr std::size_t k0 = 500;
+  const DamperModel model(forms_ramp_input(2000, 0.05, 0.0, 2.0, k0));
+  EXPECT_NEAR(model.coil_mean_delay_s(), 0.365, 1e-12);
+  EffectSet set{{Effect::coil_lag}};
+  set.forms[static_cast<std::size_t>(Effect::coil_lag)] = kCoilSingleLag;
+  ModelWorkspace ws;
+  std::vector<double> f;
+  model.simulate(set, std::vector<double>{1.0}, ws, f);
+  ASSERT_EQ(ws.current_a.size(), 2000u);
+  EXPECT_DOUBLE_EQ(ws.current_a[k0 - 1], 0.0);
+  EXPECT_DOUBLE_EQ(ws.current_a[k0], 0.0);
+  EXPECT_NEAR(ws.current_a[k0 + 365], 1.264241, 1e-6);
+  EXPECT_NEAR(ws.current_a[k0 + 730], 1.729329, 1e-6);
+  model.simulate(set, std::vector<double>{2.0}, ws, f);
+  EXPECT_NEAR(ws.current_a[k0 + 730], 1.264241, 1e-6);
+  // Eq. 4.5's own answer at t = 0.365 s is another: ½ · 2 (1 − e^(−0.365/0.7)) + ½ · 2 (1 − e^(−0.365/0.03))
+  // = 0.406328 + 0.999995 = 1.406323 A, so the two forms differ.
+  model.simulate(EffectSet{{Effect::coil_lag}}, std::vector<double>{1.0}, ws, f);
+  EXPECT_NEAR(ws.current_a[k0 + 365], 1.406323, 1e-6);
+}
+
+// A settled layer remixing over its own volume V_r: PR = 1 − (1 − a_PR) e^(−V/V_r),
+// V the displaced volume A_flow ∫|v| dt. At constant velocity and current the
+// Bingham force is linear in PR (Eq. 5.10–5.12: Y and C are a + PR b), so the
+// force's deficit against the unsettled damper falls as e^(−V/V_r): to
+// e^(−1) = 0.367879 of its first value at V = V_r and e^(−3) = 0.049787 at
+// 3 V_r, and to nothing beyond (full recovery, where Eq. 5.9 keeps 1 − b_PR).
+TEST(DiscrepancyForms, FullyRecoveringSettlingLosesItsDeficitOverItsOwnVolume) {
+  constexpr double v = 0.05;
+  constexpr std::size_t k_r = 400;  // samples over which V reaches V_r
+  const DamperModel model(forms_ramp_input(4000, v, 1.0, 1.0, 0));
+  const double v_r_m3 = model.baseline().pr.flow_area_m2 * v * kFormsDt * static_cast<double>(k_r);
+  EffectSet set{{Effect::idle_settling}};
+  set.forms[static_cast<std::size_t>(Effect::idle_settling)] = kSettlingFullRecovery;
+  ModelWorkspace ws;
+  std::vector<double> base, settled;
+  model.simulate(EffectSet{}, {}, ws, base);
+  model.simulate(set, std::vector<double>{0.6, v_r_m3}, ws, settled);
+  const double d0 = base[0] - settled[0];
+  ASSERT_GT(d0, 0.01 * base[0]);
+  EXPECT_NEAR((base[k_r] - settled[k_r]) / d0, 0.367879, 1e-5);
+  EXPECT_NEAR((base[3 * k_r] - settled[3 * k_r]) / d0, 0.049787, 1e-5);
+  EXPECT_NEAR((base[3999] - settled[3999]) / d0, std::exp(-3999.0 / k_r), 1e-5);
+  // Eq. 5.9 at the same SQ keeps a lasting deficit: the settled force stays below the baseline.
+  std::vector<double> eq59;
+  model.simulate(EffectSet{{Effect::idle_settling}}, std::vector<double>{0.6}, ws, eq59);
+  EXPECT_GT(base[3999] - eq59[3999], 10.0 * (base[3999] - settled[3999]));
+}
+
+// Free play ending in a contact spring of compliance s (the deflection d
+// under the baseline's force scale F_s: s = d / F_s), the actuator moving at
+// a constant v from the middle of the play (half width h). While it crosses
+// h the rod stands and the damper gives no force. Once the rod follows at
+// v, the spring carries the damper's force F: its deflection is s F, so the
+// rod trails the actuator by h + s F (a spring's law), and F is the
+// baseline's at v (the rod moves as the actuator does).
+TEST(DiscrepancyForms, ImpactSpringDeflectsWithTheForceOnceThePlayIsTaken) {
+  constexpr double v = 0.05;
+  constexpr double play_m = 0.004;  // h = 2 mm: crossed in 40 ms
+  constexpr double deflection_m = 0.002;
+  const ModelInput in = forms_ramp_input(2000, v, 1.5, 1.5, 0);
+  const DamperModel model(in);
+  const double s_m_per_n = deflection_m / model.baseline().force_scale_n();
+  EffectSet set{{Effect::backlash}};
+  set.forms[static_cast<std::size_t>(Effect::backlash)] = kBacklashImpactSpring;
+  ModelWorkspace ws;
+  std::vector<double> base, f;
+  model.simulate(EffectSet{}, {}, ws, base);
+  model.simulate(set, std::vector<double>{play_m, deflection_m}, ws, f);
+  for (std::size_t k = 0; k < 39; ++k) EXPECT_EQ(f[k], 0.0) << k;
+  const std::size_t k = 1999;
+  ASSERT_GT(f[k], 1e3);
+  EXPECT_NEAR(in.disp_m[k] - ws.disp_m[k], 0.5 * play_m + s_m_per_n * f[k], 1e-9);
+  EXPECT_NEAR(ws.vel_m_s[k], v, 1e-9);
+  EXPECT_NEAR(f[k], base[k], 1e-6 * base[k]);
+  // A hard stop (no deflection) trails by the half play alone.
+  model.simulate(set, std::vector<double>{play_m, 0.0}, ws, f);
+  EXPECT_NEAR(in.disp_m[k] - ws.disp_m[k], 0.5 * play_m, 1e-9);
+}
+
+// Parameters are packed by form: idle_settling's full recovery has two (SQ,
+// V_r), so an effect after it starts at index 2, and the set has 3 in all.
+TEST(DiscrepancyForms, ParametersArePackedByForm) {
+  EffectSet set{{Effect::idle_settling, Effect::force_offset}};
+  EXPECT_EQ(*set.offset(Effect::force_offset), 1u);
+  EXPECT_EQ(set.param_count(), 2u);
+  set.forms[static_cast<std::size_t>(Effect::idle_settling)] = kSettlingFullRecovery;
+  EXPECT_EQ(*set.offset(Effect::force_offset), 2u);
+  EXPECT_EQ(set.param_count(), 3u);
+  EXPECT_EQ(set.null_params().size(), 3u);
+  EXPECT_EQ(set.form_label(), "idle_settling (full_recovery)");
+  EXPECT_EQ(form_name(Effect::coil_lag, kCoilSingleLag), "single_lag");
+}
+
+}  // namespace
+}  // namespace mrd::discrepancy
