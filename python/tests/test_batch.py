@@ -38,6 +38,21 @@ def test_batch_equals_sim_bit_for_bit(building, elcentro, source_dir):
         assert result.peaks["peak_base_displacement_m"][i] == sim.summary["peak_base_displacement_m"]
 
 
+@pytest.mark.parametrize("numeric", ["fixed", "double"])
+def test_batch_equals_sim_in_each_numeric_build(numeric, elcentro):
+    motion = mrd.load_motion(elcentro, duration_s=3.0)
+    result = mrd.batch([motion], control="semi-active", numeric=numeric)
+    _assert_equal_peaks(result, 0, mrd.sim(record=elcentro, duration_s=3.0, control="semi-active", numeric=numeric))
+
+
+def test_every_lane_kernel_gives_the_same_runs(elcentro):
+    motion = mrd.load_motion(elcentro, duration_s=3.0)
+    modes = ["passive-off", "passive-on", "semi-active"]
+    generic = mrd.batch([motion] * 3, control=modes, isa="generic")
+    assert generic.lane_isa == "generic"
+    np.testing.assert_array_equal(generic.values, mrd.batch([motion] * 3, control=modes).values)
+
+
 def test_scale_is_the_product_of_a_scaled_copy(elcentro):
     """BatchRun's contract: a_g[n] = scale * record[n], the product a scaled copy holds."""
     a = mrd.load_motion(elcentro, duration_s=3.0).accel_m_s2
