@@ -18,6 +18,11 @@
 //  - BM_BatchLeadRubber20Dof/<mode>: the same building, 64 runs in SIMD
 //    lanes (any building's lanes, host_sim/batch/lane_kernel_any.hpp), equal
 //    to the scalar runs bit for bit; 0 passive-off, 1 passive-on, 2 semi-active.
+//  - BM_Modes/<building>/<mode>/<path>: the table of every mode, scalar and
+//    batch, on both buildings, in one run (--benchmark_filter=BM_Modes):
+//    building 0 the thesis's, 1 the 20-DOF lead-rubber one; mode 0
+//    passive-off, 1 passive-on, 2 semi-active; path 0 one run at a time
+//    (run::run_closed_loop, the float core), 1 the batch's lanes (64 runs).
 #include <benchmark/benchmark.h>
 
 #include <numbers>
@@ -199,6 +204,32 @@ void BM_BatchLeadRubber20Dof(benchmark::State& state) {
                  ", 20 DOFs, 40 lead-rubber bearings, " + mrd::batch::lane_isa_name(mrd::batch::auto_lane_isa()));
 }
 BENCHMARK(BM_BatchLeadRubber20Dof)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+/// Every mode, scalar and batch, on the thesis building and the 20-DOF one.
+void BM_Modes(benchmark::State& state) {
+  static const auto lead_rubber = lead_rubber_20dof();
+  const bool twenty_dofs = state.range(0) == 1;
+  const auto mode = static_cast<mrd::control::ControlMode>(state.range(1));
+  const bool batch = state.range(2) == 1;
+  const mrd::structure::BuildingParams building = twenty_dofs ? lead_rubber : mrd::structure::BuildingParams{};
+  std::string what;
+  if (batch) {
+    run_batch(state, mode, 64, mrd::batch::LaneIsa::kAuto, building);
+    const mrd::batch::LaneIsa isa = mrd::batch::auto_lane_isa();
+    what = std::string("batch, 64 runs, ") + mrd::batch::lane_isa_name(isa) + ", " +
+           std::to_string(mrd::batch::lane_count(isa)) + " lanes";
+  } else {
+    auto controller = mrd::run::make_controller(mode, 1e-3);
+    run(state, *controller, building);
+    what = "scalar";
+  }
+  state.SetLabel(std::string(twenty_dofs ? "20-DOF lead-rubber" : "thesis") + ", " + mrd::control::mode_name(mode) +
+                 ", " + what);
+}
+BENCHMARK(BM_Modes)
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {0, 1}})
+    ->ArgNames({"building", "mode", "batch"})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
