@@ -44,6 +44,16 @@ void core_step(void* core, const CoreLanesIn& in, CoreLanesOut& out) {
   std::memcpy(out.drive_enable, &o.drive_enable, sizeof out.drive_enable);
 }
 
+typedef float vf __attribute__((vector_size(kW * 4)));
+typedef std::int32_t vm __attribute__((vector_size(kW * 4)));
+
+/// The kW doubles of `v` rounded to float (as static_cast<float>) into the
+/// first kW lanes of `dst`.
+[[gnu::always_inline]] inline void put_floats(CoreLanes::Sample& dst, vd v) {
+  const vf f = __builtin_convertvector(v, vf);
+  std::memcpy(&dst, &f, sizeof f);
+}
+
 /// `ticks` closed-loop ticks of the thesis-shape lanes with the core in the
 /// loop, the state in registers: sense, the core's step on the sensed values
 /// rounded to float (the plant's sensor stage), the command stage (u = the
@@ -53,49 +63,41 @@ void core_step(void* core, const CoreLanesIn& in, CoreLanesOut& out) {
 template <bool kStoryDrift>
 void core_run_ticks(const SharedModel& m, LaneBlock& b, void* core_p, std::size_t ticks, const std::uint32_t* tick0,
                     const std::int32_t* active) {
+  static_assert(kInterleave == 1 && kW <= kMaxLanes, "one register set of at most the core's lanes");
   if (ticks == 0) return;
   CoreLanes& core = *std::launder(static_cast<CoreLanes*>(core_p));
-  Regs r[kInterleave];
-  vd roof[kInterleave], floor_peak[kInterleave];
-  for (int h = 0; h < kInterleave; ++h) load_regs(b, h * kW, r[h]);
+  Regs r;
+  vd roof, floor_peak;
+  load_regs(b, 0, r);
   CoreLanes::Input in;
   std::memcpy(&in.tick, tick0, sizeof in.tick);
-  double u[kMaxLanes];
-  std::memcpy(u, b.command_a, sizeof u);
+  vm active_m;
+  std::memcpy(&active_m, active, sizeof active_m);
+  const vi active_wide = __builtin_convertvector(active_m, vi);
+  vd u = load(b.command_a);
+  const vd zero{};
   for (std::size_t t = 0; t < ticks; ++t) {
-    Sensed s[kInterleave];
-    double x[kMaxLanes] = {}, force[kMaxLanes] = {}, ag[kMaxLanes] = {}, base_accel[kMaxLanes] = {},
-           current[kMaxLanes] = {};
-    for (int h = 0; h < kInterleave; ++h) {
-      s[h] = sense_regs(m, r[h]);
-      store(x + h * kW, s[h].x);
-      store(force + h * kW, s[h].force);
-      store(ag + h * kW, s[h].ag);
-      store(base_accel + h * kW, r[h].base_accel);
-      store(current + h * kW, s[h].current);
-    }
-    for (int l = 0; l < kMaxLanes; ++l) {
-      in.damper_disp_m[l] = static_cast<float>(x[l]);
-      in.damper_force_n[l] = static_cast<float>(force[l]);
-      in.ground_accel_m_s2[l] = static_cast<float>(ag[l]);
-      in.base_accel_m_s2[l] = static_cast<float>(base_accel[l]);
-      in.coil_current_a[l] = static_cast<float>(current[l]);
-    }
+    const Sensed s = sense_regs(m, r);
+    put_floats(in.damper_disp_m, s.x);
+    put_floats(in.damper_force_n, s.force);
+    put_floats(in.ground_accel_m_s2, s.ag);
+    put_floats(in.base_accel_m_s2, r.base_accel);
+    put_floats(in.coil_current_a, s.current);
     const CoreLanes::Output o = core.step(in);
     in.tick += 1u;
-    for (int l = 0; l < kMaxLanes; ++l) {
-      if (active[l] != 0) u[l] = o.drive_enable[l] != 0 ? static_cast<double>(o.current_command_a[l]) : 0.0;
-    }
-    for (int h = 0; h < kInterleave; ++h) {
-      advance_regs<kStoryDrift>(m, s[h], load(u + h * kW), r[h], roof[h], floor_peak[h]);
-    }
+    vf command;
+    std::memcpy(&command, &o.current_command_a, sizeof command);
+    vm enable;
+    std::memcpy(&enable, &o.drive_enable, sizeof enable);
+    // run::coil_drive and plant::command_stage_a: the command while the drive is enabled, else 0 A.
+    const vd stage = __builtin_convertvector(enable, vi) ? __builtin_convertvector(command, vd) : zero;
+    u = active_wide ? stage : u;
+    advance_regs<kStoryDrift>(m, s, u, r, roof, floor_peak);
   }
-  std::memcpy(b.command_a, u, sizeof u);
-  for (int h = 0; h < kInterleave; ++h) {
-    store_regs(b, h * kW, r[h]);
-    store(b.roof_accel_m_s2 + h * kW, roof[h]);
-    store(b.floor_peak_m_s2 + h * kW, floor_peak[h]);
-  }
+  store(b.command_a, u);
+  store_regs(b, 0, r);
+  store(b.roof_accel_m_s2, roof);
+  store(b.floor_peak_m_s2, floor_peak);
 }
 
 void core_run(const SharedModel& m, LaneBlock& b, void* core, std::size_t ticks, const std::uint32_t* tick0,
