@@ -1,0 +1,57 @@
+#pragma once
+/// The thesis's own RTHS (§3.3, §6.4), emulated: the building numerical, the
+/// MR damper physical behind a servo-hydraulic actuator, the damper
+/// controller (ODBDCO or a passive mode) running beside it exactly as in the
+/// closed loop (run::closed_loop_tick's sensing and command order).
+///
+/// Per tick n (step T):
+/// 1. the target stroke x_t[n] = the damper element's deformation of the
+///    numerical building at t_n;
+/// 2. after the building's step, the command for the next one: without
+///    compensation the target itself; with it, the numerical building's own
+///    prediction (its exact ZOH steps over the delay, with the record's
+///    future ground acceleration, which an RTHS knows, and the damper's force
+///    held at its last measured value), through the servo lag's exact
+///    discrete inverse;
+/// 3. the actuator: the command held over the step, delayed by a whole
+///    number of steps (delay_s), then a first-order servo lag (lag_s; exact
+///    ZOH), its velocity the lag's state derivative at the sample (the mean
+///    of its limits either side of the held command's step);
+/// 4. the damper (physics::MrDamper, with its idle effects) at the
+///    actuator's stroke and velocity gives the measured force; the
+///    controller senses the actuator's stroke, the force, the ground and the
+///    building's base acceleration and the coil current, as in the closed
+///    loop; the damper's coil follows its command;
+/// 5. the building advances one exact ZOH step with the measured force.
+///
+/// For a building with isolators the loop is refused (their hysteresis
+/// needs the plant's sub-steps); one damper placement (count may be > 1).
+
+#include <vector>
+
+#include "host_sim/plant/plant.hpp"
+#include "host_sim/run/controller.hpp"
+
+namespace mrd::rths {
+
+struct DamperRthsSpec {
+  plant::PlantSpec plant;      ///< building, damper, settling, step (kind must be kThesis)
+  double delay_s = 0.015;      ///< the actuator's pure delay, s (whole steps)
+  double lag_s = 0.002;        ///< its first-order servo lag, s (0: none)
+  bool compensate = true;      ///< the model-based prediction above
+};
+
+struct DamperRthsResult {
+  double peak_base_displacement_m = 0.0;  ///< max |x_0| of the numerical building
+  double peak_damper_force_n = 0.0;
+  double rms_tracking_error_pct = 0.0;    ///< 100·rms(x_a − x_t)/rms(x_t)
+  double peak_tracking_error_m = 0.0;
+};
+
+/// Runs it over `ground_accel_m_s2` at spec.plant.step_s, after resetting
+/// `controller`. Throws std::invalid_argument for isolators, more than one
+/// damper placement, a hardware plant or a negative delay or lag.
+DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<double>& ground_accel_m_s2,
+                                 run::Controller& controller);
+
+}  // namespace mrd::rths
