@@ -364,6 +364,35 @@ TEST(Batch, WithoutStoryDriftsTheOtherPeaksAreUnchanged) {
   }
 }
 
+// Semi-active runs of the fixed-point and double builds (one scalar core per
+// lane: only the float build has lanes of the core) equal the scalar loop
+// with that build's controller, mixed with float-build lanes' modes.
+TEST(Batch, FixedAndDoubleBuildsEqualTheirScalarLoop) {
+  Case c;
+  const auto& rec = synthetic(9, 5.0);
+  for (std::size_t i = 0; i < 5; ++i) {
+    add_run(c, rec, 3000 + 400 * i, 0.8 + 0.3 * static_cast<double>(i), 0.4 * static_cast<double>(i),
+            i == 2 ? ControlMode::kPassiveOn : ControlMode::kSemiActive);
+  }
+  for (mrd::run::NumericKind numeric : {mrd::run::NumericKind::kFixed, mrd::run::NumericKind::kDouble}) {
+    SCOPED_TRACE(mrd::run::numeric_name(numeric));
+    for (LaneIsa isa : isas()) {
+      SCOPED_TRACE(mrd::batch::lane_isa_name(isa));
+      mrd::batch::BatchOptions options;
+      options.isa = isa;
+      options.numeric = numeric;
+      const auto batch = mrd::batch::run_closed_loop_batch({}, c.runs, options);
+      for (std::size_t i = 0; i < c.runs.size(); ++i) {
+        SCOPED_TRACE("run " + std::to_string(i));
+        mrd::plant::PlantSpec spec;
+        spec.idle_time_s = c.runs[i].idle_time_s;
+        auto controller = mrd::run::make_controller(c.runs[i].mode, spec.step_s, numeric);
+        expect_same_summary(batch[i], mrd::run::run_closed_loop(spec, c.scaled[i], *controller));
+      }
+    }
+  }
+}
+
 TEST(Batch, RefusesTheHardwarePlant) {
   mrd::plant::PlantSpec plant;
   plant.kind = mrd::plant::PlantKind::kHardware;
