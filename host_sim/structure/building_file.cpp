@@ -397,7 +397,7 @@ const toml::node& read_building(const toml::table& root, const std::string& orig
   const std::optional<Value> rayleigh = b.find("rayleigh");
   const std::optional<Value> c_matrix = b.find("damping_matrix_n_s_m");
   if (damping && rayleigh)
-    rayleigh->refuse("not allowed with building.damping_n_s_m: give one of the damping forms");
+    rayleigh->refuse("not allowed with building.damping_n_s_m: give one of the two damping forms");
   if (c_matrix && (damping || rayleigh))
     c_matrix->refuse("not allowed with building.damping_n_s_m or [building.rayleigh]: give one of the damping forms");
   if (!damping && !rayleigh && !c_matrix)
