@@ -1,0 +1,167 @@
+#include "host_sim/rths_board/board_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "firmware/app/periodic_schedule.hpp"
+#include "host_sim/rths/rths_run.hpp"
+
+namespace mrd::rths_board {
+namespace {
+
+double checked_rate_dt(const BoardLoopSpec& s) {
+  if (s.ground_accel_m_s2.empty()) throw std::invalid_argument("RTHS runtime: empty record");
+  if (!(s.rate_hz >= 100.0 && s.rate_hz <= 65535.0))
+    throw std::invalid_argument("RTHS runtime: rate outside 100..65535 Hz");
+  const auto n = s.building.m.rows();
+  if (s.building.k.rows() != n || s.building.c.rows() != n || s.specimen_dof < 0 || s.specimen_dof >= n)
+    throw std::invalid_argument("RTHS runtime: M, C, K of different sizes or the specimen's DOF outside them");
+  return 1.0 / s.rate_hz;
+}
+
+}  // namespace
+
+std::string loop_end_status(LoopEnd e, LabStopReason lab_reason) {
+  switch (e) {
+    case LoopEnd::kRunning: return "running";
+    case LoopEnd::kFinished: return "ok";
+    case LoopEnd::kLabStopped: return lab_stop_reason_name(lab_reason);
+    case LoopEnd::kLabSilent: return "lab_silent";
+    case LoopEnd::kCommandOutOfRange: return "command_out_of_range";
+    case LoopEnd::kInterrupted: return "interrupted";
+  }
+  return "unknown";
+}
+
+BoardLoop::BoardLoop(hal::CanBus& bus, const BoardLoopSpec& spec)
+    : bus_(bus),
+      spec_(spec),
+      dt_s_(checked_rate_dt(spec)),
+      integrator_(spec.building, rths::without_specimen(spec.building, spec.specimen, spec.specimen_dof),
+                  spec.specimen_dof, dt_s_) {
+  rths::CompensatorSpec cs = spec.compensator;
+  cs.dt_s = dt_s_;
+  cs.plant = rths::inverse_expansion(rths::lab_plant_model(spec.identified_plant), 0);
+  cs.noise_m = std::sqrt(spec.displacement_noise_power_m2_hz / dt_s_);
+  comp_ = rths::make_compensator(cs);
+  coefficient_names_ = comp_->coefficient_names();
+  const std::size_t n = spec.ground_accel_m_s2.size();
+  target_.reserve(n);
+  measured_.reserve(n);
+  command_.reserve(n);
+  force_.reserve(n);
+  floors_.assign(static_cast<std::size_t>(spec.building.m.rows()), {});
+  for (auto& f : floors_) f.reserve(n);
+  coeff_every_ = static_cast<std::size_t>(std::max(1L, std::lround(0.01 / dt_s_)));
+  coefficient_time_s_.reserve(n / coeff_every_ + 1);
+  coefficients_.reserve(n / coeff_every_ + 1);
+}
+
+void BoardLoop::drain() noexcept {
+  hal::CanFrame f;
+  while (bus_.receive(f) == hal::CanResult::kOk) {
+    ++frames_rx_;
+    RthsMeasurement m;
+    RthsLabStatus s;
+    if (decode(f, spec_.lab_node, m) == protocol::DecodeError::kOk) {
+      meas_ = m;
+      if (m.counter == static_cast<std::uint8_t>(k_ & 0xFF)) fresh_ = true;
+      if (k_ == 0 && m.counter == 0) have_meas0_ = true;
+    } else if (decode(f, spec_.lab_node, s) == protocol::DecodeError::kOk) {
+      const auto rate = static_cast<std::uint16_t>(spec_.rate_hz + 0.5);
+      if (s.rate_hz != rate) lab_rate_mismatch_hz_ = s.rate_hz;
+      if (s.state == LabState::kWaiting) lab_waiting_ = true;
+      if (s.state == LabState::kStopped && lab_reason_ == LabStopReason::kNone) lab_reason_ = s.stop;
+    } else {
+      ++rejected_;
+    }
+  }
+}
+
+bool BoardLoop::lab_ready() noexcept {
+  drain();
+  return lab_waiting_ && have_meas0_ && lab_rate_mismatch_hz_ == 0;
+}
+
+LoopEnd BoardLoop::tick() noexcept {
+  if (end_ != LoopEnd::kRunning) return end_;
+  drain();
+  if (lab_reason_ != LabStopReason::kNone) return end_ = LoopEnd::kLabStopped;
+  if (fresh_) {
+    silent_run_ = 0;
+    fresh_ = false;  // the next tick's must come
+  } else {
+    ++stale_ticks_;
+    if (++silent_run_ >= spec_.lab_silent_ticks) return end_ = LoopEnd::kLabSilent;
+  }
+  const std::size_t k = static_cast<std::size_t>(k_);
+  target_.push_back(target_now_);
+  measured_.push_back(meas_.displacement_m);
+  force_.push_back(meas_.force_n);
+  for (std::size_t i = 0; i < floors_.size(); ++i)
+    floors_[i].push_back(integrator_.displacement_m()(static_cast<Eigen::Index>(i)));
+  const double target_next = integrator_.step(spec_.ground_accel_m_s2[k], meas_.force_n);
+  const double command = comp_->command(target_next, meas_.displacement_m);
+  command_.push_back(command);
+  if (k % coeff_every_ == 0 && !coefficient_names_.empty()) {
+    coefficient_time_s_.push_back(static_cast<double>(k) * dt_s_);
+    coefficients_.push_back(comp_->coefficients());
+  }
+  RthsCommand c{command, target_next, static_cast<std::uint8_t>(k_ & 0xFF)};
+  hal::CanFrame f;
+  if (!encode(c, spec_.runtime_node, f)) {
+    ++k_;
+    return end_ = LoopEnd::kCommandOutOfRange;
+  }
+  if (bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
+  target_now_ = target_next;
+  ++k_;
+  if (k_ >= steps()) end_ = LoopEnd::kFinished;
+  return end_;
+}
+
+LoopEnd BoardLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const std::atomic<bool>& stop) noexcept {
+  timing_.period_ns = period_ns;
+  app::PeriodicSchedule schedule(period_ns, clock.now_ns());
+  while (end_ == LoopEnd::kRunning) {
+    if (stop.load()) {
+      end_ = LoopEnd::kInterrupted;
+      break;
+    }
+    const std::int64_t start_ns = clock.now_ns();
+    tick();
+    const std::int64_t done_ns = clock.now_ns();
+    timing_.worst_tick_ns = std::max(timing_.worst_tick_ns, done_ns - start_ns);
+    const std::int64_t deadline_ns = schedule.after_tick(done_ns);
+    timing_.overruns = schedule.overruns();
+    timing_.worst_late_ns = schedule.worst_late_ns();
+    if (end_ != LoopEnd::kRunning) break;
+    clock.sleep_until_ns(deadline_ns);
+  }
+  send_run_status();
+  return end_;
+}
+
+void BoardLoop::send_run_status() noexcept {
+  RthsRunStatus r;
+  r.state = end_ == LoopEnd::kFinished ? RunState::kFinished
+            : end_ == LoopEnd::kLabStopped ? RunState::kLabStopped
+                                           : RunState::kAborted;
+  r.ticks = static_cast<std::uint32_t>(k_);
+  for (int i = 0; i < 3; ++i) {
+    r.counter = run_status_counter_++;
+    hal::CanFrame f;
+    if (encode(r, spec_.runtime_node, f) && bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
+  }
+}
+
+rths::Criteria BoardLoop::criteria() const {
+  const std::size_t n = measured_.size();
+  const std::vector<double> record(spec_.ground_accel_m_s2.begin(),
+                                   spec_.ground_accel_m_s2.begin() + static_cast<std::ptrdiff_t>(n));
+  const auto ref = rths::reference_response(spec_.building, record, dt_s_);
+  return rths::evaluate_criteria(measured_, target_, floors_, ref, dt_s_);
+}
+
+}  // namespace mrd::rths_board

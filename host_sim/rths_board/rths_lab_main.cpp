@@ -1,0 +1,163 @@
+/// `mrd-rths-lab`: the emulated laboratory of an RTHS as a program on the CAN
+/// bus (lab_node.hpp): the benchmark's servo-hydraulic actuator with its
+/// specimen (nominal, or drawn from the published uncertainty by
+/// --plant-seed), ±3.8 V 18-bit converters, sensor noise of the published
+/// powers, and the stop when |force| or |measured − target| leave their limits
+/// (the actuator holds; the stop is reported on CAN after every command).
+/// Sends its beacon every 100 ms until the first command, then answers each
+/// command with the next measurement; ends at the runtime's run status, after
+/// --command-timeout-ms without a command once running (stopped and held), or
+/// at a signal.
+///
+/// Last line on stdout: "mrd-rths-lab: summary steps=… state=… stop=…
+/// stop_step=… peak_force_n=… rejected=… sequence_gaps=… tx_errors=… run=…".
+/// Exit status: 0 the runtime ended the run, 1 runtime failure (no CAN, no
+/// runtime), 2 bad input.
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <random>
+
+#include "firmware/platform/linux/posix_clock.hpp"
+#include "firmware/platform/linux/socketcan_bus.hpp"
+#include "host_sim/peers/peer_main_common.hpp"
+#include "host_sim/rths_board/lab_node.hpp"
+
+namespace {
+
+namespace rb = mrd::rths_board;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string board_file, can_interface;
+  double rate_hz = 0.0, tracking_limit_mm = 10.0, force_limit_kn = 8.9, start_timeout_s = 60.0;
+  int lab_node = rb::kDefaultLabNode;
+  int command_timeout_ms = 1000;
+  std::uint64_t plant_seed = 0, noise_seed = 1;
+};
+
+const char* run_state_name(rb::RunState s, bool finished) {
+  if (!finished) return "none";
+  switch (s) {
+    case rb::RunState::kFinished: return "finished";
+    case rb::RunState::kLabStopped: return "lab_stopped";
+    case rb::RunState::kAborted: return "aborted";
+  }
+  return "unknown";
+}
+
+int run(const Options& o) {
+  mrd::app::BoardConfig board;
+  rb::LabNodeConfig c;
+  try {
+    board = mrd::peers::load_board_file(o.board_file);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths-lab: error: %s\n", e.what());
+    return 2;
+  }
+  if (!o.can_interface.empty()) board.can_interface = o.can_interface;
+  c.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
+  c.runtime_node = board.nodes.controller;
+  c.lab_node = static_cast<std::uint8_t>(o.lab_node);
+  if (c.lab_node == c.runtime_node) {
+    std::fprintf(stderr, "mrd-rths-lab: error: --lab-node: %u is the board's controller node\n", c.lab_node);
+    return 2;
+  }
+  if (o.plant_seed != 0) {
+    std::mt19937_64 rng(o.plant_seed);
+    c.plant = mrd::rths::draw_lab_plant(mrd::rths::LabPlantParams{}, mrd::rths::LabPlantUncertainty{}, rng);
+  }
+  c.spec.tracking_limit_m = o.tracking_limit_mm * 1e-3;
+  c.spec.force_limit_n = o.force_limit_kn * 1e3;
+  c.spec.noise_seed = o.noise_seed;
+
+  const mrd::hal::CanFilter filters[] = {
+      {rb::rths_can_id(rb::RthsMsgId::kCommand, c.runtime_node), 0x7FF},
+      {rb::rths_can_id(rb::RthsMsgId::kRunStatus, c.runtime_node), 0x7FF}};
+  std::unique_ptr<mrd::posix::SocketCanBus> bus;
+  try {
+    bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths-lab: error: %s\n", e.what());
+    return 1;
+  }
+  rb::LabNode lab(*bus, c);
+  std::printf("mrd-rths-lab: CAN %s (node %u, runtime node %u), %.0f Hz, plant %s (beta1 %.4g, beta2 %.6g, a3 %.4g, "
+              "k_e %.6g N/m), tracking limit %.3f mm, force limit %.3f kN\n",
+              board.can_interface.c_str(), c.lab_node, c.runtime_node, c.rate_hz,
+              o.plant_seed ? "drawn" : "nominal", c.plant.beta1, c.plant.beta2, c.plant.a3,
+              c.plant.specimen.stiffness_n_m, o.tracking_limit_mm, o.force_limit_kn);
+  std::fputs(mrd::posix::apply_realtime({board.sched_fifo_priority, board.lock_memory, board.cpu}).c_str(), stdout);
+  std::fflush(stdout);
+
+  const auto started = Clock::now();
+  auto last_command = started;
+  auto next_beacon = started;
+  int exit_status = 0;
+  while (!lab.finished() && !mrd::peers::g_peer_stop.load()) {
+    const auto now = Clock::now();
+    if (lab.state() == rb::LabState::kWaiting) {
+      if (now >= next_beacon) {
+        lab.send_beacon();
+        next_beacon = now + std::chrono::milliseconds(100);
+      }
+      if (now - started > std::chrono::duration<double>(o.start_timeout_s)) {
+        std::fprintf(stderr, "mrd-rths-lab: error: no command from node %u within %.1f s\n", c.runtime_node,
+                     o.start_timeout_s);
+        exit_status = 1;
+        break;
+      }
+    } else if (now - last_command > std::chrono::milliseconds(o.command_timeout_ms)) {
+      lab.stop_for_command_timeout();
+      exit_status = 1;
+      break;
+    }
+    bus->wait_readable(std::chrono::milliseconds(lab.state() == rb::LabState::kWaiting ? 20 : 5));
+    if (lab.serve() > 0) last_command = Clock::now();
+  }
+  std::printf("mrd-rths-lab: summary steps=%llu state=%s stop=%s stop_step=%llu peak_force_n=%.3f rejected=%u "
+              "sequence_gaps=%u tx_errors=%u run=%s\n",
+              static_cast<unsigned long long>(lab.steps()), rb::lab_state_name(lab.state()),
+              rb::lab_stop_reason_name(lab.stop_reason()), static_cast<unsigned long long>(lab.stop_step()),
+              lab.peak_force_n(), lab.rejected(), lab.sequence_gaps(), lab.tx_errors(),
+              run_state_name(lab.run_state(), lab.finished()));
+  return exit_status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mrd-rths-lab: the emulated RTHS laboratory (servo-hydraulic actuator, specimen, converters, sensor "
+               "noise, stop) as a node on the CAN bus (peer: mrd-rths).",
+               "mrd-rths-lab"};
+  Options o;
+  app.add_option("--board", o.board_file, "Board file (boards/<name>/board.toml): CAN interface, nodes, period")
+      ->required();
+  app.add_option("--rate-hz", o.rate_hz, "Step rate, Hz: the runtime's loop rate (default: the board's period)")
+      ->check(mrd::app::finite_in(100.0, 65535.0, "Hz"));
+  app.add_option("--lab-node", o.lab_node, "CAN node id of the laboratory")->capture_default_str()->check(
+      CLI::Range(1, 15));
+  app.add_option("--can", o.can_interface, "Override the board's CAN interface (e.g. vcan0)");
+  app.add_option("--tracking-limit-mm", o.tracking_limit_mm, "Stop when |measured - target| exceeds it, mm")
+      ->capture_default_str()
+      ->check(mrd::app::positive_up_to(1000.0, "mm"));
+  app.add_option("--force-limit-kn", o.force_limit_kn, "Stop when |force| exceeds it, kN (the actuator's 8.9)")
+      ->capture_default_str()
+      ->check(mrd::app::positive_up_to(1e4, "kN"));
+  app.add_option("--plant-seed", o.plant_seed, "Draw the plant from the published uncertainty (0: nominal)")
+      ->capture_default_str();
+  app.add_option("--noise-seed", o.noise_seed, "Seed of the sensor noise")->capture_default_str();
+  app.add_option("--command-timeout-ms", o.command_timeout_ms, "Once running, stop and hold after this long "
+                 "without a command, ms")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 600000));
+  app.add_option("--start-timeout-s", o.start_timeout_s, "Give up when no command arrives within this long, s")
+      ->capture_default_str()
+      ->check(mrd::app::positive_up_to(3600.0, "s"));
+  mrd::peers::install_stop_signals();
+  if (const auto exit = mrd::peers::parse_options(app, argc, argv, "mrd-rths-lab")) return *exit;
+  return run(o);
+}

@@ -1,0 +1,184 @@
+/// `mrd-rths`: the RTHS runtime for a Linux board. Reads the board file (CAN
+/// interface, controller node, period, real-time settings), loads the
+/// benchmark's reference structure (Silva et al. 2020, case 1–4) and the
+/// record (scaled, resampled to the loop rate), waits for the laboratory's
+/// beacon on the bus (`mrd-rths-lab`), then runs the loop (board_loop.hpp)
+/// at the board's period on CLOCK_MONOTONIC (or --rate-hz: 1000 or 4096 Hz,
+/// any rate from 100 Hz to 65535 Hz), with SCHED_FIFO and locked memory as the
+/// board file asks. After the loop: J1–J9 against the all-numerical
+/// reference, and the files of run_files.hpp in --out.
+///
+/// Last line on stdout: "mrd-rths: status=… ticks=… overruns=… worst_late_us=…
+/// worst_tick_us=… stale_ticks=… rejected=… tx_errors=…" (and J2 J4 when ok).
+///
+/// Exit status: 0 the run finished (summary.json written), 1 runtime failure
+/// (no CAN, no laboratory), 2 bad input, 3 the run ended early: the
+/// laboratory's stop, a silent laboratory, a command beyond the frame's
+/// range, or a signal (stop.json written, no summary).
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <thread>
+
+#include "firmware/platform/linux/posix_clock.hpp"
+#include "firmware/platform/linux/socketcan_bus.hpp"
+#include "host_sim/io/usage_error.hpp"
+#include "host_sim/peers/peer_main_common.hpp"
+#include "host_sim/rths/benchmark.hpp"
+#include "host_sim/rths_board/board_loop.hpp"
+#include "host_sim/rths_board/run_files.hpp"
+
+namespace {
+
+namespace rb = mrd::rths_board;
+constexpr int kExitRuntime = 1;
+constexpr int kExitUsage = 2;
+constexpr int kExitStopped = 3;
+
+struct Options {
+  std::string board_file, record, out, compensator = "adaptive", can_interface;
+  int structure_case = 1;
+  double rate_hz = 0.0, duration_s = 0.0, scale = mrd::rths::kBenchmarkRecordScale, ready_timeout_s = 30.0;
+  int lab_node = rb::kDefaultLabNode;
+  int lab_silent_ms = 50;
+};
+
+int run(const Options& o) {
+  mrd::app::BoardConfig board;
+  rb::BoardLoopSpec spec;
+  rb::RunDescription d;
+  try {
+    board = mrd::peers::load_board_file(o.board_file);
+    if (!o.can_interface.empty()) board.can_interface = o.can_interface;
+    if (board.can_interface.empty())
+      throw mrd::io::UsageError(o.board_file + ": can.interface: empty (mrd-rths needs a CAN interface)");
+    spec.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
+    if (spec.rate_hz < 100.0 || spec.rate_hz > 65535.0)
+      throw mrd::io::UsageError(o.board_file + ": control.period_us: a loop rate of " + std::to_string(spec.rate_hz) +
+                                " Hz is outside 100..65535 Hz");
+    spec.building = mrd::rths::structure_matrices(mrd::rths::benchmark_structure(o.structure_case));
+    spec.ground_accel_m_s2 = mrd::rths::benchmark_record(o.record, o.scale, spec.rate_hz);
+    if (o.duration_s > 0.0) {
+      const auto n = static_cast<std::size_t>(std::llround(o.duration_s * spec.rate_hz));
+      if (n < spec.ground_accel_m_s2.size()) spec.ground_accel_m_s2.resize(std::max<std::size_t>(n, 1));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths: error: %s\n", e.what());
+    return kExitUsage;
+  }
+  mrd::rths::compensator_from_name(o.compensator, spec.compensator.kind);
+  spec.runtime_node = board.nodes.controller;
+  spec.lab_node = static_cast<std::uint8_t>(o.lab_node);
+  spec.lab_silent_ticks = std::max(1, static_cast<int>(std::lround(o.lab_silent_ms * 1e-3 * spec.rate_hz)));
+  d.board = o.board_file;
+  d.record = o.record;
+  d.record_scale = o.scale;
+  d.structure = "benchmark case " + std::to_string(o.structure_case);
+  d.compensator = o.compensator;
+  d.rate_hz = spec.rate_hz;
+  try {
+    rb::prepare_out_dir(o.out);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths: error: --out: %s\n", e.what());
+    return kExitUsage;
+  }
+
+  const std::uint32_t lab_ids[] = {rb::rths_can_id(rb::RthsMsgId::kMeasurement, spec.lab_node),
+                                   rb::rths_can_id(rb::RthsMsgId::kLabStatus, spec.lab_node)};
+  const mrd::hal::CanFilter filters[] = {{lab_ids[0], 0x7FF}, {lab_ids[1], 0x7FF}};
+  std::unique_ptr<mrd::posix::SocketCanBus> bus;
+  try {
+    bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths: error: %s\n", e.what());
+    return kExitRuntime;
+  }
+  auto loop = std::make_unique<rb::BoardLoop>(*bus, spec);
+  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / spec.rate_hz));
+  std::printf("mrd-rths: board %s, CAN %s (node %u, lab node %u), %.0f Hz (period %lld ns), %s, compensator %s, "
+              "%zu ticks of %s x %.2f\n",
+              board.name.c_str(), board.can_interface.c_str(), spec.runtime_node, spec.lab_node, spec.rate_hz,
+              static_cast<long long>(period_ns), d.structure.c_str(), o.compensator.c_str(),
+              spec.ground_accel_m_s2.size(), o.record.c_str(), o.scale);
+
+  // The laboratory's beacon.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.ready_timeout_s);
+  while (!loop->lab_ready()) {
+    if (loop->rate_mismatch() != 0) {
+      std::fprintf(stderr, "mrd-rths: error: the laboratory steps at %u Hz, the loop runs at %.0f Hz\n",
+                   loop->rate_mismatch(), spec.rate_hz);
+      return kExitUsage;
+    }
+    if (mrd::peers::g_peer_stop.load() || std::chrono::steady_clock::now() > give_up) {
+      std::fprintf(stderr, "mrd-rths: error: no laboratory beacon (node %u) on %s within %.1f s\n", spec.lab_node,
+                   board.can_interface.c_str(), o.ready_timeout_s);
+      return kExitRuntime;
+    }
+    bus->wait_readable(std::chrono::milliseconds(20));
+  }
+  std::printf("mrd-rths: laboratory ready\n");
+  std::fputs(mrd::posix::apply_realtime({board.sched_fifo_priority, board.lock_memory, board.cpu}).c_str(), stdout);
+  std::fflush(stdout);
+
+  mrd::posix::PosixClock clock;
+  const rb::LoopEnd end = loop->run_periodic(clock, period_ns, mrd::peers::g_peer_stop);
+  const std::string status = rb::loop_end_status(end, loop->lab_reason());
+  try {
+    if (end == rb::LoopEnd::kFinished) {
+      const mrd::rths::Criteria c = loop->criteria();
+      rb::write_finished_run(o.out, d, *loop, c);
+      std::printf("mrd-rths: status=ok %s j1_s=%.4f j2_pct=%.4f j3_pct=%.4f j4_pct=%.4f j5_pct=%.4f\n",
+                  rb::timing_fields(*loop).c_str(), c.j[0], c.j[1], c.j[2], c.j[3], c.j[4]);
+      return 0;
+    }
+    rb::write_stopped_run(o.out, d, *loop);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths: error: %s\n", e.what());
+    return kExitRuntime;
+  }
+  std::printf("mrd-rths: status=%s %s end_time_s=%.4f\n", status.c_str(), rb::timing_fields(*loop).c_str(),
+              static_cast<double>(loop->ticks()) * loop->dt_s());
+  return kExitStopped;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mrd-rths: real-time hybrid simulation on a Linux board: the numerical substructure at the loop rate, "
+               "the actuator's command and the laboratory's measurements over CAN (peer: mrd-rths-lab).",
+               "mrd-rths"};
+  Options o;
+  app.add_option("--board", o.board_file, "Board file (boards/<name>/board.toml): CAN, node, period, real time")
+      ->required();
+  app.add_option("--record", o.record, "Ground-motion record: CSV (time_s,accel_m_s2) or PEER .AT2")->required();
+  app.add_option("--out", o.out, "Folder for summary.json, tracking.csv, coefficients.csv (or stop.json)")
+      ->required();
+  app.add_option("--case", o.structure_case, "Benchmark structure case 1-4")->capture_default_str()->check(
+      CLI::Range(1, 4));
+  app.add_option("--compensator", o.compensator, "none, sample, polynomial, adaptive or model")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "sample", "polynomial", "adaptive", "model"}));
+  app.add_option("--rate-hz", o.rate_hz, "Loop rate, Hz (default: the board's period; 1000 or 4096)")
+      ->check(mrd::app::finite_in(100.0, 65535.0, "Hz"));
+  app.add_option("--duration-s", o.duration_s, "Run the record's first seconds only, s")
+      ->check(mrd::app::positive_up_to(mrd::app::kMaxProgramTime_s, "s"));
+  app.add_option("--scale", o.scale, "Factor on the record's accelerations (the benchmark's 0.4)")
+      ->capture_default_str()
+      ->check(mrd::app::positive_up_to(100.0, ""));
+  app.add_option("--lab-node", o.lab_node, "CAN node id of the laboratory")->capture_default_str()->check(
+      CLI::Range(1, 15));
+  app.add_option("--can", o.can_interface, "Override the board's CAN interface (e.g. vcan0)");
+  app.add_option("--ready-timeout-s", o.ready_timeout_s, "Wait this long for the laboratory's beacon, s")
+      ->capture_default_str()
+      ->check(mrd::app::positive_up_to(3600.0, "s"));
+  app.add_option("--lab-silent-ms", o.lab_silent_ms, "End the run after this long without a fresh measurement, ms")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  mrd::peers::install_stop_signals();
+  if (const auto exit = mrd::peers::parse_options(app, argc, argv, "mrd-rths")) return *exit;
+  return run(o);
+}

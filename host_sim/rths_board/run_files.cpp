@@ -1,0 +1,135 @@
+#include "host_sim/rths_board/run_files.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace mrd::rths_board {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kRunFiles[] = {"summary.json", "tracking.csv", "coefficients.csv", "stop.json"};
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+
+std::string quoted(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      o += ' ';
+      continue;
+    }
+    o += c;
+  }
+  return o + "\"";
+}
+
+std::string setup_json(const RunDescription& d, const BoardLoop& loop) {
+  std::string s;
+  s += "  \"board\": " + quoted(d.board) + ",\n";
+  s += "  \"record\": " + quoted(d.record) + ",\n";
+  s += "  \"record_scale\": " + num(d.record_scale) + ",\n";
+  s += "  \"structure\": " + quoted(d.structure) + ",\n";
+  s += "  \"compensator\": " + quoted(d.compensator) + ",\n";
+  s += "  \"rate_hz\": " + num(d.rate_hz) + ",\n";
+  s += "  \"ticks\": " + std::to_string(loop.ticks()) + ",\n";
+  s += "  \"record_ticks\": " + std::to_string(loop.steps()) + ",\n";
+  const LoopTimingRecord& t = loop.timing();
+  s += "  \"timing\": {\"period_ns\": " + std::to_string(t.period_ns) + ", \"overruns\": " +
+       std::to_string(t.overruns) + ", \"worst_late_us\": " + num(static_cast<double>(t.worst_late_ns) / 1e3) +
+       ", \"worst_tick_us\": " + num(static_cast<double>(t.worst_tick_ns) / 1e3) +
+       ", \"stale_measurement_ticks\": " + std::to_string(loop.stale_ticks()) +
+       ", \"rejected_frames\": " + std::to_string(loop.rejected()) +
+       ", \"tx_errors\": " + std::to_string(loop.tx_errors()) + "},\n";
+  return s;
+}
+
+}  // namespace
+
+void prepare_out_dir(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw std::runtime_error(dir.string() + ": cannot create the output folder");
+  for (const char* name : kRunFiles) {
+    fs::remove(dir / name, ec);
+    fs::remove(dir / (std::string(name) + ".tmp"), ec);
+  }
+}
+
+void write_atomically(const fs::path& dir, const std::string& name, const std::string& text) {
+  const fs::path final_path = dir / name;
+  const fs::path tmp = dir / (name + ".tmp");
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+  }
+  std::error_code ec;
+  fs::rename(tmp, final_path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error(final_path.string() + ": cannot rename the written file into place");
+  }
+}
+
+void write_finished_run(const fs::path& dir, const RunDescription& d, const BoardLoop& loop,
+                        const rths::Criteria& c) {
+  static constexpr const char* kNames[] = {"j1_lag_s",          "j2_tracking_rms_pct", "j3_tracking_peak_pct",
+                                           "j4_floor1_rms_pct", "j5_floor1_peak_pct",  "j6_floor2_rms_pct",
+                                           "j7_floor2_peak_pct", "j8_floor3_rms_pct",  "j9_floor3_peak_pct"};
+  // The CSVs first: summary.json, written last, marks a complete run.
+  std::string csv = "time_s,target_m,measured_m,command_m,force_n\n";
+  csv.reserve(loop.ticks() * 72);
+  for (std::size_t k = 0; k < loop.measured_m().size(); ++k) {
+    csv += num(static_cast<double>(k) * loop.dt_s()) + "," + num(loop.target_m()[k]) + "," +
+           num(loop.measured_m()[k]) + "," + num(loop.command_m()[k]) + "," + num(loop.force_n()[k]) + "\n";
+  }
+  write_atomically(dir, "tracking.csv", csv);
+  std::string co = "time_s";
+  for (const auto& n : loop.coefficient_names()) co += "," + n;
+  co += "\n";
+  for (std::size_t i = 0; i < loop.coefficients().size(); ++i) {
+    co += num(loop.coefficient_time_s()[i]);
+    for (double v : loop.coefficients()[i]) co += "," + num(v);
+    co += "\n";
+  }
+  write_atomically(dir, "coefficients.csv", co);
+
+  std::string s = "{\n  \"status\": \"ok\",\n" + setup_json(d, loop);
+  s += "  \"criteria\": {";
+  for (std::size_t i = 0; i < c.j.size(); ++i) s += std::string(i ? ", " : "") + quoted(kNames[i]) + ": " + num(c.j[i]);
+  s += "},\n  \"coefficients_final\": {";
+  if (!loop.coefficients().empty()) {
+    const auto& last = loop.coefficients().back();
+    for (std::size_t i = 0; i < last.size() && i < loop.coefficient_names().size(); ++i)
+      s += std::string(i ? ", " : "") + quoted(loop.coefficient_names()[i]) + ": " + num(last[i]);
+  }
+  s += "}\n}\n";
+  write_atomically(dir, "summary.json", s);
+}
+
+void write_stopped_run(const fs::path& dir, const RunDescription& d, const BoardLoop& loop) {
+  std::string s = "{\n  \"status\": " + quoted(loop_end_status(loop.end(), loop.lab_reason())) + ",\n";
+  s += setup_json(d, loop);
+  s += "  \"end_time_s\": " + num(static_cast<double>(loop.ticks()) * loop.dt_s()) + "\n}\n";
+  write_atomically(dir, "stop.json", s);
+}
+
+std::string timing_fields(const BoardLoop& loop) {
+  const LoopTimingRecord& t = loop.timing();
+  char b[320];
+  std::snprintf(b, sizeof b,
+                "ticks=%llu overruns=%u worst_late_us=%.1f worst_tick_us=%.1f stale_ticks=%u rejected=%u tx_errors=%u",
+                static_cast<unsigned long long>(loop.ticks()), t.overruns, static_cast<double>(t.worst_late_ns) / 1e3,
+                static_cast<double>(t.worst_tick_ns) / 1e3, loop.stale_ticks(), loop.rejected(), loop.tx_errors());
+  return b;
+}
+
+}  // namespace mrd::rths_board
