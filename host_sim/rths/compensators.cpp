@@ -54,18 +54,21 @@ class DerivativeFilter {
     s.b(2, 0) = w * w * w;
     s.c = Matrix::Identity(3, 3);
     s.d = Matrix::Zero(3, 1);
-    d_ = zero_order_hold(s, dt_s);
-    z_ = Vector::Zero(3);
+    const DiscreteSystem d = zero_order_hold(s, dt_s);
+    phi_ = d.phi;
+    gamma_ = d.gamma.col(0);
+    z_.setZero();
   }
   /// Feeds one sample; returns [y, ẏ, ÿ] after it.
-  const Vector& push(double u) {
-    z_ = d_.phi * z_ + d_.gamma * u;
+  const Eigen::Vector3d& push(double u) {
+    z_ = phi_ * z_ + gamma_ * u;
     return z_;
   }
 
  private:
-  DiscreteSystem d_;
-  Vector z_;
+  Eigen::Matrix3d phi_;
+  Eigen::Vector3d gamma_;
+  Eigen::Vector3d z_;
 };
 
 class NoCompensation final : public Compensator {
@@ -147,12 +150,12 @@ class FilteredPairs {
     xf_ = x_.push(measured_m);
   }
   double command() const { return uf_; }
-  const Vector& measured() const { return xf_; }
+  const Eigen::Vector3d& measured() const { return xf_; }
 
  private:
   DerivativeFilter u_, x_;
   double uf_ = 0.0;
-  Vector xf_ = Vector::Zero(3);
+  Eigen::Vector3d xf_ = Eigen::Vector3d::Zero();
 };
 
 /// Coefficient bounds and per-update rate limits shared by the adaptive

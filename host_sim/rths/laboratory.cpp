@@ -19,6 +19,7 @@ Laboratory::Laboratory(const LabPlantParams& plant, const LaboratorySpec& spec, 
     : spec_(spec),
       sys_(zero_order_hold(lab_plant_model(plant), dt_s)),
       z_(Vector::Zero(5)),
+      z_next_(Vector::Zero(5)),
       rng_(spec.noise_seed),
       sigma_x_m_(std::sqrt(spec.displacement_noise_power_m2_hz / dt_s)),
       sigma_f_n_(std::sqrt(spec.force_noise_power_n2_hz / dt_s)) {}
@@ -29,8 +30,8 @@ double Laboratory::quantize(double value, double full_scale, double range_v, int
   return std::round(volts / step_v) * step_v / range_v * full_scale;
 }
 
-double Laboratory::true_displacement_m() const { return (sys_.c.row(0) * z_)(0); }
-double Laboratory::true_force_n() const { return (sys_.c.row(1) * z_)(0); }
+double Laboratory::true_displacement_m() const { return sys_.c.row(0).dot(z_); }
+double Laboratory::true_force_n() const { return sys_.c.row(1).dot(z_); }
 
 LabMeasurement Laboratory::measure() {
   LabMeasurement m;
@@ -51,9 +52,9 @@ void Laboratory::step(double command_m, double target_m) {
       if (std::fabs(true_displacement_m() - target_m) > spec_.tracking_limit_m) stop_ = LabStop::kTrackingLimit;
     }
   }
-  Vector u(1);
-  u(0) = held_command_m_;
-  z_ = sys_.phi * z_ + sys_.gamma * u;
+  z_next_.noalias() = sys_.phi * z_;
+  z_next_ += sys_.gamma.col(0) * held_command_m_;
+  z_.swap(z_next_);
   const double f = std::fabs(true_force_n());
   peak_force_n_ = std::max(peak_force_n_, f);
   if (stop_ == LabStop::kNone && f > spec_.force_limit_n) stop_ = LabStop::kForceLimit;

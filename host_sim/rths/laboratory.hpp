@@ -69,7 +69,7 @@ class Laboratory {
  private:
   LaboratorySpec spec_;
   DiscreteSystem sys_;
-  Vector z_;
+  Vector z_, z_next_;
   double held_command_m_ = 0.0;
   LabStop stop_ = LabStop::kNone;
   double peak_force_n_ = 0.0;

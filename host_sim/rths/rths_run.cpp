@@ -24,9 +24,12 @@ std::vector<std::vector<double>> reference_response(const StructureMatrices& b,
   std::vector<std::vector<double>> out(static_cast<std::size_t>(n),
                                        std::vector<double>(ground_accel_m_s2.size(), 0.0));
   Vector z = Vector::Zero(2 * n);
+  Vector next = Vector::Zero(2 * n);
   for (std::size_t k = 0; k < ground_accel_m_s2.size(); ++k) {
     for (Eigen::Index i = 0; i < n; ++i) out[static_cast<std::size_t>(i)][k] = z(i);
-    z = d.phi * z + d.gamma * ground_accel_m_s2[k];
+    next.noalias() = d.phi * z;
+    next += d.gamma.col(0) * ground_accel_m_s2[k];
+    z.swap(next);
   }
   return out;
 }

@@ -47,9 +47,9 @@ Vector DiscreteBlock::step(const Vector& u) {
 }
 
 double DiscreteBlock::step(double u) {
-  Vector v(1);
-  v(0) = u;
-  return step(v)(0);
+  const double y = sys_.c.row(0).dot(x_) + sys_.d(0, 0) * u;
+  x_ = sys_.phi * x_ + sys_.gamma.col(0) * u;
+  return y;
 }
 
 }  // namespace mrd::rths

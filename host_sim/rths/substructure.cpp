@@ -25,15 +25,20 @@ ChenRiclesIntegrator::ChenRiclesIntegrator(const StructureMatrices& whole, const
   ground_ = -(whole.m * Vector::Ones(n));
   x_ = Vector::Zero(n);
   v_ = Vector::Zero(n);
+  p_ = Vector::Zero(n);
+  a_ = Vector::Zero(n);
+  alpha_a_ = Vector::Zero(n);
 }
 
 double ChenRiclesIntegrator::step(double ground_accel_m_s2, double measured_force_n) {
-  Vector p = ground_ * ground_accel_m_s2 - c_ * v_ - k_ * x_;
-  p(dof_) -= measured_force_n;
-  const Vector a = m_inv_ * p;
-  const Vector alpha_a = alpha_ * a;
-  x_ += dt_s_ * v_ + dt_s_ * dt_s_ * alpha_a;
-  v_ += dt_s_ * alpha_a;
+  p_ = ground_ * ground_accel_m_s2;
+  p_.noalias() -= c_ * v_;
+  p_.noalias() -= k_ * x_;
+  p_(dof_) -= measured_force_n;
+  a_.noalias() = m_inv_ * p_;
+  alpha_a_.noalias() = alpha_ * a_;
+  x_ += dt_s_ * v_ + dt_s_ * dt_s_ * alpha_a_;
+  v_ += dt_s_ * alpha_a_;
   return x_(dof_);
 }
 

@@ -53,6 +53,7 @@ class ChenRiclesIntegrator {
   Matrix k_, c_, m_inv_, alpha_;
   Vector ground_;  ///< −M·1
   Vector x_, v_;
+  Vector p_, a_, alpha_a_;  ///< work vectors (no allocation per step)
 };
 
 }  // namespace mrd::rths
