@@ -13,7 +13,9 @@
 /// Joint fit: every record's residual (F_model − F_meas) is divided by that
 /// record's RMS force, so that records weigh alike whatever their force
 /// level; each record is thinned to about `samples_per_record` samples (as
-/// make_fit_data). Positive parameters are fitted as logarithms (Ceres LM,
+/// make_fit_data); the spencer law's residuals are also weighted so that each
+/// record counts alike whatever its number of samples, and it fits no force
+/// channel lag (calibrate.cpp, fit_law). Positive parameters are fitted as logarithms (Ceres LM,
 /// forward differences), from several starts built from a linear regression
 /// F ≈ Y sgn v + C v (+ k x) per current.
 ///

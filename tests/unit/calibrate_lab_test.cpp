@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -262,6 +265,44 @@ TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
   const std::vector<double> with = baseline_gaps(r.fits[1].baseline, held);
   const std::vector<double> without = baseline_gaps(r.fits[0].baseline, held);
   for (std::size_t i = 1; i < held.size(); ++i) EXPECT_LT(with[i], without[i]) << held[i].source;
+}
+
+// The held-out study of the README (discrepancy section): each law
+// calibrated on two families with the third as its --check records, judged
+// on that third; the median gap over the fifteen held-out records. Minutes
+// per law: run only with MRD_LAB_HELD_OUT_LAWS set (a comma-separated list
+// of bingham, bouc_wen, spencer).
+TEST(CalibrateLab, HeldOutFamilyStudy) {
+  const char* laws_env = std::getenv("MRD_LAB_HELD_OUT_LAWS");
+  if (laws_env == nullptr) GTEST_SKIP() << "MRD_LAB_HELD_OUT_LAWS not set";
+  ASSERT_TRUE(fs::exists(lab_dir())) << lab_dir() << " not found: the shared data folder belongs beside the clone";
+  const std::array<const char*, 3> families{"2mm_5Hz", "5mm_3Hz", "25mm_0p25Hz"};
+  std::string list(laws_env);
+  std::size_t at = 0;
+  while (at <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    const std::string name = list.substr(at, comma - at);
+    at = comma + 1;
+    if (name.empty()) continue;
+    CalibrateOptions opt;
+    opt.law = name == "spencer" ? BaseLaw::spencer : (name == "bouc_wen" ? BaseLaw::bouc_wen : BaseLaw::bingham);
+    std::vector<double> all;
+    std::string per_family;
+    for (std::size_t h = 0; h < families.size(); ++h) {
+      const std::vector<MeasuredData> fit = lab_families(families[(h + 1) % 3], families[(h + 2) % 3]);
+      const std::vector<MeasuredData> held = lab_family(families[h]);
+      const CalibrationResult r = calibrate(fit, opt, held);
+      std::vector<double> g = baseline_gaps(r.best().baseline, held);
+      std::vector<double> sorted = g;
+      std::sort(sorted.begin(), sorted.end());
+      per_family += std::string(" ") + families[h] + " " + std::to_string(sorted[sorted.size() / 2]) + " (" +
+                    baseline_form_name(r.best().baseline) + ")";
+      all.insert(all.end(), g.begin(), g.end());
+    }
+    std::sort(all.begin(), all.end());
+    std::printf("held-out %s: median %.4f over %zu records;%s\n", name.c_str(), all[all.size() / 2], all.size(),
+                per_family.c_str());
+  }
 }
 
 }  // namespace
