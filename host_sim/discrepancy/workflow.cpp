@@ -106,6 +106,12 @@ std::string implausibility(Effect e, std::span<const double> params, const Param
     }
   }
   if (all_null) return "not identified: the fit returns the effect's null value";
+  if (e == Effect::backlash && form == kBacklashImpactSpring && params.size() >= 2 &&
+      params[1] > kMaxStopDeflectionPerPlay * params[0]) {
+    return "the contact spring deflects " + format_number("%.3g", params[1]) + " m, more than " +
+           format_number("%g", kMaxStopDeflectionPerPlay) + " times the free play of " +
+           format_number("%.3g", params[0]) + " m: a compliance in series, not a free play";
+  }
   return {};
 }
 
@@ -241,7 +247,8 @@ std::string collapse_reason(const SelectionContext& ctx, const FitOutcome& f) {
 /// a single lag of a third of its time constant), in later rounds when its
 /// first form is among the kFormCandidates best fits of the round. The form kept is the one with
 /// the lower BIC (one effective sample count, that of the first form's
-/// residual; a form with more parameters pays for them).
+/// residual; a form with more parameters pays for them) among the plausible
+/// ones (implausibility).
 void other_forms(const SelectionContext& ctx, const Selection& current, const std::vector<Effect>& todo,
                  std::vector<FitOutcome>& fits) {
   std::vector<std::size_t> order;
@@ -268,8 +275,12 @@ void other_forms(const SelectionContext& ctx, const Selection& current, const st
                          current.set.effects.empty() ? 1 : kStarts);
   });
   const auto n = static_cast<std::size_t>(ctx.fd.index.size());
+  const ParamScale scale = ctx.fd.model->param_scale();
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     FitOutcome& now = fits[jobs[j].trial];
+    // A form whose fit is implausible (a contact spring with no play to speak of) does not replace the first.
+    const Effect e = todo[jobs[j].trial];
+    if (!implausibility(e, own_params(alt[j].set, alt[j].params, e), scale, jobs[j].form).empty()) continue;
     const double n_eff = std::max(now.n_eff, 1.0);
     if (bic(alt[j].rss_n2, n, n_eff, alt[j].set.param_count()) < bic(now.rss_n2, n, n_eff, now.set.param_count()))
       now = std::move(alt[j]);

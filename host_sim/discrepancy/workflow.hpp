@@ -201,6 +201,13 @@ struct DiscrepancyResult {
 /// `scale`: DamperModel::param_scale() (force-valued bounds scale; an
 /// assumed coil may be faster).
 /// `form`: the effect's form (EffectInfo::forms), whose parameters `params` are.
+/// Free play ending in a contact spring that deflects under the baseline's
+/// force scale more than kMaxStopDeflectionPerPlay times the play is
+/// implausible: the play is then a detail of a spring in series with the
+/// damper (a compliance of the force path, or a low-pass of the force channel
+/// it mimics, neither in the catalogue). Fits of such records gave 3–40 times
+/// the play; of free play with a pad at its end, 0.2–1.4 times.
+inline constexpr double kMaxStopDeflectionPerPlay = 2.0;
 [[nodiscard]] std::string implausibility(Effect e, std::span<const double> params, const ParamScale& scale = {},
                                          std::size_t form = 0);
 

@@ -9,6 +9,7 @@
 
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/effects.hpp"
+#include "host_sim/discrepancy/workflow.hpp"
 
 namespace mrd::discrepancy {
 namespace {
@@ -116,6 +117,20 @@ TEST(DiscrepancyForms, ImpactSpringDeflectsWithTheForceOnceThePlayIsTaken) {
   // A hard stop (no deflection) trails by the half play alone.
   model.simulate(set, std::vector<double>{play_m, 0.0}, ws, f);
   EXPECT_NEAR(in.disp_m[k] - ws.disp_m[k], 0.5 * play_m, 1e-9);
+}
+
+// A contact spring deflecting 15 mm behind 1 mm of play is a spring in series
+// with the damper, the play a detail of it: implausible as a free play (more
+// than kMaxStopDeflectionPerPlay = 2 times the play). One deflecting 1.5 mm
+// behind the same play is a play with a soft stop.
+TEST(DiscrepancyForms, AContactSpringFarBeyondItsPlayIsACompliance) {
+  const std::vector<double> compliance{0.001, 0.015};
+  const std::vector<double> soft_stop{0.001, 0.0015};
+  EXPECT_NE(implausibility(Effect::backlash, compliance, {}, kBacklashImpactSpring).find("compliance in series"),
+            std::string::npos);
+  EXPECT_TRUE(implausibility(Effect::backlash, soft_stop, {}, kBacklashImpactSpring).empty());
+  // The kinematic form's second parameter is a share of the play, not a deflection.
+  EXPECT_TRUE(implausibility(Effect::backlash, std::vector<double>{0.001, 0.5}).empty());
 }
 
 // Parameters are packed by form: idle_settling's full recovery has two (SQ,
