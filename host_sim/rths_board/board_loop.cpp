@@ -56,6 +56,7 @@ BoardLoop::BoardLoop(hal::CanBus& bus, const BoardLoopSpec& spec)
   coeff_every_ = static_cast<std::size_t>(std::max(1L, std::lround(0.01 / dt_s_)));
   coefficient_time_s_.reserve(n / coeff_every_ + 1);
   coefficients_.reserve(n / coeff_every_ + 1);
+  tick_ns_.reserve(n);
 }
 
 void BoardLoop::drain() noexcept {
@@ -133,6 +134,7 @@ LoopEnd BoardLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const
     tick();
     const std::int64_t done_ns = clock.now_ns();
     timing_.worst_tick_ns = std::max(timing_.worst_tick_ns, done_ns - start_ns);
+    if (tick_ns_.size() < tick_ns_.capacity()) tick_ns_.push_back(done_ns - start_ns);
     const std::int64_t deadline_ns = schedule.after_tick(done_ns);
     timing_.overruns = schedule.overruns();
     timing_.worst_late_ns = schedule.worst_late_ns();
@@ -140,6 +142,12 @@ LoopEnd BoardLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const
     clock.sleep_until_ns(deadline_ns);
   }
   send_run_status();
+  if (!tick_ns_.empty()) {
+    std::vector<std::int64_t> sorted = tick_ns_;
+    std::sort(sorted.begin(), sorted.end());
+    timing_.median_tick_ns = sorted[sorted.size() / 2];
+    timing_.p99_tick_ns = sorted[std::min(sorted.size() - 1, sorted.size() * 99 / 100)];
+  }
   return end_;
 }
 

@@ -62,6 +62,8 @@ struct LoopTimingRecord {
   std::uint32_t overruns = 0;       ///< periods missed (app::PeriodicSchedule)
   std::int64_t worst_late_ns = 0;   ///< latest end of a tick past its deadline
   std::int64_t worst_tick_ns = 0;   ///< longest tick, start to command sent
+  std::int64_t median_tick_ns = 0;  ///< of every tick's run time (after the loop)
+  std::int64_t p99_tick_ns = 0;     ///< 99th percentile of the same
   std::int64_t period_ns = 0;
 };
 
@@ -137,6 +139,7 @@ class BoardLoop {
   std::vector<std::string> coefficient_names_;
   std::vector<double> coefficient_time_s_;
   std::vector<std::vector<double>> coefficients_;
+  std::vector<std::int64_t> tick_ns_;  ///< every tick's run time, free-running
 };
 
 }  // namespace mrd::rths_board

@@ -44,6 +44,8 @@ std::string setup_json(const RunDescription& d, const BoardLoop& loop) {
   s += "  \"timing\": {\"period_ns\": " + std::to_string(t.period_ns) + ", \"overruns\": " +
        std::to_string(t.overruns) + ", \"worst_late_us\": " + num(static_cast<double>(t.worst_late_ns) / 1e3) +
        ", \"worst_tick_us\": " + num(static_cast<double>(t.worst_tick_ns) / 1e3) +
+       ", \"median_tick_us\": " + num(static_cast<double>(t.median_tick_ns) / 1e3) +
+       ", \"p99_tick_us\": " + num(static_cast<double>(t.p99_tick_ns) / 1e3) +
        ", \"stale_measurement_ticks\": " + std::to_string(loop.stale_ticks()) +
        ", \"rejected_frames\": " + std::to_string(loop.rejected()) +
        ", \"tx_errors\": " + std::to_string(loop.tx_errors()) + "},\n";
@@ -124,11 +126,13 @@ void write_stopped_run(const fs::path& dir, const RunDescription& d, const Board
 
 std::string timing_fields(const BoardLoop& loop) {
   const LoopTimingRecord& t = loop.timing();
-  char b[320];
+  char b[400];
   std::snprintf(b, sizeof b,
-                "ticks=%llu overruns=%u worst_late_us=%.1f worst_tick_us=%.1f stale_ticks=%u rejected=%u tx_errors=%u",
+                "ticks=%llu overruns=%u worst_late_us=%.1f worst_tick_us=%.1f median_tick_us=%.1f p99_tick_us=%.1f "
+                "stale_ticks=%u rejected=%u tx_errors=%u",
                 static_cast<unsigned long long>(loop.ticks()), t.overruns, static_cast<double>(t.worst_late_ns) / 1e3,
-                static_cast<double>(t.worst_tick_ns) / 1e3, loop.stale_ticks(), loop.rejected(), loop.tx_errors());
+                static_cast<double>(t.worst_tick_ns) / 1e3, static_cast<double>(t.median_tick_ns) / 1e3,
+                static_cast<double>(t.p99_tick_ns) / 1e3, loop.stale_ticks(), loop.rejected(), loop.tx_errors());
   return b;
 }
 

@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Real-time hybrid simulation on the emulated arm64 board: cross-builds
+# mrd-rths (the RTHS runtime) and mrd-rths-lab (the emulated laboratory),
+# boots Debian's arm64 kernel under qemu-system-aarch64 -M virt with both
+# programs, the emulated board's board file and the ground-motion record, and
+# runs in the guest, over vcan0, free-running on CLOCK_MONOTONIC with the
+# board's SCHED_FIFO and locked memory:
+#   1. for each run of $MRD_EMU_RTHS_RUNS ("rate_hz:compensator" …, default
+#      "1000:adaptive"): mrd-rths-lab and mrd-rths on the virtual benchmark
+#      (case 1, the record × 0.4) over its first $MRD_EMU_RTHS_DURATION_S
+#      seconds (default 5); the runtime's status line gives J1–J5, ticks,
+#      overruns, worst lateness and the longest tick;
+#   2. the laboratory's stop: no compensation and a 0.05 mm tracking limit, so
+#      the laboratory stops, holds and reports it; the runtime ends with the
+#      stop's status (exit 3) and its folder is listed (stop.json, no summary).
+# The serial console goes to $OUT/serial.txt; lines are tagged
+# [rths-N-runtime], [rths-N-lab], [rths-N-summary], [rths-stop-runtime],
+# [rths-stop-lab], [rths-stop-files], [rths-stop-json].
+#
+# Usage: rths.sh RECORD OUT_DIR
+# Exit status: 0 the guest finished, 1 failure or something missing (the
+# reason is printed).
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+record=${1:?usage: rths.sh RECORD OUT_DIR}
+out=${2:?usage: rths.sh RECORD OUT_DIR}
+runs=${MRD_EMU_RTHS_RUNS:-"1000:adaptive"}
+duration_s=${MRD_EMU_RTHS_DURATION_S:-5}
+[[ $duration_s =~ ^[0-9]+(\.[0-9]+)?$ ]] || emu_fail "MRD_EMU_RTHS_DURATION_S: '$duration_s' is not a duration in s"
+for r in $runs; do
+  [[ $r =~ ^[0-9]+:(none|sample|polynomial|adaptive|model)$ ]] ||
+    emu_fail "MRD_EMU_RTHS_RUNS: '$r' is not rate_hz:compensator (none, sample, polynomial, adaptive, model)"
+done
+
+emu_require_tools
+[[ -r $record ]] || emu_fail "ground-motion record $record not readable"
+rm -rf "$out" && mkdir -p "$out"
+emu_cross_build "$out/build.log" mrd-rths mrd-rths-lab
+emu_fetch
+
+rootfs=$out/rootfs
+emu_rootfs "$rootfs" "can can-raw vcan"
+for p in mrd-rths mrd-rths-lab; do
+  bin=$emu_build/host_sim/rths_board/$p
+  [[ -x $bin ]] || emu_fail "missing $bin (cross build)"
+  cp "$bin" "$rootfs/mrd/"
+done
+cp "$emu_root/boards/emulated-arm64/board.toml" "$rootfs/mrd/board.toml"
+cp "$record" "$rootfs/mrd/record.csv"
+{
+  echo "DURATION=$duration_s"
+  echo "RUNS=\"$runs\""
+  cat <<'SCENARIO'
+ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
+n=0
+for r in $RUNS; do
+  n=$((n + 1))
+  rate=${r%%:*}
+  comp=${r##*:}
+  echo "EMU: rths run $n: $rate Hz, $comp, ${DURATION} s"
+  ./mrd-rths-lab --board board.toml --rate-hz "$rate" > /tmp/lab.log 2>&1 &
+  lab=$!
+  ./mrd-rths --board board.toml --record record.csv --rate-hz "$rate" --compensator "$comp" \
+      --duration-s "$DURATION" --out /tmp/rths-$n > /tmp/rths.log 2>&1
+  echo "EMU: rths run $n: runtime exit $?"
+  wait $lab; echo "EMU: rths run $n: lab exit $?"
+  tag rths-$n-runtime /tmp/rths.log
+  tag rths-$n-lab /tmp/lab.log
+  tag rths-$n-summary /tmp/rths-$n/summary.json
+done
+echo "EMU: rths stop: no compensation, tracking limit 0.05 mm"
+./mrd-rths-lab --board board.toml --rate-hz 1000 --tracking-limit-mm 0.05 > /tmp/lab-stop.log 2>&1 &
+lab=$!
+./mrd-rths --board board.toml --record record.csv --rate-hz 1000 --compensator none --duration-s "$DURATION" \
+    --out /tmp/rths-stop > /tmp/rths-stop.log 2>&1
+echo "EMU: rths stop: runtime exit $?"
+wait $lab; echo "EMU: rths stop: lab exit $?"
+tag rths-stop-runtime /tmp/rths-stop.log
+tag rths-stop-lab /tmp/lab-stop.log
+ls /tmp/rths-stop > /tmp/rths-stop-files.txt
+tag rths-stop-files /tmp/rths-stop-files.txt
+tag rths-stop-json /tmp/rths-stop/stop.json
+echo "EMU: done rths"
+SCENARIO
+} >"$rootfs/mrd/scenario.sh"
+emu_pack "$rootfs" "$out/initrd.gz"
+
+echo "emulated-board: booting $emu_kver under qemu-system-aarch64 for the RTHS runs"
+rc=0
+emu_boot "$out/initrd.gz" "" "$out/serial.txt" || rc=$?
+grep -q "^EMU: done rths" "$out/serial.txt" ||
+  { tail -n 40 "$out/serial.txt" >&2; emu_fail "the RTHS runs did not finish (qemu exit $rc)"; }
+echo "emulated-board: guest finished ($out/serial.txt)"

@@ -1,0 +1,81 @@
+// Real-time hybrid simulation on the emulated arm64 board (label
+// emulated-board): the cross-built mrd-rths and mrd-rths-lab run in Debian's
+// arm64 kernel under QEMU, over vcan0, free-running at 1 kHz on
+// CLOCK_MONOTONIC with SCHED_FIFO and locked memory
+// (scripts/emulated-board/rths.sh), on the virtual benchmark (Silva et al.
+// 2020: case 1, El Centro × 0.4, nominal plant, the adaptive compensator)
+// over the record's first 5 s. Checked:
+//  1. the run finished every tick with the laboratory as the peer, and meets
+//     the published acceptance J2 ≤ 3 %, J4 ≤ 5 %; the worst loop lateness,
+//     the overruns and the tick times are printed (QEMU's TCG on a shared
+//     host makes them the emulator's, not a board's: reported, not bounded);
+//  2. the laboratory's stop (no compensation, 0.05 mm tracking limit): the
+//     laboratory holds and reports tracking_limit, the runtime ends at its
+//     first tick after the report with that status and exit 3, and its folder holds stop.json
+//     and no summary or temporary file.
+#include <gtest/gtest.h>
+
+#include "emulated_board_support.hpp"
+
+namespace mrd {
+namespace {
+
+using testing::find_line;
+using testing::key_values;
+using testing::key_words;
+
+TEST(EmulatedBoardRths, BenchmarkAt1kHzWithTheLaboratoryAsAPeer) {
+  const auto record = testing::fs::path(MRD_SHARED_DIR) / "ground_motions" / "elcentro_ns.csv";
+  ASSERT_TRUE(testing::fs::exists(record)) << "shared El Centro record not found at " << record;
+  const auto out = testing::emulated_out_dir("rths");
+  ASSERT_TRUE(testing::run_emulated_script("MRD_EMU_RTHS_RUNS=1000:adaptive MRD_EMU_RTHS_DURATION_S=5", "rths.sh",
+                                           {record.string(), out.string()}))
+      << "rths.sh failed (reason above), see " << out;
+  const std::string serial = testing::read_text(out / "serial.txt");
+
+  // 1. The benchmark run.
+  const std::string run_line = find_line(serial, "[rths-1-runtime] mrd-rths: status=");
+  ASSERT_FALSE(run_line.empty()) << "no runtime status line in the serial log";
+  EXPECT_EQ(key_words(run_line).at("status"), "ok") << run_line;
+  const auto run = key_values(run_line);
+  EXPECT_EQ(run.at("ticks"), 5000.0);  // 5 s at 1 kHz
+  EXPECT_EQ(run.at("rejected"), 0.0);
+  EXPECT_EQ(run.at("tx_errors"), 0.0);
+  EXPECT_LE(run.at("j2_pct"), 3.0);  // the published acceptance
+  EXPECT_LE(run.at("j4_pct"), 5.0);
+  const std::string lab_line = find_line(serial, "[rths-1-lab] mrd-rths-lab: summary");
+  ASSERT_FALSE(lab_line.empty());
+  EXPECT_EQ(key_values(lab_line).at("steps"), 5000.0);
+  EXPECT_EQ(key_words(lab_line).at("run"), "finished");
+  EXPECT_EQ(key_words(lab_line).at("stop"), "none");
+  EXPECT_NE(serial.find("[rths-1-summary]   \"status\": \"ok\""), std::string::npos);
+  std::printf("emulated board RTHS at 1 kHz: J2 %.3f %%, J4 %.3f %%, overruns %.0f of %.0f ticks, worst lateness "
+              "%.1f us, tick median %.1f us, p99 %.1f us, worst %.1f us, stale measurements %.0f\n",
+              run.at("j2_pct"), run.at("j4_pct"), run.at("overruns"), run.at("ticks"), run.at("worst_late_us"),
+              run.at("median_tick_us"), run.at("p99_tick_us"), run.at("worst_tick_us"), run.at("stale_ticks"));
+
+  // 2. The laboratory's stop.
+  EXPECT_NE(serial.find("EMU: rths stop: runtime exit 3"), std::string::npos);
+  const std::string stop_line = find_line(serial, "[rths-stop-runtime] mrd-rths: status=");
+  ASSERT_FALSE(stop_line.empty());
+  EXPECT_EQ(key_words(stop_line).at("status"), "tracking_limit") << stop_line;
+  const std::string stop_lab = find_line(serial, "[rths-stop-lab] mrd-rths-lab: summary");
+  ASSERT_FALSE(stop_lab.empty());
+  EXPECT_EQ(key_words(stop_lab).at("state"), "stopped");
+  EXPECT_EQ(key_words(stop_lab).at("stop"), "tracking_limit");
+  EXPECT_EQ(key_words(stop_lab).at("run"), "lab_stopped");
+  // The runtime ended at the first tick after the stop's status arrived: the
+  // tick after the laboratory's step that stopped it when the laboratory
+  // answered in time, a few later when it was late (commands after the stop
+  // do not move the held actuator); never before.
+  EXPECT_GE(key_values(stop_line).at("ticks"), key_values(stop_lab).at("stop_step"));
+  EXPECT_LE(key_values(stop_line).at("ticks"), key_values(stop_lab).at("stop_step") + 50.0);
+  EXPECT_LT(key_values(stop_line).at("ticks"), 5000.0);
+  const auto files = testing::find_lines(serial, "[rths-stop-files] ");
+  ASSERT_EQ(files.size(), 1u) << "the stopped run's folder should hold one file";
+  EXPECT_EQ(files.front(), "[rths-stop-files] stop.json");
+  EXPECT_NE(serial.find("[rths-stop-json]   \"status\": \"tracking_limit\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mrd
