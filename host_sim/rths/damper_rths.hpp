@@ -7,16 +7,18 @@
 /// Per tick n (step T):
 /// 1. the target stroke x_t[n] = the damper element's deformation of the
 ///    numerical building at t_n;
-/// 2. after the building's step, the command for the next one: without
-///    compensation the target itself; with it, the numerical building's own
-///    prediction (its exact ZOH steps over the delay, with the record's
-///    future ground acceleration, which an RTHS knows, and the damper's force
-///    held at its last measured value), through the servo lag's exact
-///    discrete inverse;
-/// 3. the actuator: the command held over the step, delayed by a whole
-///    number of steps (delay_s), then a first-order servo lag (lag_s; exact
-///    ZOH), its velocity the lag's state derivative at the sample (the mean
-///    of its limits either side of the held command's step);
+/// 2. after the building's step, the command for the next one, a position
+///    and a rate: without compensation the target's deformation and rate;
+///    with it, the numerical building's own prediction over the delay (its
+///    exact ZOH steps with the record's future ground acceleration, which
+///    an RTHS knows, and the damper's force from the compensator's model of
+///    the specimen: an MrDamper driven by the measured stroke and rate and
+///    the commanded current, its current held over the prediction), through
+///    the servo lag's continuous inverse (c = x̂ + τ ẋ̂, ċ = ẋ̂ + τ ẍ̂);
+/// 3. the actuator: the commands delayed by a whole number of steps
+///    (delay_s), interpolated over each step (cubic Hermite through the
+///    positions and rates), then a first-order servo lag (lag_s) solved
+///    exactly over the cubic: position and velocity continuous;
 /// 4. the damper (physics::MrDamper, with its idle effects) at the
 ///    actuator's stroke and velocity gives the measured force; the
 ///    controller senses the actuator's stroke, the force, the ground and the
@@ -46,6 +48,7 @@ struct DamperRthsResult {
   double peak_damper_force_n = 0.0;
   double rms_tracking_error_pct = 0.0;    ///< 100·rms(x_a − x_t)/rms(x_t)
   double peak_tracking_error_m = 0.0;
+  double rms_velocity_error_pct = 0.0;    ///< 100·rms(ẋ_a − ẋ_t)/rms(ẋ_t), the rates the specimen and the building's element see
 };
 
 /// Runs it over `ground_accel_m_s2` at spec.plant.step_s, after resetting

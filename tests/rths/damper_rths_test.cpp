@@ -4,13 +4,12 @@
 // passive-on) running beside it as in the closed loop, on El Centro at the
 // thesis's PGA (Table 6.3: 0.1127 g).
 //
-// CI holds what the emulation must do whatever the damper: with no delay
-// and no lag the actuator is at the target at every sample; the
-// model-based compensation tracks better than none. The gap of the peak
-// base displacement to the all-numerical closed loop (run_closed_loop, what
-// `mrd sim` runs) is printed per mode, delay and compensation; the issue's
-// 2 % is not met in every case (see host_sim/rths/README.md), so it is
-// reported by MRD_RTHS_STUDY=1, not held.
+// CI holds: with no delay and no lag the actuator is at the target at every
+// sample and the run is the all-numerical closed loop's (run_closed_loop,
+// what `mrd sim` runs); the model-based compensation tracks better than
+// none; with it, the peak base displacement is within the 2 % of the
+// closed loop's (15 ms in CI, 10/15/20 ms with MRD_RTHS_STUDY=1, which also
+// prints the gaps beside the uncompensated ones).
 
 #include <gtest/gtest.h>
 
@@ -18,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include "host_sim/excitation/ground_motion.hpp"
 #include "host_sim/rths/damper_rths.hpp"
@@ -61,6 +61,20 @@ TEST(DamperRths, WithoutDelayOrLagTheActuatorIsAtTheTarget) {
   EXPECT_TRUE(std::isfinite(r.peak_base_displacement_m));
 }
 
+TEST(DamperRths, WithoutDelayOrLagItIsTheClosedLoop) {
+  // D = 0, τ = 0: the actuator reaches the building's deformation and rate
+  // at every sample, so the specimen gives the force the closed loop's damper
+  // gives, and the building steps alike: the same run up to rounding.
+  const auto ag = thesis_el_centro_1khz();
+  for (const auto mode : {control::ControlMode::kPassiveOn, control::ControlMode::kSemiActive}) {
+    const double ref = closed_loop_peak_m(mode, ag);
+    for (const bool compensate : {false, true}) {
+      const DamperRthsResult r = thesis_rths(mode, 0.0, 0.0, compensate, ag);
+      EXPECT_LT(std::fabs(r.peak_base_displacement_m - ref), 1e-3 * ref) << control::mode_name(mode);
+    }
+  }
+}
+
 TEST(DamperRths, CompensationTracksBetterThanNone) {
   const auto ag = thesis_el_centro_1khz();
   for (const auto mode : {control::ControlMode::kPassiveOn, control::ControlMode::kSemiActive}) {
@@ -71,18 +85,25 @@ TEST(DamperRths, CompensationTracksBetterThanNone) {
   }
 }
 
-TEST(DamperRths, GapToTheClosedLoopStudy) {
-  if (!std::getenv("MRD_RTHS_STUDY")) GTEST_SKIP() << "MRD_RTHS_STUDY=1 prints the gaps to the closed loop";
+// The criterion: the peak base displacement within 2 % of the
+// all-numerical closed loop, with compensation, for a 10-20 ms delay and the
+// 2 ms lag. CI holds it at 15 ms per mode; MRD_RTHS_STUDY=1 holds it at 10,
+// 15 and 20 ms and prints the gaps beside the uncompensated ones.
+TEST(DamperRths, PeakBaseDisplacementWithinTwoPercentOfTheClosedLoop) {
+  const bool study = std::getenv("MRD_RTHS_STUDY") != nullptr;
   const auto ag = thesis_el_centro_1khz();
   for (const auto mode : {control::ControlMode::kPassiveOn, control::ControlMode::kSemiActive}) {
     const double ref = closed_loop_peak_m(mode, ag);
-    for (const double delay_s : {0.010, 0.015, 0.020}) {
+    for (const double delay_s : study ? std::vector<double>{0.010, 0.015, 0.020} : std::vector<double>{0.015}) {
       const DamperRthsResult c = thesis_rths(mode, delay_s, 0.002, true, ag);
+      EXPECT_LT(std::fabs(c.peak_base_displacement_m - ref), 0.02 * ref)
+          << control::mode_name(mode) << ", delay " << 1e3 * delay_s << " ms";
+      if (!study) continue;
       const DamperRthsResult u = thesis_rths(mode, delay_s, 0.002, false, ag);
       std::printf("%-12s delay %2.0f ms + 2 ms lag: peak base displacement gap compensated %+6.2f %% (tracking rms "
-                  "%.2f %%), uncompensated %+6.2f %% (tracking rms %.2f %%)\n",
+                  "%.2f %%, velocity %.2f %%), uncompensated %+6.2f %% (tracking rms %.2f %%)\n",
                   control::mode_name(mode), 1e3 * delay_s, 100.0 * (c.peak_base_displacement_m - ref) / ref,
-                  c.rms_tracking_error_pct, 100.0 * (u.peak_base_displacement_m - ref) / ref,
+                  c.rms_tracking_error_pct, c.rms_velocity_error_pct, 100.0 * (u.peak_base_displacement_m - ref) / ref,
                   u.rms_tracking_error_pct);
     }
   }
