@@ -90,16 +90,26 @@ void write_finished_run(const fs::path& dir, const RunDescription& d, const Boar
   std::string csv = "time_s,target_m,measured_m,command_m,force_n\n";
   csv.reserve(loop.ticks() * 72);
   for (std::size_t k = 0; k < loop.measured_m().size(); ++k) {
-    csv += num(static_cast<double>(k) * loop.dt_s()) + "," + num(loop.target_m()[k]) + "," +
-           num(loop.measured_m()[k]) + "," + num(loop.command_m()[k]) + "," + num(loop.force_n()[k]) + "\n";
+    for (const double v : {static_cast<double>(k) * loop.dt_s(), loop.target_m()[k], loop.measured_m()[k],
+                           loop.command_m()[k], loop.force_n()[k]}) {
+      csv += num(v);
+      csv += ',';
+    }
+    csv.back() = '\n';
   }
   write_atomically(dir, "tracking.csv", csv);
   std::string co = "time_s";
-  for (const auto& n : loop.coefficient_names()) co += "," + n;
+  for (const auto& n : loop.coefficient_names()) {
+    co += ',';
+    co += n;
+  }
   co += "\n";
   for (std::size_t i = 0; i < loop.coefficients().size(); ++i) {
     co += num(loop.coefficient_time_s()[i]);
-    for (double v : loop.coefficients()[i]) co += "," + num(v);
+    for (double v : loop.coefficients()[i]) {
+      co += ',';
+      co += num(v);
+    }
     co += "\n";
   }
   write_atomically(dir, "coefficients.csv", co);

@@ -117,6 +117,24 @@ TEST(RthsBoard, BenchmarkOverTheBusAt1kHzMeetsTheAcceptanceAndEqualsTheEmulatedL
   ASSERT_EQ(ref.status, "ok");
   EXPECT_NEAR(c.j[0], ref.criteria.j[0], 1e-12);  // J1 on the 1 ms grid
   for (int i = 1; i < 5; ++i) EXPECT_NEAR(c.j[i], ref.criteria.j[i], 0.01) << "J" << i + 1;
+  // The files of a finished run: whole, no temporaries.
+  const fs::path dir = fs::temp_directory_path() / ("mrd_rths_board_ok_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  prepare_out_dir(dir);
+  write_finished_run(dir, RunDescription{}, loop, c);
+  std::stringstream summary;
+  summary << std::ifstream(dir / "summary.json").rdbuf();
+  EXPECT_NE(summary.str().find("\"status\": \"ok\""), std::string::npos);
+  EXPECT_NE(summary.str().find("\"j2_tracking_rms_pct\""), std::string::npos);
+  EXPECT_EQ(summary.str().substr(summary.str().size() - 2), "}\n");
+  std::ifstream csv(dir / "tracking.csv");
+  std::string line;
+  std::size_t lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, 4001u);  // header + one line a tick
+  EXPECT_FALSE(fs::exists(dir / "stop.json"));
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+  fs::remove_all(dir);
   std::printf("board loop over the bus, 1 kHz, 4 s: J2 %.3f %% J4 %.3f %% (emulated loop J2 %.3f %% J4 %.3f %%)\n",
               c.j[1], c.j[3], ref.criteria.j[1], ref.criteria.j[3]);
 }
