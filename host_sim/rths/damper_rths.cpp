@@ -126,7 +126,7 @@ DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<d
       const std::size_t k = from + static_cast<std::size_t>(j);
       u(0) = k < ag.size() ? ag[k] : 0.0;
       if (j < steps_ahead) v_before = rate(z);
-      u(1 + static_cast<Eigen::Index>(slot_of_damper)) = count * model.force_n(rate(z), deformation(z));
+      u(1 + static_cast<Eigen::Index>(slot_of_damper)) = count * spec.model_force_scale * model.force_n(rate(z), deformation(z));
       model.step(current_a, rate(z), deformation(z));
       z = now.phi() * z + now.gamma() * u;
       if (j + 1 == steps_ahead) {

@@ -41,6 +41,9 @@ struct DamperRthsSpec {
   double delay_s = 0.015;      ///< the actuator's pure delay, s (whole steps)
   double lag_s = 0.002;        ///< its first-order servo lag, s (0: none)
   bool compensate = true;      ///< the model-based prediction above
+  /// The compensator's specimen model's force over the specimen's (1: the
+  /// model is exact; otherwise an identification error of the force law).
+  double model_force_scale = 1.0;
 };
 
 struct DamperRthsResult {

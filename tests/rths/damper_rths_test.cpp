@@ -37,8 +37,9 @@ std::vector<double> thesis_el_centro_1khz() {
 }
 
 DamperRthsResult thesis_rths(control::ControlMode mode, double delay_s, double lag_s, bool compensate,
-                             const std::vector<double>& ag) {
+                             const std::vector<double>& ag, double model_force_scale = 1.0) {
   DamperRthsSpec spec;
+  spec.model_force_scale = model_force_scale;
   spec.delay_s = delay_s;
   spec.lag_s = lag_s;
   spec.compensate = compensate;
@@ -105,6 +106,13 @@ TEST(DamperRths, PeakBaseDisplacementWithinTwoPercentOfTheClosedLoop) {
                   control::mode_name(mode), 1e3 * delay_s, 100.0 * (c.peak_base_displacement_m - ref) / ref,
                   c.rms_tracking_error_pct, c.rms_velocity_error_pct, 100.0 * (u.peak_base_displacement_m - ref) / ref,
                   u.rms_tracking_error_pct);
+      for (const double scale : {0.9, 1.1}) {
+        const DamperRthsResult m = thesis_rths(mode, delay_s, 0.002, true, ag, scale);
+        std::printf("%-12s delay %2.0f ms, the compensator's damper model's force x %.1f: gap %+6.2f %% (tracking "
+                    "rms %.2f %%, velocity %.2f %%)\n",
+                    control::mode_name(mode), 1e3 * delay_s, scale, 100.0 * (m.peak_base_displacement_m - ref) / ref,
+                    m.rms_tracking_error_pct, m.rms_velocity_error_pct);
+      }
     }
   }
 }
