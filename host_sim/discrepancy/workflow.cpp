@@ -25,7 +25,7 @@ constexpr std::size_t kRefitted = 2;
 constexpr std::size_t kStarts = 3;
 /// Effects whose other forms are fitted in a round: those of the best
 /// fits in their first form (other_forms).
-constexpr std::size_t kFormCandidates = 3;
+constexpr std::size_t kFormCandidates = 2;
 /// Round-1 effects (earned, best first, other than the round-1 winner) whose
 /// pairs round 2 weighs as alternative models.
 constexpr std::size_t kAlternativeSources = 3;
@@ -245,7 +245,8 @@ std::string collapse_reason(const SelectionContext& ctx, const FitOutcome& f) {
 /// each of its other forms: in the first round always (a first form the
 /// data do not follow may not fit at all, as Eq. 4.5's slow branch does not
 /// a single lag of a third of its time constant), in later rounds when its
-/// first form is among the kFormCandidates best fits of the round. The form kept is the one with
+/// first form is among the kFormCandidates best fits of the round, from
+/// the best start of its grid (runtime: a form adds one local fit). The form kept is the one with
 /// the lower BIC (one effective sample count, that of the first form's
 /// residual; a form with more parameters pays for them) among the plausible
 /// ones (implausibility).
@@ -255,7 +256,8 @@ void other_forms(const SelectionContext& ctx, const Selection& current, const st
   for (std::size_t i = 0; i < todo.size(); ++i) order.push_back(i);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return fits[a].rss_n2 < fits[b].rss_n2; });
-  if (!current.set.effects.empty()) order.resize(std::min<std::size_t>(order.size(), kFormCandidates));
+  if (!current.set.effects.empty() && order.size() > kFormCandidates)
+    order.erase(order.begin() + static_cast<std::ptrdiff_t>(kFormCandidates), order.end());
   struct Job {
     std::size_t trial;
     std::uint8_t form;
@@ -271,8 +273,7 @@ void other_forms(const SelectionContext& ctx, const Selection& current, const st
     EffectSet s = current.set;
     s.effects.push_back(todo[jobs[j].trial]);
     s.forms[static_cast<std::size_t>(todo[jobs[j].trial])] = jobs[j].form;
-    alt[j] = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params), &todo[jobs[j].trial],
-                         current.set.effects.empty() ? 1 : kStarts);
+    alt[j] = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params), &todo[jobs[j].trial]);
   });
   const auto n = static_cast<std::size_t>(ctx.fd.index.size());
   const ParamScale scale = ctx.fd.model->param_scale();
