@@ -8,17 +8,20 @@ namespace {
 using protocol::DecodeError;
 using protocol::MsgId;
 
-// The RTHS ids must not be any message of the protocol.
-constexpr bool clashes(std::uint8_t id) {
-  for (MsgId m : {MsgId::kCurrentCommand, MsgId::kDriveStatus, MsgId::kDaqMotion, MsgId::kDaqAccel,
-                  MsgId::kMixingCommand, MsgId::kMixingStatus, MsgId::kControllerStatus, MsgId::kIdleStatus,
-                  MsgId::kSimCoilState, MsgId::kSimCoilDrive}) {
-    if (static_cast<std::uint8_t>(m) == id) return true;
-  }
-  return false;
+// Each RTHS id is one message of its own: no other protocol message shares it.
+constexpr MsgId kAllMessages[] = {MsgId::kCurrentCommand,   MsgId::kDriveStatus,     MsgId::kDaqMotion,
+                                  MsgId::kDaqAccel,         MsgId::kMixingCommand,   MsgId::kMixingStatus,
+                                  MsgId::kControllerStatus, MsgId::kIdleStatus,      MsgId::kRthsCommand,
+                                  MsgId::kRthsMeasurement,  MsgId::kRthsLabStatus,   MsgId::kRthsRunStatus,
+                                  MsgId::kSimCoilState,     MsgId::kSimCoilDrive};
+constexpr bool unique(MsgId id) {
+  int n = 0;
+  for (MsgId m : kAllMessages) n += static_cast<std::uint8_t>(m) == static_cast<std::uint8_t>(id) ? 1 : 0;
+  return n == 1;
 }
-static_assert(!clashes(0x10) && !clashes(0x11) && !clashes(0x12) && !clashes(0x13),
-              "an RTHS message id is already a protocol message");
+static_assert(unique(MsgId::kRthsCommand) && unique(MsgId::kRthsMeasurement) && unique(MsgId::kRthsLabStatus) &&
+                  unique(MsgId::kRthsRunStatus),
+              "an RTHS message id is also another protocol message");
 
 constexpr double kDispCountsPerM = 1e8;   // 10 nm
 constexpr double kForceCountsPerN = 1e2;  // 0.01 N
@@ -51,10 +54,10 @@ bool get_i24(const hal::CanFrame& f, int at, double counts_per_unit, double& out
   return true;
 }
 
-bool begin(hal::CanFrame& f, RthsMsgId m, std::uint8_t sender) noexcept {
+bool begin(hal::CanFrame& f, MsgId m, std::uint8_t sender) noexcept {
   if (sender < 1 || sender > protocol::kMaxNodeId) return false;
   f = hal::CanFrame{};
-  f.id = rths_can_id(m, sender);
+  f.id = protocol::can_id(m, sender);
   f.dlc = protocol::kFrameDlc;
   return true;
 }
@@ -65,8 +68,8 @@ bool finish(hal::CanFrame& f, std::uint8_t counter) noexcept {
   return true;
 }
 
-DecodeError check(const hal::CanFrame& f, RthsMsgId m, std::uint8_t sender) noexcept {
-  if (sender < 1 || sender > protocol::kMaxNodeId || f.extended || f.remote || f.id != rths_can_id(m, sender))
+DecodeError check(const hal::CanFrame& f, MsgId m, std::uint8_t sender) noexcept {
+  if (sender < 1 || sender > protocol::kMaxNodeId || f.extended || f.remote || f.id != protocol::can_id(m, sender))
     return DecodeError::kWrongId;
   if (f.dlc != protocol::kFrameDlc) return DecodeError::kWrongLength;
   if (f.data[7] != protocol::frame_crc(f.id, f.data)) return DecodeError::kBadChecksum;
@@ -96,18 +99,18 @@ const char* lab_state_name(LabState s) noexcept {
 }
 
 bool encode(const RthsCommand& m, std::uint8_t sender, hal::CanFrame& out) noexcept {
-  return begin(out, RthsMsgId::kCommand, sender) && put_i24(out, 0, m.command_m, kDispCountsPerM) &&
+  return begin(out, MsgId::kRthsCommand, sender) && put_i24(out, 0, m.command_m, kDispCountsPerM) &&
          put_i24(out, 3, m.target_m, kDispCountsPerM) && finish(out, m.counter);
 }
 
 bool encode(const RthsMeasurement& m, std::uint8_t sender, hal::CanFrame& out) noexcept {
-  return begin(out, RthsMsgId::kMeasurement, sender) && put_i24(out, 0, m.displacement_m, kDispCountsPerM) &&
+  return begin(out, MsgId::kRthsMeasurement, sender) && put_i24(out, 0, m.displacement_m, kDispCountsPerM) &&
          put_i24(out, 3, m.force_n, kForceCountsPerN) && finish(out, m.counter);
 }
 
 bool encode(const RthsLabStatus& m, std::uint8_t sender, hal::CanFrame& out) noexcept {
   if (static_cast<std::uint8_t>(m.state) > 2 || static_cast<std::uint8_t>(m.stop) > 4) return false;
-  if (!begin(out, RthsMsgId::kLabStatus, sender)) return false;
+  if (!begin(out, MsgId::kRthsLabStatus, sender)) return false;
   out.data[0] = static_cast<std::uint8_t>(m.state);
   out.data[1] = static_cast<std::uint8_t>(m.stop);
   out.data[2] = static_cast<std::uint8_t>(m.rate_hz & 0xFF);
@@ -117,14 +120,14 @@ bool encode(const RthsLabStatus& m, std::uint8_t sender, hal::CanFrame& out) noe
 
 bool encode(const RthsRunStatus& m, std::uint8_t sender, hal::CanFrame& out) noexcept {
   const auto s = static_cast<std::uint8_t>(m.state);
-  if (s < 1 || s > 3 || !begin(out, RthsMsgId::kRunStatus, sender)) return false;
+  if (s < 1 || s > 3 || !begin(out, MsgId::kRthsRunStatus, sender)) return false;
   out.data[0] = s;
   for (int i = 0; i < 4; ++i) out.data[1 + i] = static_cast<std::uint8_t>((m.ticks >> (8 * i)) & 0xFF);
   return finish(out, m.counter);
 }
 
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, RthsCommand& out) noexcept {
-  if (const DecodeError e = check(f, RthsMsgId::kCommand, sender); e != DecodeError::kOk) return e;
+  if (const DecodeError e = check(f, MsgId::kRthsCommand, sender); e != DecodeError::kOk) return e;
   RthsCommand m;
   if (!get_i24(f, 0, kDispCountsPerM, m.command_m) || !get_i24(f, 3, kDispCountsPerM, m.target_m))
     return DecodeError::kOutOfRange;
@@ -134,7 +137,7 @@ DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, RthsCommand& out
 }
 
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, RthsMeasurement& out) noexcept {
-  if (const DecodeError e = check(f, RthsMsgId::kMeasurement, sender); e != DecodeError::kOk) return e;
+  if (const DecodeError e = check(f, MsgId::kRthsMeasurement, sender); e != DecodeError::kOk) return e;
   RthsMeasurement m;
   if (!get_i24(f, 0, kDispCountsPerM, m.displacement_m) || !get_i24(f, 3, kForceCountsPerN, m.force_n))
     return DecodeError::kOutOfRange;
@@ -144,7 +147,7 @@ DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, RthsMeasurement&
 }
 
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, RthsLabStatus& out) noexcept {
-  if (const DecodeError e = check(f, RthsMsgId::kLabStatus, sender); e != DecodeError::kOk) return e;
+  if (const DecodeError e = check(f, MsgId::kRthsLabStatus, sender); e != DecodeError::kOk) return e;
   if (f.data[0] > 2 || f.data[1] > 4 || f.data[4] != 0 || f.data[5] != 0) return DecodeError::kBadField;
   out.state = static_cast<LabState>(f.data[0]);
   out.stop = static_cast<LabStopReason>(f.data[1]);
@@ -154,7 +157,7 @@ DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, RthsLabStatus& o
 }
 
 DecodeError decode(const hal::CanFrame& f, std::uint8_t sender, RthsRunStatus& out) noexcept {
-  if (const DecodeError e = check(f, RthsMsgId::kRunStatus, sender); e != DecodeError::kOk) return e;
+  if (const DecodeError e = check(f, MsgId::kRthsRunStatus, sender); e != DecodeError::kOk) return e;
   if (f.data[0] < 1 || f.data[0] > 3 || f.data[5] != 0) return DecodeError::kBadField;
   out.state = static_cast<RunState>(f.data[0]);
   out.ticks = get_u(f, 1, 4);

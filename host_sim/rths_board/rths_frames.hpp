@@ -24,8 +24,9 @@
 /// - RthsRunStatus: byte 0 `state` (1 finished, 2 ended by the lab's stop, 3
 ///   aborted), bytes 1–4 `ticks` uint32, byte 5 0.
 ///
-/// The ids 0x10–0x13 are free in the protocol (0x01–0x08 and 0x70–0x71 are
-/// taken; checked at compile time against protocol::MsgId). The converters'
+/// The ids are protocol::MsgId::kRthsCommand … kRthsRunStatus; their rows,
+/// signals, timeouts and example frames are in CAN_PROTOCOL.md and mrd.dbc.
+/// The converters'
 /// own steps (displacement 0.29 µm, force 0.068 N at ±3.8 V, 18 bit) are well
 /// above the frames' 10 nm and 0.01 N.
 ///
@@ -39,12 +40,6 @@
 #include "mrd/protocol/codec.hpp"
 
 namespace mrd::rths_board {
-
-enum class RthsMsgId : std::uint8_t { kCommand = 0x10, kMeasurement = 0x11, kLabStatus = 0x12, kRunStatus = 0x13 };
-
-constexpr std::uint32_t rths_can_id(RthsMsgId m, std::uint8_t node) noexcept {
-  return (static_cast<std::uint32_t>(m) << 4) | (node & 0x0Fu);
-}
 
 /// Default node of the laboratory (the board file's controller node sends the commands).
 inline constexpr std::uint8_t kDefaultLabNode = 5;

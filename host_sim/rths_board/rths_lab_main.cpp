@@ -75,8 +75,8 @@ int run(const Options& o) {
   c.spec.noise_seed = o.noise_seed;
 
   const mrd::hal::CanFilter filters[] = {
-      {rb::rths_can_id(rb::RthsMsgId::kCommand, c.runtime_node), 0x7FF},
-      {rb::rths_can_id(rb::RthsMsgId::kRunStatus, c.runtime_node), 0x7FF}};
+      {mrd::protocol::can_id(mrd::protocol::MsgId::kRthsCommand, c.runtime_node), 0x7FF},
+      {mrd::protocol::can_id(mrd::protocol::MsgId::kRthsRunStatus, c.runtime_node), 0x7FF}};
   std::unique_ptr<mrd::posix::SocketCanBus> bus;
   try {
     bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters);

@@ -87,8 +87,8 @@ int run(const Options& o) {
     return kExitUsage;
   }
 
-  const std::uint32_t lab_ids[] = {rb::rths_can_id(rb::RthsMsgId::kMeasurement, spec.lab_node),
-                                   rb::rths_can_id(rb::RthsMsgId::kLabStatus, spec.lab_node)};
+  const std::uint32_t lab_ids[] = {mrd::protocol::can_id(mrd::protocol::MsgId::kRthsMeasurement, spec.lab_node),
+                                   mrd::protocol::can_id(mrd::protocol::MsgId::kRthsLabStatus, spec.lab_node)};
   const mrd::hal::CanFilter filters[] = {{lab_ids[0], 0x7FF}, {lab_ids[1], 0x7FF}};
   std::unique_ptr<mrd::posix::SocketCanBus> bus;
   try {

@@ -1,68 +1,26 @@
 // mrd.dbc mirrors CAN_PROTOCOL.md: every DBC message has the identifier of the
 // spec, and decoding the spec's example frames with the DBC's own signal
 // definitions (start bit, length, sign, factor — the way a CAN tool does)
-// gives the values the codec decodes.
+// gives the values the codec decodes. The RTHS messages' values are checked
+// against their own codec in tests/rths_board/rths_frames_spec_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <map>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "mrd/protocol/codec.hpp"
+#include "protocol_spec_files.hpp"
 
 namespace mrd::protocol {
 namespace {
 
-struct DbcSignal {
-  std::string name;
-  int start_bit = 0;
-  int length = 0;
-  bool is_signed = false;
-  double factor = 1.0;
-};
+using spec_files::dbc_value;
+using spec_files::DbcMessage;
 
-struct DbcMessage {
-  std::uint32_t id = 0;
-  std::string name;
-  int dlc = 0;
-  std::vector<DbcSignal> signals;
-};
-
-std::map<std::string, DbcMessage> read_dbc() {
-  std::ifstream in(std::string(MRD_PROTOCOL_DIR) + "/mrd.dbc");
-  const std::regex bo(R"(^BO_ (\d+) (\w+): (\d+) \w+)");
-  const std::regex sg(R"(^ SG_ (\w+) : (\d+)\|(\d+)@1([+-]) \(([^,]+),([^)]+)\))");
-  std::map<std::string, DbcMessage> out;
-  DbcMessage* cur = nullptr;
-  std::string line;
-  std::smatch m;
-  while (std::getline(in, line)) {
-    if (std::regex_search(line, m, bo)) {
-      DbcMessage msg;
-      msg.id = static_cast<std::uint32_t>(std::stoul(m[1]));
-      msg.name = m[2];
-      msg.dlc = std::stoi(m[3]);
-      cur = &(out[msg.name] = msg);
-    } else if (cur && std::regex_search(line, m, sg)) {
-      cur->signals.push_back({m[1], std::stoi(m[2]), std::stoi(m[3]), m[4] == "-", std::stod(m[5])});
-    }
-  }
-  return out;
-}
-
-/// Intel (little-endian) signal extraction as a DBC tool does it.
-double dbc_value(const DbcSignal& s, const std::array<std::uint8_t, 8>& d) {
-  std::uint64_t word = 0;
-  for (int i = 7; i >= 0; --i) word = (word << 8) | d[i];
-  std::uint64_t raw = (word >> s.start_bit) & ((s.length == 64) ? ~0ull : ((1ull << s.length) - 1));
-  std::int64_t v = static_cast<std::int64_t>(raw);
-  if (s.is_signed && (raw >> (s.length - 1)) & 1u) v -= static_cast<std::int64_t>(1ull << s.length);
-  return static_cast<double>(v) * s.factor;
-}
+std::map<std::string, DbcMessage> read_dbc() { return spec_files::read_dbc(MRD_PROTOCOL_DIR); }
 
 using Values = std::map<std::string, double>;
 
@@ -163,6 +121,9 @@ constexpr Expected kMessages[] = {
     {"MixingCommand", MsgId::kMixingCommand, 1},   {"MixingStatus", MsgId::kMixingStatus, 4},
     {"ControllerStatus", MsgId::kControllerStatus, 1}, {"SimCoilState", MsgId::kSimCoilState, 3},
     {"SimCoilDrive", MsgId::kSimCoilDrive, 2},     {"IdleStatus", MsgId::kIdleStatus, 1},
+    // RTHS: the runtime sends as the controller (1), the laboratory as node 5.
+    {"RthsCommand", MsgId::kRthsCommand, 1},       {"RthsMeasurement", MsgId::kRthsMeasurement, 5},
+    {"RthsLabStatus", MsgId::kRthsLabStatus, 5},   {"RthsRunStatus", MsgId::kRthsRunStatus, 1},
 };
 
 TEST(Dbc, HasEveryMessageWithTheSpecIdentifier) {

@@ -4,55 +4,18 @@
 // so the spec and the codec cannot drift apart.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include "mrd/protocol/codec.hpp"
+#include "protocol_spec_files.hpp"
 
 namespace mrd::protocol {
 namespace {
 
-struct SpecExample {
-  std::uint32_t id = 0;
-  std::array<std::uint8_t, 8> data{};
-};
+using spec_files::SpecExample;
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" `");
-  const auto e = s.find_last_not_of(" `");
-  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
-}
-
-/// Rows "| n | message | values | 0xID | `B0 .. B7` |" of the "Example frames" section.
-std::map<int, SpecExample> read_spec_examples() {
-  std::ifstream in(std::string(MRD_PROTOCOL_DIR) + "/CAN_PROTOCOL.md");
-  std::map<int, SpecExample> out;
-  std::string line;
-  bool in_section = false;
-  while (std::getline(in, line)) {
-    if (line.rfind("## ", 0) == 0) in_section = line == "## Example frames";
-    if (!in_section || line.size() < 2 || line[0] != '|') continue;
-    std::vector<std::string> cells;
-    std::stringstream ss(line.substr(1));
-    std::string cell;
-    while (std::getline(ss, cell, '|')) cells.push_back(trim(cell));
-    if (cells.size() < 5 || cells[0].empty() || !std::isdigit(static_cast<unsigned char>(cells[0][0]))) continue;
-    SpecExample ex;
-    ex.id = static_cast<std::uint32_t>(std::stoul(cells[3], nullptr, 16));
-    std::stringstream bytes(cells[4]);
-    for (auto& b : ex.data) {
-      std::string hex;
-      bytes >> hex;
-      b = static_cast<std::uint8_t>(std::stoul(hex, nullptr, 16));
-    }
-    out[std::stoi(cells[0])] = ex;
-  }
-  return out;
-}
+std::map<int, SpecExample> read_spec_examples() { return spec_files::read_spec_examples(MRD_PROTOCOL_DIR); }
 
 class SpecExamples : public ::testing::Test {
  protected:
@@ -76,7 +39,22 @@ class SpecExamples : public ::testing::Test {
 };
 std::map<int, SpecExample> SpecExamples::examples_;
 
-TEST_F(SpecExamples, AllElevenArePresent) { EXPECT_EQ(examples_.size(), 11u); }
+TEST_F(SpecExamples, AllFifteenArePresent) { EXPECT_EQ(examples_.size(), 15u); }
+
+// Examples 12–15 are the RTHS messages (their bytes are asserted against the
+// RTHS codec in tests/rths_board/rths_frames_spec_test.cpp); here their
+// identifiers: msg id << 4 | sender, the runtime as node 1, the laboratory as 5.
+TEST_F(SpecExamples, RthsIdentifiers) {
+  ASSERT_EQ(examples_.count(15), 1u);
+  EXPECT_EQ(examples_.at(12).id, can_id(MsgId::kRthsCommand, 1));
+  EXPECT_EQ(examples_.at(13).id, can_id(MsgId::kRthsMeasurement, 5));
+  EXPECT_EQ(examples_.at(14).id, can_id(MsgId::kRthsLabStatus, 5));
+  EXPECT_EQ(examples_.at(15).id, can_id(MsgId::kRthsRunStatus, 1));
+  // The protocol's CRC over each example as written in the spec.
+  for (int n = 12; n <= 15; ++n) {
+    EXPECT_EQ(examples_.at(n).data[7], frame_crc(examples_.at(n).id, examples_.at(n).data)) << "example " << n;
+  }
+}
 
 TEST_F(SpecExamples, CurrentCommands) {
   hal::CanFrame f;

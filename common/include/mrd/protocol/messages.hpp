@@ -23,6 +23,12 @@ enum class MsgId : std::uint8_t {
   kMixingStatus = 0x06,      ///< mixing actuator → controller
   kControllerStatus = 0x07,  ///< controller heartbeat
   kIdleStatus = 0x08,        ///< controller → all: idle-time estimate and mixing scheduler, with the heartbeat
+  // RTHS (real-time hybrid simulation, host_sim/rths_board): the runtime on the
+  // board and the laboratory; their structs and codec are in rths_frames.hpp.
+  kRthsCommand = 0x10,       ///< RTHS runtime → laboratory: actuator command and target, every loop tick
+  kRthsMeasurement = 0x11,   ///< RTHS laboratory → runtime: measured displacement and force, after each command
+  kRthsLabStatus = 0x12,     ///< RTHS laboratory → runtime: state, stop reason and step rate
+  kRthsRunStatus = 0x13,     ///< RTHS runtime → laboratory: how the run ended and its ticks
   kSimCoilState = 0x70,      ///< simulation only: plant → drive, coil current
   kSimCoilDrive = 0x71,      ///< simulation only: drive → plant, current the drive applies
 };
