@@ -77,7 +77,7 @@ class DelayedServo {
 }  // namespace
 
 DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<double>& ground_accel_m_s2,
-                                 run::Controller& controller) {
+                                 run::Controller& controller, DamperRthsRecord* record) {
   const structure::BuildingParams& b = spec.plant.building;
   if (!b.isolators.empty()) throw std::invalid_argument("run_damper_rths: a building with isolators");
   if (b.dampers.size() != 1) throw std::invalid_argument("run_damper_rths: one damper placement");
@@ -166,7 +166,8 @@ DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<d
     damper.step(current_a, v_a, x_a);
     model.step(current_a, v_a, x_a);
     forces[slot] = count * f;
-    r.peak_base_displacement_m = std::max(r.peak_base_displacement_m, std::fabs(building.base_disp_m()));
+    const double base_before_m = building.base_disp_m();
+    r.peak_base_displacement_m = std::max(r.peak_base_displacement_m, std::fabs(base_before_m));
     r.peak_damper_force_n = std::max(r.peak_damper_force_n, std::fabs(f));
     r.peak_tracking_error_m = std::max(r.peak_tracking_error_m, std::fabs(x_a - target_m));
     e2 += (x_a - target_m) * (x_a - target_m);
@@ -178,6 +179,16 @@ DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<d
     const Command c = spec.compensate ? predicted_command(building, ground_accel_m_s2, n + 1, model, current_a)
                                       : Command{building.element_deformation_m(element), building.element_rate_m_s(element)};
     servo.step(c.c_m, c.rate_m_s);
+    if (record != nullptr) {
+      record->time_s.push_back(static_cast<double>(n) * t);
+      record->target_m.push_back(target_m);
+      record->actuator_m.push_back(x_a);
+      record->actuator_velocity_m_s.push_back(v_a);
+      record->command_m.push_back(c.c_m);
+      record->force_n.push_back(f);
+      record->current_a.push_back(current_a);
+      record->base_displacement_m.push_back(base_before_m);
+    }
   }
   // The last state reached counts too (as in the closed loop's summary).
   r.peak_base_displacement_m = std::max(r.peak_base_displacement_m, std::fabs(building.base_disp_m()));

@@ -54,10 +54,24 @@ struct DamperRthsResult {
   double rms_velocity_error_pct = 0.0;    ///< 100·rms(ẋ_a − ẋ_t)/rms(ẋ_t), the rates the specimen and the building's element see
 };
 
+/// Time series at every tick n (optional): the state at t_n and what tick n
+/// made.
+struct DamperRthsRecord {
+  std::vector<double> time_s;
+  std::vector<double> target_m;               ///< the building element's deformation x_t[n]
+  std::vector<double> actuator_m;             ///< the actuator's (specimen's) stroke x_a[n]
+  std::vector<double> actuator_velocity_m_s;  ///< its rate
+  std::vector<double> command_m;              ///< the position command made at tick n (for the next step)
+  std::vector<double> force_n;                ///< the measured force of one damper
+  std::vector<double> current_a;              ///< the coil current command stage's output u[n]
+  std::vector<double> base_displacement_m;    ///< x_0[n] of the numerical building
+};
+
 /// Runs it over `ground_accel_m_s2` at spec.plant.step_s, after resetting
-/// `controller`. Throws std::invalid_argument for isolators, more than one
-/// damper placement, a hardware plant or a negative delay or lag.
+/// `controller`; fills `record` when given. Throws std::invalid_argument for
+/// isolators, more than one damper placement, a hardware plant or a negative
+/// delay or lag.
 DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<double>& ground_accel_m_s2,
-                                 run::Controller& controller);
+                                 run::Controller& controller, DamperRthsRecord* record = nullptr);
 
 }  // namespace mrd::rths
