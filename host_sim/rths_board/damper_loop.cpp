@@ -1,0 +1,179 @@
+#include "host_sim/rths_board/damper_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "firmware/app/periodic_schedule.hpp"
+#include "host_sim/plant/stages.hpp"
+
+namespace mrd::rths_board {
+namespace {
+
+double checked_damper_loop_dt(const DamperLoopSpec& s) {
+  if (s.ground_accel_m_s2.empty()) throw std::invalid_argument("RTHS runtime: empty record");
+  if (!(s.rate_hz >= 100.0 && s.rate_hz <= 65535.0))
+    throw std::invalid_argument("RTHS runtime: rate outside 100..65535 Hz");
+  if (!s.building.isolators.empty() || s.building.dampers.size() != 1)
+    throw std::invalid_argument("RTHS runtime: the building needs one damper placement (the physical part) and no "
+                                "isolators");
+  return 1.0 / s.rate_hz;
+}
+
+}  // namespace
+
+DamperLoop::DamperLoop(hal::CanBus& bus, const DamperLoopSpec& spec, ControlTick control_tick)
+    : bus_(bus),
+      spec_(spec),
+      dt_s_(checked_damper_loop_dt(spec)),
+      control_tick_(std::move(control_tick)),
+      actuator_model_(spec.delay_s, spec.lag_s, dt_s_) {
+  structure::validate(spec_.building);
+  building_.init(spec_.building, dt_s_);
+  model_.init(spec_.damper, dt_s_, spec_.settling_quotient);
+  predictor_ = std::make_unique<rths::DamperCommandPredictor>(spec_.building, building_, spec_.delay_s, spec_.lag_s);
+  forces_.assign(building_.force_elements().size(), 0.0);
+  accel_.assign(static_cast<std::size_t>(building_.dofs()), 0.0);
+  const std::size_t n = spec_.ground_accel_m_s2.size();
+  for (auto* v : {&target_, &measured_, &force_, &command_, &current_, &base_}) v->reserve(n);
+  tick_ns_.reserve(n);
+}
+
+void DamperLoop::drain() noexcept {
+  hal::CanFrame f;
+  while (bus_.receive(f) == hal::CanResult::kOk) {
+    protocol::DaqMotion m;
+    RthsLabStatus s;
+    if (protocol::decode(f, spec_.nodes.daq, m) == protocol::DecodeError::kOk) {
+      meas_ = m;
+      if (m.counter == static_cast<std::uint8_t>(k_ & 0xFF)) fresh_ = true;
+      if (k_ == 0 && m.counter == 0) have_meas0_ = true;
+    } else if (decode(f, spec_.lab_node, s) == protocol::DecodeError::kOk) {
+      const auto rate = static_cast<std::uint16_t>(spec_.rate_hz + 0.5);
+      if (s.rate_hz != rate) lab_rate_mismatch_hz_ = s.rate_hz;
+      if (s.state == LabState::kWaiting) lab_waiting_ = true;
+      if (s.state == LabState::kStopped && lab_reason_ == LabStopReason::kNone) lab_reason_ = s.stop;
+    } else {
+      ++rejected_;
+    }
+  }
+}
+
+void DamperLoop::send_accel(std::size_t n) noexcept {
+  building_.abs_accel_m_s2(accel_.data());
+  protocol::DaqAccel a;
+  a.ground_accel_m_s2 = static_cast<float>(n < spec_.ground_accel_m_s2.size() ? spec_.ground_accel_m_s2[n] : 0.0);
+  a.base_accel_m_s2 = static_cast<float>(accel_[0]);
+  a.counter = static_cast<std::uint8_t>(n & 0xFF);
+  hal::CanFrame f;
+  if (!protocol::encode(a, spec_.nodes.daq, f) || bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
+}
+
+bool DamperLoop::lab_ready() noexcept {
+  if (k_ != 0) return true;
+  drain();
+  const bool ready = lab_waiting_ && have_meas0_ && lab_rate_mismatch_hz_ == 0;
+  if (ready && !sent_accel0_) {
+    send_accel(0);
+    sent_accel0_ = true;
+  }
+  return ready;
+}
+
+LoopEnd DamperLoop::tick() noexcept {
+  if (end_ != LoopEnd::kRunning) return end_;
+  drain();
+  if (lab_reason_ != LabStopReason::kNone) return end_ = LoopEnd::kLabStopped;
+  if (fresh_) {
+    silent_run_ = 0;
+    fresh_ = false;
+  } else {
+    ++stale_ticks_;
+    if (++silent_run_ >= spec_.lab_silent_ticks) return end_ = LoopEnd::kLabSilent;
+  }
+  const std::size_t n = static_cast<std::size_t>(k_);
+  const int element = predictor_->element();
+  const double force_n = static_cast<double>(meas_.damper_force_n);
+  target_.push_back(building_.element_deformation_m(element));
+  measured_.push_back(static_cast<double>(meas_.damper_disp_m));
+  force_.push_back(force_n);
+  base_.push_back(building_.base_disp_m());
+  peak_base_m_ = std::max(peak_base_m_, std::fabs(building_.base_disp_m()));
+
+  const control::ControllerOutput out = control_tick_();
+  const double current_a =
+      plant::command_stage_a(plant::CoilDrive{static_cast<double>(out.current_command_a), out.drive_enable});
+  current_.push_back(current_a);
+  model_.step(current_a, actuator_model_.velocity_m_s(), actuator_model_.position_m());
+  forces_[predictor_->slot()] = predictor_->count() * force_n;
+  building_.step(spec_.ground_accel_m_s2[n], forces_.data());
+  send_accel(n + 1);
+  const double target_next = building_.element_deformation_m(element);
+  const double command =
+      spec_.compensate ? predictor_->predict(building_, spec_.ground_accel_m_s2, n + 1, model_, current_a).position_m
+                       : target_next;
+  actuator_model_.step(command);
+  command_.push_back(command);
+  RthsCommand c{command, target_next, static_cast<std::uint8_t>(k_ & 0xFF)};
+  hal::CanFrame f;
+  ++k_;
+  if (!encode(c, spec_.nodes.controller, f)) return end_ = LoopEnd::kCommandOutOfRange;
+  if (bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
+  if (k_ >= steps()) {
+    peak_base_m_ = std::max(peak_base_m_, std::fabs(building_.base_disp_m()));
+    end_ = LoopEnd::kFinished;
+  }
+  return end_;
+}
+
+LoopEnd DamperLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const std::atomic<bool>& stop) noexcept {
+  timing_.period_ns = period_ns;
+  app::PeriodicSchedule schedule(period_ns, clock.now_ns());
+  while (end_ == LoopEnd::kRunning) {
+    if (stop.load()) {
+      end_ = LoopEnd::kInterrupted;
+      break;
+    }
+    const std::int64_t start_ns = clock.now_ns();
+    tick();
+    const std::int64_t done_ns = clock.now_ns();
+    timing_.worst_tick_ns = std::max(timing_.worst_tick_ns, done_ns - start_ns);
+    if (tick_ns_.size() < tick_ns_.capacity()) tick_ns_.push_back(done_ns - start_ns);
+    const std::int64_t deadline_ns = schedule.after_tick(done_ns);
+    timing_.overruns = schedule.overruns();
+    timing_.worst_late_ns = schedule.worst_late_ns();
+    if (end_ != LoopEnd::kRunning) break;
+    clock.sleep_until_ns(deadline_ns);
+  }
+  send_run_status();
+  if (!tick_ns_.empty()) {
+    std::sort(tick_ns_.begin(), tick_ns_.end());
+    timing_.median_tick_ns = tick_ns_[tick_ns_.size() / 2];
+    timing_.p99_tick_ns = tick_ns_[std::min(tick_ns_.size() - 1, tick_ns_.size() * 99 / 100)];
+  }
+  return end_;
+}
+
+void DamperLoop::send_run_status() noexcept {
+  RthsRunStatus r;
+  r.state = end_ == LoopEnd::kFinished     ? RunState::kFinished
+            : end_ == LoopEnd::kLabStopped ? RunState::kLabStopped
+                                           : RunState::kAborted;
+  r.ticks = static_cast<std::uint32_t>(k_);
+  for (int i = 0; i < 3; ++i) {
+    r.counter = run_status_counter_++;
+    hal::CanFrame f;
+    if (encode(r, spec_.nodes.controller, f) && bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
+  }
+}
+
+double DamperLoop::rms_tracking_error_pct() const noexcept {
+  double e2 = 0.0, x2 = 0.0;
+  for (std::size_t i = 0; i < measured_.size(); ++i) {
+    e2 += (measured_[i] - target_[i]) * (measured_[i] - target_[i]);
+    x2 += target_[i] * target_[i];
+  }
+  return x2 > 0.0 ? 100.0 * std::sqrt(e2 / x2) : 0.0;
+}
+
+}  // namespace mrd::rths_board
