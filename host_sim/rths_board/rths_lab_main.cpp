@@ -9,6 +9,12 @@
 /// --command-timeout-ms without a command once running (stopped and held), or
 /// at a signal.
 ///
+/// --specimen damper: the thesis's set-up's laboratory (damper_lab_node.hpp):
+/// the actuator (--delay-ms, --lag-ms) stroking the MR damper of the board
+/// file's [damper] and [fluid] after --idle-years, its drive (answering the
+/// board's control task's CurrentCommand) and DAQ (DaqMotion, DriveStatus);
+/// the force limit is then the actuator's 250 kN unless --force-limit-kn.
+///
 /// Last line on stdout: "mrd-rths-lab: summary steps=… state=… stop=…
 /// stop_step=… peak_force_n=… rejected=… sequence_gaps=… tx_errors=… run=…".
 /// Exit status: 0 the runtime ended the run, 1 runtime failure (no CAN, no
@@ -17,6 +23,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <random>
@@ -24,7 +31,10 @@
 #include "firmware/platform/linux/posix_clock.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
+#include "host_sim/rths_board/damper_lab_node.hpp"
 #include "host_sim/rths_board/lab_node.hpp"
+#include "mrd/physics/settling.hpp"
+#include "mrd/units.hpp"
 
 namespace {
 
@@ -37,6 +47,9 @@ struct Options {
   int lab_node = rb::kDefaultLabNode;
   int command_timeout_ms = 1000;
   std::uint64_t plant_seed = 0, noise_seed = 1;
+  std::string specimen = "benchmark";
+  double delay_ms = 15.0, lag_ms = 2.0, idle_years = 0.0;
+  bool force_limit_given = false;
 };
 
 const char* run_state_name(rb::RunState s, bool finished) {
@@ -49,6 +62,95 @@ const char* run_state_name(rb::RunState s, bool finished) {
   return "unknown";
 }
 
+/// Beacons until the first command, then answers commands until the
+/// runtime's run status, a command timeout or a signal; the summary line.
+template <class Node>
+int serve_until_done(Node& lab, mrd::posix::SocketCanBus& bus, const Options& o, std::uint8_t runtime_node) {
+  const auto started = Clock::now();
+  auto last_command = started;
+  auto next_beacon = started;
+  int exit_status = 0;
+  while (!lab.finished() && !mrd::peers::g_peer_stop.load()) {
+    const auto now = Clock::now();
+    if (lab.state() == rb::LabState::kWaiting) {
+      if (now >= next_beacon) {
+        lab.send_beacon();
+        next_beacon = now + std::chrono::milliseconds(100);
+      }
+      if (now - started > std::chrono::duration<double>(o.start_timeout_s)) {
+        std::fprintf(stderr, "mrd-rths-lab: error: no command from node %u within %.1f s\n", runtime_node,
+                     o.start_timeout_s);
+        exit_status = 1;
+        break;
+      }
+    } else if (now - last_command > std::chrono::milliseconds(o.command_timeout_ms)) {
+      lab.stop_for_command_timeout();
+      exit_status = 1;
+      break;
+    }
+    bus.wait_readable(std::chrono::milliseconds(lab.state() == rb::LabState::kWaiting ? 20 : 5));
+    if (lab.serve() > 0) last_command = Clock::now();
+  }
+  std::printf("mrd-rths-lab: summary steps=%llu state=%s stop=%s stop_step=%llu peak_force_n=%.3f rejected=%u "
+              "sequence_gaps=%u tx_errors=%u run=%s\n",
+              static_cast<unsigned long long>(lab.steps()), rb::lab_state_name(lab.state()),
+              rb::lab_stop_reason_name(lab.stop_reason()), static_cast<unsigned long long>(lab.stop_step()),
+              lab.peak_force_n(), lab.rejected(), lab.sequence_gaps(), lab.tx_errors(),
+              run_state_name(lab.run_state(), lab.finished()));
+  return exit_status;
+}
+
+int run_damper(const Options& o, const mrd::app::BoardConfig& board) {
+  rb::DamperLabConfig c;
+  c.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
+  c.nodes = board.nodes;
+  c.lab_node = static_cast<std::uint8_t>(o.lab_node);
+  c.delay_s = std::round(o.delay_ms * 1e-3 * c.rate_hz) / c.rate_hz;
+  c.lag_s = o.lag_ms * 1e-3;
+  c.damper = board.damper;
+  c.settling_quotient = mrd::physics::settling_quotient_after_idle(mrd::units::years_to_s(o.idle_years), board.settling);
+  c.tracking_limit_m = o.tracking_limit_mm * 1e-3;
+  if (o.force_limit_given) c.force_limit_n = o.force_limit_kn * 1e3;
+  const double delay_steps = o.delay_ms * 1e-3 * c.rate_hz;
+  if (std::fabs(delay_steps - std::round(delay_steps)) > 1e-6 || std::lround(delay_steps) < 1) {
+    std::fprintf(stderr, "mrd-rths-lab: error: --delay-ms: %g ms is not a whole number (at least one) of steps at %.0f Hz\n",
+                 o.delay_ms, c.rate_hz);
+    return 2;
+  }
+  for (const std::uint8_t n : {board.nodes.controller, board.nodes.drive, board.nodes.daq})
+    if (c.lab_node == n) {
+      std::fprintf(stderr, "mrd-rths-lab: error: --lab-node: %u is a node of the board's damper loop\n", c.lab_node);
+      return 2;
+    }
+  const mrd::hal::CanFilter filters[] = {
+      {mrd::protocol::can_id(mrd::protocol::MsgId::kCurrentCommand, c.nodes.controller), 0x7FF},
+      {mrd::protocol::can_id(mrd::protocol::MsgId::kRthsCommand, c.nodes.controller), 0x7FF},
+      {mrd::protocol::can_id(mrd::protocol::MsgId::kRthsRunStatus, c.nodes.controller), 0x7FF}};
+  std::unique_ptr<mrd::posix::SocketCanBus> bus;
+  std::unique_ptr<rb::DamperLabNode> lab;
+  try {
+    bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths-lab: error: %s\n", e.what());
+    return 1;
+  }
+  try {
+    lab = std::make_unique<rb::DamperLabNode>(*bus, c);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrd-rths-lab: error: %s\n", e.what());
+    return 2;
+  }
+  std::printf("mrd-rths-lab: CAN %s (lab node %u; drive node %u, DAQ node %u; runtime and control node %u), %.0f Hz, "
+              "specimen damper (%s, idle %.3g years), actuator %.1f ms + %.1f ms lag, tracking limit %.3f mm, force "
+              "limit %.3f kN\n",
+              board.can_interface.c_str(), c.lab_node, c.nodes.drive, c.nodes.daq, c.nodes.controller, c.rate_hz,
+              board.name.c_str(), o.idle_years, 1e3 * c.delay_s, 1e3 * c.lag_s, o.tracking_limit_mm,
+              1e-3 * c.force_limit_n);
+  std::fputs(mrd::posix::apply_realtime({board.sched_fifo_priority, board.lock_memory, board.cpu}).c_str(), stdout);
+  std::fflush(stdout);
+  return serve_until_done(*lab, *bus, o, c.nodes.controller);
+}
+
 int run(const Options& o) {
   mrd::app::BoardConfig board;
   rb::LabNodeConfig c;
@@ -59,6 +161,7 @@ int run(const Options& o) {
     return 2;
   }
   if (!o.can_interface.empty()) board.can_interface = o.can_interface;
+  if (o.specimen == "damper") return run_damper(o, board);
   c.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
   c.runtime_node = board.nodes.controller;
   c.lab_node = static_cast<std::uint8_t>(o.lab_node);
@@ -93,38 +196,7 @@ int run(const Options& o) {
   std::fputs(mrd::posix::apply_realtime({board.sched_fifo_priority, board.lock_memory, board.cpu}).c_str(), stdout);
   std::fflush(stdout);
 
-  const auto started = Clock::now();
-  auto last_command = started;
-  auto next_beacon = started;
-  int exit_status = 0;
-  while (!lab.finished() && !mrd::peers::g_peer_stop.load()) {
-    const auto now = Clock::now();
-    if (lab.state() == rb::LabState::kWaiting) {
-      if (now >= next_beacon) {
-        lab.send_beacon();
-        next_beacon = now + std::chrono::milliseconds(100);
-      }
-      if (now - started > std::chrono::duration<double>(o.start_timeout_s)) {
-        std::fprintf(stderr, "mrd-rths-lab: error: no command from node %u within %.1f s\n", c.runtime_node,
-                     o.start_timeout_s);
-        exit_status = 1;
-        break;
-      }
-    } else if (now - last_command > std::chrono::milliseconds(o.command_timeout_ms)) {
-      lab.stop_for_command_timeout();
-      exit_status = 1;
-      break;
-    }
-    bus->wait_readable(std::chrono::milliseconds(lab.state() == rb::LabState::kWaiting ? 20 : 5));
-    if (lab.serve() > 0) last_command = Clock::now();
-  }
-  std::printf("mrd-rths-lab: summary steps=%llu state=%s stop=%s stop_step=%llu peak_force_n=%.3f rejected=%u "
-              "sequence_gaps=%u tx_errors=%u run=%s\n",
-              static_cast<unsigned long long>(lab.steps()), rb::lab_state_name(lab.state()),
-              rb::lab_stop_reason_name(lab.stop_reason()), static_cast<unsigned long long>(lab.stop_step()),
-              lab.peak_force_n(), lab.rejected(), lab.sequence_gaps(), lab.tx_errors(),
-              run_state_name(lab.run_state(), lab.finished()));
-  return exit_status;
+  return serve_until_done(lab, *bus, o, c.runtime_node);
 }
 
 }  // namespace
@@ -144,9 +216,25 @@ int main(int argc, char** argv) {
   app.add_option("--tracking-limit-mm", o.tracking_limit_mm, "Stop when |measured - target| exceeds it, mm")
       ->capture_default_str()
       ->check(mrd::app::positive_up_to(1000.0, "mm"));
-  app.add_option("--force-limit-kn", o.force_limit_kn, "Stop when |force| exceeds it, kN (the actuator's 8.9)")
+  app.add_option("--force-limit-kn", o.force_limit_kn,
+                 "Stop when |force| exceeds it, kN (the benchmark actuator's 8.9; with --specimen damper 250)")
       ->capture_default_str()
-      ->check(mrd::app::positive_up_to(1e4, "kN"));
+      ->check(mrd::app::positive_up_to(1e4, "kN"))
+      ->each([&o](const std::string&) { o.force_limit_given = true; });
+  app.add_option("--specimen", o.specimen,
+                 "benchmark: the benchmark's actuator and specimen; damper: the thesis's set-up (an actuator with "
+                 "--delay-ms and --lag-ms stroking the MR damper, its drive and DAQ)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"benchmark", "damper"}));
+  app.add_option("--delay-ms", o.delay_ms, "--specimen damper: the actuator's pure delay, ms (whole steps, >= 1)")
+      ->capture_default_str()
+      ->check(mrd::app::positive_up_to(1000.0, "ms"));
+  app.add_option("--lag-ms", o.lag_ms, "--specimen damper: the actuator's first-order servo lag, ms")
+      ->capture_default_str()
+      ->check(mrd::app::finite_in(0.0, 1000.0, "ms"));
+  app.add_option("--idle-years", o.idle_years, "--specimen damper: the damper's idle time before the run, years")
+      ->capture_default_str()
+      ->check(mrd::app::finite_in(0.0, 1000.0, "years"));
   app.add_option("--plant-seed", o.plant_seed, "Draw the plant from the published uncertainty (0: nominal)")
       ->capture_default_str();
   app.add_option("--noise-seed", o.noise_seed, "Seed of the sensor noise")->capture_default_str();

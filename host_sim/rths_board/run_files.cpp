@@ -1,5 +1,7 @@
 #include "host_sim/rths_board/run_files.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -30,6 +32,33 @@ std::string quoted(const std::string& s) {
   return o + "\"";
 }
 
+/// "  \"timing\": {…},\n" of either loop.
+template <class Loop>
+std::string timing_json(const Loop& loop) {
+  const LoopTimingRecord& t = loop.timing();
+  return "  \"timing\": {\"period_ns\": " + std::to_string(t.period_ns) + ", \"overruns\": " +
+         std::to_string(t.overruns) + ", \"worst_late_us\": " + num(static_cast<double>(t.worst_late_ns) / 1e3) +
+         ", \"worst_tick_us\": " + num(static_cast<double>(t.worst_tick_ns) / 1e3) +
+         ", \"median_tick_us\": " + num(static_cast<double>(t.median_tick_ns) / 1e3) +
+         ", \"p99_tick_us\": " + num(static_cast<double>(t.p99_tick_ns) / 1e3) +
+         ", \"stale_measurement_ticks\": " + std::to_string(loop.stale_ticks()) +
+         ", \"rejected_frames\": " + std::to_string(loop.rejected()) +
+         ", \"tx_errors\": " + std::to_string(loop.tx_errors()) + "},\n";
+}
+
+template <class Loop>
+std::string timing_fields_of(const Loop& loop) {
+  const LoopTimingRecord& t = loop.timing();
+  char b[400];
+  std::snprintf(b, sizeof b,
+                "ticks=%llu overruns=%u worst_late_us=%.1f worst_tick_us=%.1f median_tick_us=%.1f p99_tick_us=%.1f "
+                "stale_ticks=%u rejected=%u tx_errors=%u",
+                static_cast<unsigned long long>(loop.ticks()), t.overruns, static_cast<double>(t.worst_late_ns) / 1e3,
+                static_cast<double>(t.worst_tick_ns) / 1e3, static_cast<double>(t.median_tick_ns) / 1e3,
+                static_cast<double>(t.p99_tick_ns) / 1e3, loop.stale_ticks(), loop.rejected(), loop.tx_errors());
+  return b;
+}
+
 std::string setup_json(const RunDescription& d, const BoardLoop& loop) {
   std::string s;
   s += "  \"board\": " + quoted(d.board) + ",\n";
@@ -40,16 +69,24 @@ std::string setup_json(const RunDescription& d, const BoardLoop& loop) {
   s += "  \"rate_hz\": " + num(d.rate_hz) + ",\n";
   s += "  \"ticks\": " + std::to_string(loop.ticks()) + ",\n";
   s += "  \"record_ticks\": " + std::to_string(loop.steps()) + ",\n";
-  const LoopTimingRecord& t = loop.timing();
-  s += "  \"timing\": {\"period_ns\": " + std::to_string(t.period_ns) + ", \"overruns\": " +
-       std::to_string(t.overruns) + ", \"worst_late_us\": " + num(static_cast<double>(t.worst_late_ns) / 1e3) +
-       ", \"worst_tick_us\": " + num(static_cast<double>(t.worst_tick_ns) / 1e3) +
-       ", \"median_tick_us\": " + num(static_cast<double>(t.median_tick_ns) / 1e3) +
-       ", \"p99_tick_us\": " + num(static_cast<double>(t.p99_tick_ns) / 1e3) +
-       ", \"stale_measurement_ticks\": " + std::to_string(loop.stale_ticks()) +
-       ", \"rejected_frames\": " + std::to_string(loop.rejected()) +
-       ", \"tx_errors\": " + std::to_string(loop.tx_errors()) + "},\n";
-  return s;
+  return s + timing_json(loop);
+}
+
+std::string damper_setup_json(const DamperRunDescription& d, const DamperLoop& loop) {
+  std::string s;
+  s += "  \"specimen\": \"damper\",\n";
+  s += "  \"board\": " + quoted(d.board) + ",\n";
+  s += "  \"record\": " + quoted(d.record) + ",\n";
+  s += "  \"pga_g\": " + num(d.pga_g) + ",\n";
+  s += "  \"building\": " + quoted(d.building) + ",\n";
+  s += "  \"control\": " + quoted(d.control) + ",\n";
+  s += "  \"compensation\": " + quoted(d.compensation) + ",\n";
+  s += "  \"delay_s\": " + num(d.delay_s) + ",\n";
+  s += "  \"lag_s\": " + num(d.lag_s) + ",\n";
+  s += "  \"rate_hz\": " + num(d.rate_hz) + ",\n";
+  s += "  \"ticks\": " + std::to_string(loop.ticks()) + ",\n";
+  s += "  \"record_ticks\": " + std::to_string(loop.steps()) + ",\n";
+  return s + timing_json(loop);
 }
 
 }  // namespace
@@ -134,16 +171,36 @@ void write_stopped_run(const fs::path& dir, const RunDescription& d, const Board
   write_atomically(dir, "stop.json", s);
 }
 
-std::string timing_fields(const BoardLoop& loop) {
-  const LoopTimingRecord& t = loop.timing();
-  char b[400];
-  std::snprintf(b, sizeof b,
-                "ticks=%llu overruns=%u worst_late_us=%.1f worst_tick_us=%.1f median_tick_us=%.1f p99_tick_us=%.1f "
-                "stale_ticks=%u rejected=%u tx_errors=%u",
-                static_cast<unsigned long long>(loop.ticks()), t.overruns, static_cast<double>(t.worst_late_ns) / 1e3,
-                static_cast<double>(t.worst_tick_ns) / 1e3, static_cast<double>(t.median_tick_ns) / 1e3,
-                static_cast<double>(t.p99_tick_ns) / 1e3, loop.stale_ticks(), loop.rejected(), loop.tx_errors());
-  return b;
+std::string timing_fields(const BoardLoop& loop) { return timing_fields_of(loop); }
+std::string timing_fields(const DamperLoop& loop) { return timing_fields_of(loop); }
+
+void write_finished_damper_run(const fs::path& dir, const DamperRunDescription& d, const DamperLoop& loop) {
+  std::string csv = "time_s,target_m,measured_m,command_m,force_n,current_a,base_displacement_m\n";
+  csv.reserve(loop.ticks() * 110);
+  for (std::size_t k = 0; k < loop.measured_m().size(); ++k) {
+    for (const double v : {static_cast<double>(k) * loop.dt_s(), loop.target_m()[k], loop.measured_m()[k],
+                           loop.command_m()[k], loop.force_n()[k], loop.current_a()[k],
+                           loop.base_displacement_m()[k]}) {
+      csv += num(v);
+      csv += ',';
+    }
+    csv.back() = '\n';
+  }
+  write_atomically(dir, "tracking.csv", csv);
+  double peak_force_n = 0.0;
+  for (double f : loop.force_n()) peak_force_n = std::max(peak_force_n, std::fabs(f));
+  std::string s = "{\n  \"status\": \"ok\",\n" + damper_setup_json(d, loop);
+  s += "  \"peak_base_displacement_m\": " + num(loop.peak_base_displacement_m()) + ",\n";
+  s += "  \"peak_damper_force_n\": " + num(peak_force_n) + ",\n";
+  s += "  \"tracking_rms_error_pct\": " + num(loop.rms_tracking_error_pct()) + "\n}\n";
+  write_atomically(dir, "summary.json", s);
+}
+
+void write_stopped_damper_run(const fs::path& dir, const DamperRunDescription& d, const DamperLoop& loop) {
+  std::string s = "{\n  \"status\": " + quoted(loop_end_status(loop.end(), loop.lab_reason())) + ",\n";
+  s += damper_setup_json(d, loop);
+  s += "  \"end_time_s\": " + num(static_cast<double>(loop.ticks()) * loop.dt_s()) + "\n}\n";
+  write_atomically(dir, "stop.json", s);
 }
 
 }  // namespace mrd::rths_board

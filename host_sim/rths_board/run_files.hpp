@@ -18,6 +18,7 @@
 #include <string>
 
 #include "host_sim/rths_board/board_loop.hpp"
+#include "host_sim/rths_board/damper_loop.hpp"
 
 namespace mrd::rths_board {
 
@@ -29,6 +30,17 @@ struct RunDescription {
   std::string compensator;
   double record_scale = 0.4;
   double rate_hz = 1000.0;
+};
+
+/// The thesis set-up's run as the files name it.
+struct DamperRunDescription {
+  std::string board;
+  std::string record;
+  double pga_g = 0.1127;
+  std::string building;      ///< its name (the thesis building's or the file's)
+  std::string control;       ///< passive-off | passive-on | semi-active
+  std::string compensation;  ///< model | none
+  double delay_s = 0.015, lag_s = 0.002, rate_hz = 1000.0;
 };
 
 /// Creates `dir` when missing and removes this program's files of an earlier
@@ -46,7 +58,16 @@ void write_finished_run(const std::filesystem::path& dir, const RunDescription& 
 /// stop.json of a run that ended early.
 void write_stopped_run(const std::filesystem::path& dir, const RunDescription& d, const BoardLoop& loop);
 
+/// The thesis set-up's files: tracking.csv (time, target, measured stroke,
+/// command, force, coil current command stage, base displacement) and
+/// summary.json (status "ok", the set-up, the peak base displacement, the
+/// peak force, the tracking error, the timing); stop.json for a run that
+/// ended early.
+void write_finished_damper_run(const std::filesystem::path& dir, const DamperRunDescription& d, const DamperLoop& loop);
+void write_stopped_damper_run(const std::filesystem::path& dir, const DamperRunDescription& d, const DamperLoop& loop);
+
 /// "ticks=… overruns=… worst_late_us=… worst_tick_us=… stale_ticks=… rejected=… tx_errors=…"
 std::string timing_fields(const BoardLoop& loop);
+std::string timing_fields(const DamperLoop& loop);
 
 }  // namespace mrd::rths_board
