@@ -181,6 +181,8 @@ SharedModel shared_model(const plant::PlantSpec& spec) {
     for (int i = 0; i < kBlockDofs; ++i) m.accel_rows[i][r] = b.accel_rows()(i, r);
     for (int i = 0; i < kBlockDofs; ++i) m.disp_rows[i][r] = b.modal_basis()(i, r);
   }
+  // The kernel takes the next tick's base displacement from the story drifts' first row.
+  static_assert(structure::kBaseDof == 0, "disp_rows[0] is disp_row");
   m.inv_base_mass_per_kg = b.inv_base_mass_per_kg();
   return m;
 }

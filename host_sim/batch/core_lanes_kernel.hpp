@@ -76,8 +76,9 @@ void core_run_ticks(const SharedModel& m, LaneBlock& b, void* core_p, std::size_
   const vi active_wide = __builtin_convertvector(active_m, vi);
   vd u = load(b.command_a);
   const vd zero{};
+  vd x = base_disp(m, r);
   for (std::size_t t = 0; t < ticks; ++t) {
-    const Sensed s = sense_regs(m, r);
+    const Sensed s = sense_regs(m, r, x);
     put_floats(in.damper_disp_m, s.x);
     put_floats(in.damper_force_n, s.force);
     put_floats(in.ground_accel_m_s2, s.ag);
@@ -92,7 +93,7 @@ void core_run_ticks(const SharedModel& m, LaneBlock& b, void* core_p, std::size_
     // run::coil_drive and plant::command_stage_a: the command while the drive is enabled, else 0 A.
     const vd stage = __builtin_convertvector(enable, vi) ? __builtin_convertvector(command, vd) : zero;
     u = active_wide ? stage : u;
-    advance_regs<kStoryDrift>(m, s, u, r, roof, floor_peak);
+    advance_regs<kStoryDrift>(m, s, u, r, roof, floor_peak, x);
   }
   store(b.command_a, u);
   store_regs(b, 0, r);

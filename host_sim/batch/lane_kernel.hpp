@@ -289,12 +289,15 @@ struct Sensed {
   vd ag, x, v, force, current;
 };
 
-/// Plant::sense on the thesis plant.
-[[gnu::always_inline]] inline Sensed sense_regs(const SharedModel& m, Regs& r) {
+/// The base displacement from the modal coordinates (DiscreteBuilding::disp_m(0)).
+[[gnu::always_inline]] inline vd base_disp(const SharedModel& m, const Regs& r) { return dot_row12(m.disp_row, r.q); }
+
+/// Plant::sense on the thesis plant; `x` is base_disp(m, r).
+[[gnu::always_inline]] inline Sensed sense_regs(const SharedModel& m, Regs& r, vd x) {
   Sensed s;
   s.ag = gather_at(r.ground_addr) * r.ground_scale;
   r.ground_addr += r.ground_step;
-  s.x = dot_row12(m.disp_row, r.q);
+  s.x = x;
   s.v = dot_row12(m.vel_row, r.q);
   // MrDamper::force_n: TF(v) · (f_c sgn v + c_0 v), Eq. 4.4, 5.12.
   const vd zero = splat(0.0);
@@ -308,10 +311,12 @@ struct Sensed {
   return s;
 }
 
-/// Plant::advance on the thesis plant with the command stage's output `u`.
+/// Plant::advance on the thesis plant with the command stage's output `u`;
+/// `x_next` becomes base_disp(m, r) of the new state (with the story
+/// drifts, their first displacement: the same row, summed in the same order).
 template <bool kStoryDrift>
 [[gnu::always_inline]] inline void advance_regs(const SharedModel& m, const Sensed& s, vd u, Regs& r, vd& roof,
-                                                vd& floor_peak) {
+                                                vd& floor_peak, vd& x_next) {
   // MrDamper::step: coil (Eq. 4.5), then PR (Eq. 5.9), then f_c, c_0.
   r.y_slow = splat(m.a_slow) * r.y_slow + splat(m.one_minus_a_slow) * u;
   r.y_fast = splat(m.a_fast) * r.y_fast + splat(m.one_minus_a_fast) * u;
@@ -373,9 +378,14 @@ template <bool kStoryDrift>
   r.pk_floor = vmax(r.pk_floor, floor_peak);
   r.pk_base = vmax(r.pk_base, vabs(a[0]));
   r.base_accel = a[0];
-  if constexpr (!kStoryDrift) return;
-  // Story drifts |x_i − x_{i−1}|, i = 1..5, each x_i as DiscreteBuilding::disp_m sums it.
+  if constexpr (!kStoryDrift) {
+    x_next = base_disp(m, r);
+    return;
+  }
+  // Story drifts |x_i − x_{i−1}|, i = 1..5, each x_i as DiscreteBuilding::disp_m sums it
+  // (row 0 is the base's: disp_rows[0] = disp_row, batch_run.cpp).
   vd below = dot_row12(m.disp_rows[0], r.q);
+  x_next = below;
   for (int i = 1; i < kBlockDofs; ++i) {
     const vd x = dot_row12(m.disp_rows[i], r.q);
     r.pk_drift = vmax(r.pk_drift, vabs(x - below));
@@ -392,7 +402,7 @@ void sense(const SharedModel& m, LaneBlock& b) {
     const int o = h * kW;
     Regs r;
     load_regs(b, o, r);
-    const Sensed s = sense_regs(m, r);
+    const Sensed s = sense_regs(m, r, base_disp(m, r));
     __builtin_memcpy(b.ground + o, &r.ground_addr, sizeof r.ground_addr);
     store(b.ground_accel_m_s2 + o, s.ag);
     store(b.base_disp_m + o, s.x);
@@ -413,8 +423,8 @@ void advance(const SharedModel& m, LaneBlock& b) {
     s.v = load(b.base_vel_m_s + o);
     s.force = load(b.damper_force_n + o);
     s.current = load(b.current_a + o);
-    vd roof, floor_peak;
-    advance_regs<true>(m, s, load(b.command_a + o), r, roof, floor_peak);
+    vd roof, floor_peak, x_next;
+    advance_regs<true>(m, s, load(b.command_a + o), r, roof, floor_peak, x_next);
     store_regs(b, o, r);
     store(b.roof_accel_m_s2 + o, roof);
     store(b.floor_peak_m_s2 + o, floor_peak);
@@ -425,15 +435,16 @@ template <bool kStoryDrift>
 void run_ticks(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
   if (ticks == 0) return;
   Regs r[kInterleave];
-  vd u[kInterleave], roof[kInterleave], floor_peak[kInterleave];
+  vd u[kInterleave], roof[kInterleave], floor_peak[kInterleave], x[kInterleave];
   for (int h = 0; h < kInterleave; ++h) {
     load_regs(b, h * kW, r[h]);
     u[h] = load(b.command_a + h * kW);
+    x[h] = base_disp(m, r[h]);
   }
   for (std::size_t t = 0; t < ticks; ++t) {
     Sensed s[kInterleave];
-    for (int h = 0; h < kInterleave; ++h) s[h] = sense_regs(m, r[h]);
-    for (int h = 0; h < kInterleave; ++h) advance_regs<kStoryDrift>(m, s[h], u[h], r[h], roof[h], floor_peak[h]);
+    for (int h = 0; h < kInterleave; ++h) s[h] = sense_regs(m, r[h], x[h]);
+    for (int h = 0; h < kInterleave; ++h) advance_regs<kStoryDrift>(m, s[h], u[h], r[h], roof[h], floor_peak[h], x[h]);
   }
   for (int h = 0; h < kInterleave; ++h) {
     store_regs(b, h * kW, r[h]);
