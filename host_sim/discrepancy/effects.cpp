@@ -90,7 +90,7 @@ constexpr std::array kCoilForms{
     EffectForm{"eq4.5_scaled", "both time constants of Eq. 4.5 scaled", kCoilParams},
     EffectForm{"single_lag",
                "one first-order lag (an L/R coil), tau = lag_tau_scale times Eq. 4.5's mean delay",
-               kCoilSingleLagParams},
+               kCoilSingleLagParams, false},
 };
 constexpr std::array kOffsetForms{EffectForm{"constant", "F_0", kOffsetParams}};
 constexpr std::array kAsymmetryForms{EffectForm{"scaled", "F (1 + a sgn v)", kAsymmetryParams}};
@@ -158,6 +158,11 @@ std::span<const ParamInfo> form_params(Effect e, std::size_t form) noexcept {
 std::string_view form_name(Effect e, std::size_t form) noexcept {
   const auto& info = effect_info(e);
   return form < info.forms.size() ? info.forms[form].name : std::string_view{};
+}
+
+bool form_has_null(Effect e, std::size_t form) noexcept {
+  const auto& info = effect_info(e);
+  return form < info.forms.size() ? info.forms[form].has_null : true;
 }
 
 std::optional<Effect> effect_from_name(std::string_view name) noexcept {

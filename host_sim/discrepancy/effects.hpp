@@ -76,6 +76,10 @@ struct EffectForm {
   std::string_view name;
   std::string_view description;
   std::span<const ParamInfo> params;
+  /// Whether the form is the baseline at its parameters' null values. A
+  /// single-lag coil is not Eq. 4.5 at any time constant: a fit that ends at
+  /// its null value (one lag of Eq. 4.5's mean delay) is still a finding.
+  bool has_null = true;
 };
 
 struct EffectInfo {
@@ -102,6 +106,8 @@ inline constexpr std::uint8_t kBacklashImpactSpring = 1;  ///< backlash: a conta
 [[nodiscard]] std::span<const ParamInfo> form_params(Effect e, std::size_t form) noexcept;
 /// Name of effect `e`'s form `form` ("" when out of range).
 [[nodiscard]] std::string_view form_name(Effect e, std::size_t form) noexcept;
+/// Whether effect `e`'s form `form` is the baseline at its null values (EffectForm::has_null).
+[[nodiscard]] bool form_has_null(Effect e, std::size_t form) noexcept;
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;
 [[nodiscard]] std::optional<Effect> effect_from_name(std::string_view name) noexcept;
 

@@ -105,7 +105,7 @@ std::string implausibility(Effect e, std::span<const double> params, const Param
       return std::string(p.name) + " pinned at its upper physical bound " + format_number("%g", p.upper);
     }
   }
-  if (all_null) return "not identified: the fit returns the effect's null value";
+  if (all_null && form_has_null(e, form)) return "not identified: the fit returns the effect's null value";
   if (e == Effect::backlash && form == kBacklashImpactSpring && params.size() >= 2 &&
       params[1] > kMaxStopDeflectionPerPlay * params[0]) {
     return "the contact spring deflects " + format_number("%.3g", params[1]) + " m, more than " +

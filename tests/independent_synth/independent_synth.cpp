@@ -491,6 +491,8 @@ Case generate(const Spec& spec) {
       }
     }
     set_size(sc.effects, e, std::exp(size_log), variation[i]);
+    // The size in the effect's own unit (size_range): SQ, m, N/m, 1/K, s, tau scale - 1, N, a.
+    effects_text += std::string("; ").append(effect_name(e)).append(fmt(" size %.4g", std::exp(size_log)));
   }
   c.params = sc.effects;
 

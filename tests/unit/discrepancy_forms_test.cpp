@@ -135,6 +135,20 @@ TEST(DiscrepancyForms, AContactSpringFarBeyondItsPlayIsACompliance) {
 
 // Parameters are packed by form: idle_settling's full recovery has two (SQ,
 // V_r), so an effect after it starts at index 2, and the set has 3 in all.
+// Eq. 4.5 with both time constants scaled by 1 is the baseline itself: a fit
+// that ends there has found nothing. One lag of Eq. 4.5's mean delay
+// (lag_tau_scale 1) is not Eq. 4.5 (1.264 against 1.406 A at t = 0.365 s in
+// the test above), so a fit that ends at that value is still a finding.
+TEST(DiscrepancyForms, ASingleLagCoilAtItsStartValueIsStillAFinding) {
+  const std::vector<double> at_one{1.0};
+  EXPECT_NE(implausibility(Effect::coil_lag, at_one, {}, 0).find("not identified"), std::string::npos);
+  EXPECT_TRUE(implausibility(Effect::coil_lag, at_one, {}, kCoilSingleLag).empty())
+      << implausibility(Effect::coil_lag, at_one, {}, kCoilSingleLag);
+  EXPECT_TRUE(form_has_null(Effect::coil_lag, 0));
+  EXPECT_FALSE(form_has_null(Effect::coil_lag, kCoilSingleLag));
+  EXPECT_TRUE(form_has_null(Effect::backlash, kBacklashImpactSpring));
+}
+
 TEST(DiscrepancyForms, ParametersArePackedByForm) {
   EffectSet set{{Effect::idle_settling, Effect::force_offset}};
   EXPECT_EQ(*set.offset(Effect::force_offset), 1u);
