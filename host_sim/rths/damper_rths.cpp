@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "host_sim/plant/stages.hpp"
+#include "host_sim/rths/numerical_building.hpp"
 #include "host_sim/rths/thesis_actuator.hpp"
 #include "host_sim/structure/discrete_building.hpp"
 #include "mrd/physics/mr_damper.hpp"
@@ -14,14 +16,13 @@ namespace mrd::rths {
 DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<double>& ground_accel_m_s2,
                                  run::Controller& controller, DamperRthsRecord* record) {
   const structure::BuildingParams& b = spec.plant.building;
-  if (!b.isolators.empty()) throw std::invalid_argument("run_damper_rths: a building with isolators");
   if (b.dampers.size() != 1) throw std::invalid_argument("run_damper_rths: one damper placement");
   if (spec.plant.kind != plant::PlantKind::kThesis) throw std::invalid_argument("run_damper_rths: thesis plant only");
   if (!(spec.delay_s >= 0.0 && spec.lag_s >= 0.0)) throw std::invalid_argument("run_damper_rths: negative delay or lag");
   const double t = spec.plant.step_s;
-  structure::validate(b);
-  structure::DiscreteBuilding building;
-  building.init(b, t);
+  NumericalBuilding numerical;  // the closed loop's stepping, isolators in sub-steps
+  numerical.init(b, t);
+  const structure::DiscreteBuilding& building = numerical.linear();
   physics::MrDamper damper;
   damper.init(spec.plant.damper, t, physics::settling_quotient_after_idle(spec.plant.idle_time_s, spec.plant.settling));
   controller.reset();
@@ -34,7 +35,12 @@ DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<d
   // servo at t_{n+1+D} (D whole steps of delay): the numerical building's
   // own prediction over it (DamperCommandPredictor, thesis_actuator.hpp).
   const double count = b.dampers.front().count;
-  DamperCommandPredictor predictor(b, building, spec.delay_s, spec.lag_s, spec.model_force_scale);
+  std::optional<DamperCommandPredictor> predictor;
+  std::optional<IsolatedCommandPredictor> isolated_predictor;
+  if (b.isolators.empty())
+    predictor.emplace(b, building, spec.delay_s, spec.lag_s, spec.model_force_scale);
+  else
+    isolated_predictor.emplace(b, numerical, t, spec.delay_s, spec.lag_s, spec.model_force_scale);
 
   std::vector<double> forces(building.force_elements().size(), 0.0);
   const auto& elements = building.force_elements();
@@ -72,10 +78,11 @@ DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<d
     const double target_rate_m_s = building.element_rate_m_s(element);
     ev2 += (v_a - target_rate_m_s) * (v_a - target_rate_m_s);
     v2 += target_rate_m_s * target_rate_m_s;
-    building.step(ground_accel_m_s2[n], forces.data());
+    numerical.step(ground_accel_m_s2[n], forces.data());
     const ServoCommand c =
-        spec.compensate ? predictor.predict(building, ground_accel_m_s2, n + 1, model, current_a)
-                        : ServoCommand{building.element_deformation_m(element), building.element_rate_m_s(element)};
+        !spec.compensate ? ServoCommand{building.element_deformation_m(element), building.element_rate_m_s(element)}
+        : predictor      ? predictor->predict(building, ground_accel_m_s2, n + 1, model, current_a)
+                         : isolated_predictor->predict(numerical, ground_accel_m_s2, n + 1, model, current_a);
     servo.step(c.position_m, c.rate_m_s);
     if (record != nullptr) {
       record->time_s.push_back(static_cast<double>(n) * t);

@@ -26,8 +26,9 @@
 ///    loop; the damper's coil follows its command;
 /// 5. the building advances one exact ZOH step with the measured force.
 ///
-/// For a building with isolators the loop is refused (their hysteresis
-/// needs the plant's sub-steps); one damper placement (count may be > 1).
+/// A building with isolators is stepped as the closed loop steps it (their
+/// hysteresis in the plant's sub-steps, numerical_building.hpp), and the
+/// prediction steps a copy of it; one damper placement (count may be > 1).
 
 #include <vector>
 
@@ -69,8 +70,8 @@ struct DamperRthsRecord {
 
 /// Runs it over `ground_accel_m_s2` at spec.plant.step_s, after resetting
 /// `controller`; fills `record` when given. Throws std::invalid_argument for
-/// isolators, more than one damper placement, a hardware plant or a negative
-/// delay or lag.
+/// more than one damper placement, a hardware plant or a negative delay or
+/// lag.
 DamperRthsResult run_damper_rths(const DamperRthsSpec& spec, const std::vector<double>& ground_accel_m_s2,
                                  run::Controller& controller, DamperRthsRecord* record = nullptr);
 
