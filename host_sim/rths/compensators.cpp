@@ -90,6 +90,7 @@ class SampleController final : public Compensator {
   }
   std::vector<std::string> coefficient_names() const override { return {"pi_integral_m"}; }
   std::vector<double> coefficients() const override { return {integral_}; }
+  void write_coefficients(double* out) const noexcept override { out[0] = integral_; }
 
  private:
   static constexpr double kKp = 2.0;
@@ -132,6 +133,7 @@ class PolynomialExtrapolation final : public Compensator {
   }
   std::vector<std::string> coefficient_names() const override { return {"delay_s"}; }
   std::vector<double> coefficients() const override { return {delay_s_}; }
+  void write_coefficients(double* out) const noexcept override { out[0] = delay_s_; }
 
  private:
   History history_;
@@ -193,6 +195,9 @@ class AdaptiveTimeSeries final : public Compensator {
   }
   std::vector<std::string> coefficient_names() const override { return {"a0", "a1_s", "a2_s2"}; }
   std::vector<double> coefficients() const override { return {a_[0], a_[1], a_[2]}; }
+  void write_coefficients(double* out) const noexcept override {
+    for (std::size_t i = 0; i < 3; ++i) out[i] = a_[i];
+  }
 
  private:
   void learn() {
@@ -257,6 +262,9 @@ class ModelFeedforward final : public Compensator {
   }
   std::vector<std::string> coefficient_names() const override { return {"c0", "c1_s", "c2_s2", "c3_s3"}; }
   std::vector<double> coefficients() const override { return {c_[0], c_[1], c_[2], c_[3]}; }
+  void write_coefficients(double* out) const noexcept override {
+    for (std::size_t i = 0; i < 4; ++i) out[i] = c_[i];
+  }
 
  private:
   void adapt() {

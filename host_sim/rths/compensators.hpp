@@ -60,6 +60,9 @@ class Compensator {
   /// Names and current values of the compensator's coefficients (may be none).
   virtual std::vector<std::string> coefficient_names() const { return {}; }
   virtual std::vector<double> coefficients() const { return {}; }
+  /// The same values into out[0 .. coefficient_names().size()), without
+  /// allocating (a loop's record of them).
+  virtual void write_coefficients(double* out) const noexcept { (void)out; }
 };
 
 struct CompensatorSpec {

@@ -55,7 +55,7 @@ BoardLoop::BoardLoop(hal::CanBus& bus, const BoardLoopSpec& spec)
   for (auto& f : floors_) f.reserve(n);
   coeff_every_ = static_cast<std::size_t>(std::max(1L, std::lround(0.01 / dt_s_)));
   coefficient_time_s_.reserve(n / coeff_every_ + 1);
-  coefficients_.reserve(n / coeff_every_ + 1);
+  coefficient_values_.assign((n / coeff_every_ + 1) * coefficient_names_.size(), 0.0);
   tick_ns_.reserve(n);
 }
 
@@ -106,8 +106,8 @@ LoopEnd BoardLoop::tick() noexcept {
   const double command = comp_->command(target_next, meas_.displacement_m);
   command_.push_back(command);
   if (k % coeff_every_ == 0 && !coefficient_names_.empty()) {
+    comp_->write_coefficients(coefficient_values_.data() + coefficient_time_s_.size() * coefficient_names_.size());
     coefficient_time_s_.push_back(static_cast<double>(k) * dt_s_);
-    coefficients_.push_back(comp_->coefficients());
   }
   RthsCommand c{command, target_next, static_cast<std::uint8_t>(k_ & 0xFF)};
   hal::CanFrame f;

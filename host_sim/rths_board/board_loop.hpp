@@ -106,7 +106,10 @@ class BoardLoop {
   const std::vector<std::vector<double>>& floors_m() const noexcept { return floors_; }
   const std::vector<std::string>& coefficient_names() const noexcept { return coefficient_names_; }
   const std::vector<double>& coefficient_time_s() const noexcept { return coefficient_time_s_; }
-  const std::vector<std::vector<double>>& coefficients() const noexcept { return coefficients_; }
+  /// The compensator's coefficients at coefficient_time_s()[i]: coefficient_names().size() values.
+  const double* coefficient_row(std::size_t i) const noexcept {
+    return coefficient_values_.data() + i * coefficient_names_.size();
+  }
 
   /// J1–J9 of the ticks run, against the all-numerical reference over the
   /// same samples (computed here, after the loop).
@@ -138,7 +141,7 @@ class BoardLoop {
   std::vector<std::vector<double>> floors_;
   std::vector<std::string> coefficient_names_;
   std::vector<double> coefficient_time_s_;
-  std::vector<std::vector<double>> coefficients_;
+  std::vector<double> coefficient_values_;  ///< row after row, sized before the run
   std::vector<std::int64_t> tick_ns_;  ///< every tick's run time, free-running
 };
 

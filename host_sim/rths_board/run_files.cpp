@@ -141,11 +141,12 @@ void write_finished_run(const fs::path& dir, const RunDescription& d, const Boar
     co += n;
   }
   co += "\n";
-  for (std::size_t i = 0; i < loop.coefficients().size(); ++i) {
+  const std::size_t width = loop.coefficient_names().size();
+  for (std::size_t i = 0; i < loop.coefficient_time_s().size(); ++i) {
     co += num(loop.coefficient_time_s()[i]);
-    for (double v : loop.coefficients()[i]) {
+    for (std::size_t j = 0; j < width; ++j) {
       co += ',';
-      co += num(v);
+      co += num(loop.coefficient_row(i)[j]);
     }
     co += "\n";
   }
@@ -155,9 +156,9 @@ void write_finished_run(const fs::path& dir, const RunDescription& d, const Boar
   s += "  \"criteria\": {";
   for (std::size_t i = 0; i < c.j.size(); ++i) s += std::string(i ? ", " : "") + quoted(kNames[i]) + ": " + num(c.j[i]);
   s += "},\n  \"coefficients_final\": {";
-  if (!loop.coefficients().empty()) {
-    const auto& last = loop.coefficients().back();
-    for (std::size_t i = 0; i < last.size() && i < loop.coefficient_names().size(); ++i)
+  if (!loop.coefficient_time_s().empty()) {
+    const double* last = loop.coefficient_row(loop.coefficient_time_s().size() - 1);
+    for (std::size_t i = 0; i < width; ++i)
       s += std::string(i ? ", " : "") + quoted(loop.coefficient_names()[i]) + ": " + num(last[i]);
   }
   s += "}\n}\n";

@@ -117,6 +117,18 @@ TEST(RthsBoard, BenchmarkOverTheBusAt1kHzMeetsTheAcceptanceAndEqualsTheEmulatedL
   ASSERT_EQ(ref.status, "ok");
   EXPECT_NEAR(c.j[0], ref.criteria.j[0], 1e-12);  // J1 on the 1 ms grid
   for (int i = 1; i < 5; ++i) EXPECT_NEAR(c.j[i], ref.criteria.j[i], 0.01) << "J" << i + 1;
+  // The coefficients recorded in place every 10 ms (write_coefficients into
+  // storage sized before the run) against the emulated loop's, read through
+  // Compensator::coefficients(): the same times, the same values to the
+  // frames' quantization of the measured displacement (10 nm).
+  ASSERT_EQ(loop.coefficient_time_s().size(), ref.coefficient_time_s.size());
+  ASSERT_EQ(loop.coefficient_names().size(), 3u);  // a0, a1_s, a2_s2
+  for (std::size_t i = 0; i < ref.coefficient_time_s.size(); ++i) {
+    EXPECT_DOUBLE_EQ(loop.coefficient_time_s()[i], ref.coefficient_time_s[i]);
+    for (std::size_t j = 0; j < 3; ++j)
+      EXPECT_NEAR(loop.coefficient_row(i)[j], ref.coefficients[i][j], 1e-3 * (1.0 + std::fabs(ref.coefficients[i][j])))
+          << "coefficient " << j << " at " << ref.coefficient_time_s[i] << " s";
+  }
   // The files of a finished run: whole, no temporaries.
   const fs::path dir = fs::temp_directory_path() / ("mrd_rths_board_ok_" + std::to_string(::getpid()));
   fs::remove_all(dir);
