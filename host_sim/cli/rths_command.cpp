@@ -67,6 +67,11 @@ rate) through the lag's inverse; none: the target itself. The all-numerical clos
 mrd sim runs with the same building, damper, fluid, record, PGA, control and idle time) is run
 beside it. The record is scaled to --pga-g as in mrd sim.
 Fields of DIR/summary.json:
+  status                   ok, or unstable when the RTHS diverged (its peak base displacement
+                           above twice the closed loop's, or not finite: null); the run still
+                           ends and is written
+  warnings                 sentences: the run diverged, or its peak base displacement is more than
+                           2 % off the closed loop's; also printed on stderr
   peak_base_displacement_m.rths, .closed_loop, .gap_pct   max |x_0| of both, m; gap
                            100 (rths - closed_loop) / closed_loop, %
   peak_damper_force_n.rths, .closed_loop                 max |force of one damper|, N
@@ -332,15 +337,16 @@ void execute_damper(const RthsOptions& o) {
   r.rths = rths::run_damper_rths(spec, motion.accel_m_s2, *controller(), &r.record);
   r.closed_loop = run::run_closed_loop(spec.plant, motion.accel_m_s2, *controller(), &r.closed_loop_record);
   std::printf("RTHS of %s with the damper behind a %g ms delay and %g ms lag, %s compensation, %s, under %s at %.4g g, "
-              "%g Hz\n",
+              "%g Hz: %s\n",
               d.building.c_str(), 1e3 * spec.delay_s, 1e3 * spec.lag_s, o.compensate.c_str(), d.control.c_str(),
-              o.record.c_str(), d.pga_g, rate_hz);
-  std::printf("  peak base displacement  RTHS %.4f mm, closed loop %.4f mm, gap %+.2f %%\n",
+              o.record.c_str(), d.pga_g, rate_hz, r.status().c_str());
+  std::printf("  peak base displacement  RTHS %.6g mm, closed loop %.6g mm, gap %+.4g %%\n",
               1e3 * r.rths.peak_base_displacement_m, 1e3 * r.closed_loop.peak_base_displacement_m, r.gap_pct());
-  std::printf("  tracking                rms %.2f %% (rate %.2f %%), peak %.4f mm\n", r.rths.rms_tracking_error_pct,
+  std::printf("  tracking                rms %.4g %% (rate %.4g %%), peak %.4g mm\n", r.rths.rms_tracking_error_pct,
               r.rths.rms_velocity_error_pct, 1e3 * r.rths.peak_tracking_error_m);
-  std::printf("  peak damper force       RTHS %.3f kN, closed loop %.3f kN\n", 1e-3 * r.rths.peak_damper_force_n,
+  std::printf("  peak damper force       RTHS %.6g kN, closed loop %.6g kN\n", 1e-3 * r.rths.peak_damper_force_n,
               1e-3 * r.closed_loop.peak_damper_force_n);
+  print_warnings("rths", rths::damper_rths_warnings(spec, r));
   warn_plots_not_written("rths", rths::write_damper_rths_outputs(out, spec, d, r));
   commit_out_dir();
   std::printf("wrote %s\n", (std::filesystem::path(o.out_dir) / "summary.json").c_str());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host_sim/io/text.hpp"
 #include "host_sim/report/plot.hpp"
 #include "host_sim/report/summary_json.hpp"
 #include "host_sim/report/time_series.hpp"
@@ -28,9 +29,36 @@ double DamperRthsOutcome::gap_pct() const {
   return ref > 0.0 ? 100.0 * (rths.peak_base_displacement_m - ref) / ref : 0.0;
 }
 
+std::string DamperRthsOutcome::status() const {
+  const bool finite = std::isfinite(rths.peak_base_displacement_m) && std::isfinite(rths.peak_damper_force_n) &&
+                      std::isfinite(rths.peak_tracking_error_m) && std::isfinite(rths.rms_tracking_error_pct);
+  const bool grew = rths.peak_base_displacement_m > 2.0 * closed_loop.peak_base_displacement_m;
+  return finite && !grew ? "ok" : "unstable";
+}
+
+std::vector<std::string> damper_rths_warnings(const DamperRthsSpec& spec, const DamperRthsOutcome& o) {
+  const std::string setup = "the actuator's " + io::format_number("%g", 1e3 * spec.delay_s) + " ms delay and " +
+                            io::format_number("%g", 1e3 * spec.lag_s) + " ms lag";
+  if (o.status() != "ok")
+    return {"the RTHS is unstable (its peak base displacement " +
+            io::format_number("%.4g", 1e3 * o.rths.peak_base_displacement_m) + " mm, the closed loop's " +
+            io::format_number("%.4g", 1e3 * o.closed_loop.peak_base_displacement_m) + " mm) with " + setup + (spec.compensate ? " compensated" : " uncompensated") +
+            ": the damper's force, delayed, destabilizes the numerical building (a specimen large against the "
+            "building's mass and stiffness); " +
+            (spec.compensate ? std::string("a shorter delay or a smaller damper may run")
+                             : std::string("--compensate model or a shorter delay may run"))};
+  if (std::fabs(o.gap_pct()) > kDamperRthsGapWarning_pct)
+    return {"the RTHS's peak base displacement is " + io::format_number("%+.4g", o.gap_pct()) +
+            " % off the all-numerical closed loop's (more than " +
+            io::format_number("%g", kDamperRthsGapWarning_pct) + " %) with " + setup};
+  return {};
+}
+
 nlohmann::json damper_rths_summary_json(const DamperRthsSpec& spec, const DamperRthsDescription& d,
                                         const DamperRthsOutcome& o) {
   return nlohmann::json{
+      {"status", o.status()},
+      {"warnings", damper_rths_warnings(spec, o)},
       {"specimen", "damper"},
       {"building", d.building},
       {"dofs", d.dofs},

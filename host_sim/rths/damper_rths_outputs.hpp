@@ -1,7 +1,7 @@
 #pragma once
 /// What `mrd rths --specimen damper` writes into its folder:
 ///
-/// - summary.json: the set-up (building, damper, fluid, record, control
+/// - summary.json: status (ok, unstable), warnings, the set-up (building, damper, fluid, record, control
 ///   mode, idle time, loop rate, actuator delay and lag, compensation) and
 ///   the result: the peak base displacement of the RTHS and of the
 ///   all-numerical closed loop run beside it, the gap between them (%), the
@@ -46,7 +46,20 @@ struct DamperRthsOutcome {
   run::ClosedLoopRecord closed_loop_record;
   /// 100·(RTHS − closed loop)/closed loop of the peak base displacement.
   double gap_pct() const;
+  /// "ok", or "unstable" when the RTHS diverged: its peak base displacement
+  /// more than twice the closed loop's (the benchmark's rule, rths_run.hpp),
+  /// or it, the peak force or the tracking error not a finite number.
+  std::string status() const;
 };
+
+/// Largest |gap| of the peak base displacement, %, the summary calls close
+/// to the closed loop (the 2 %); beyond it a warning says so.
+inline constexpr double kDamperRthsGapWarning_pct = 2.0;
+
+/// Sentences, one per finding the user should see: the run diverged; the
+/// peak base displacement is more than kDamperRthsGapWarning_pct off the
+/// closed loop's. Empty for a run within it.
+std::vector<std::string> damper_rths_warnings(const DamperRthsSpec& spec, const DamperRthsOutcome& o);
 
 nlohmann::json damper_rths_summary_json(const DamperRthsSpec& spec, const DamperRthsDescription& d,
                                         const DamperRthsOutcome& o);

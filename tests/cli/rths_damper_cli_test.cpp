@@ -59,6 +59,8 @@ TEST_F(RthsDamperCli, PeakBaseDisplacementWithinTwoPercentOfMrdSim) {
                 100.0 * (rths_peak_m - sim_peak_m) / sim_peak_m, 1e-6)
         << mode;
     EXPECT_EQ(rths["control"], mode);
+    EXPECT_EQ(rths["status"], "ok");
+    EXPECT_TRUE(rths["warnings"].empty());
     EXPECT_EQ(rths["delay_s"].get<double>(), 0.015);
     EXPECT_EQ(rths["compensation"], "model");
     // The tracking error and the peak force are there and finite.
@@ -124,6 +126,26 @@ TEST_F(RthsDamperCli, IsolatedBuildingIsTheClosedLoopWithoutDelayAndWithinTwoPer
   const nlohmann::json delayed = run_ok("rths --specimen damper" + building + record + " --delay-ms 15",
                                         out_.path() / "rths-isolated-15");
   EXPECT_LE(std::fabs(delayed["peak_base_displacement_m"]["rths"].get<double>() - sim_peak_m), 0.02 * sim_peak_m);
+}
+
+TEST_F(RthsDamperCli, ReportsAnUnstableRunAndStillWritesIt) {
+  // The 200 kN damper on the benchmark's 3 x 1000 kg frame
+  // (silva-2020-3dof.toml): the damper's force (rated 200 kN) dwarfs the frame's
+  // inertia (3000 kg at El Centro's 0.11 g is 3.3 kN) and its restoring
+  // force at a millimetre (K(0,0) x 1 mm = 26 kN), so the damper all but
+  // locks the frame, and a 15 ms delay in that force destabilizes the loop.
+  // The run ends, is written, and says so.
+  const fs::path dir = out_.path() / "unstable";
+  const auto r = run_mrd("rths --specimen damper --building " + std::string(MRD_BUILDINGS_DIR) +
+                             "/silva-2020-3dof.toml --record " + kElCentroDamperRths +
+                             " --control passive-on --duration-s 3 --out " + dir.string(),
+                         scratch_.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("mrd rths: warning: the RTHS is unstable"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(j["status"], "unstable");
+  EXPECT_EQ(j["warnings"].size(), 1u);
+  EXPECT_TRUE(fs::exists(dir / "tracking.csv"));
 }
 
 TEST_F(RthsDamperCli, RefusesBuildingsItCannotRun) {
