@@ -34,18 +34,20 @@ void DamperLabNode::send(const hal::CanFrame& f) noexcept {
 }
 
 void DamperLabNode::send_sample() noexcept {
+  // DriveStatus first: DaqMotion, the frame the runtime waits for, is the
+  // tick's last, so the control task has both once the runtime goes on.
   const auto counter = static_cast<std::uint8_t>(steps_ & 0xFF);
-  protocol::DaqMotion m;
-  m.damper_disp_m = static_cast<float>(servo_.position_m());
-  m.damper_force_n = static_cast<float>(force_n_);
-  m.counter = counter;
   hal::CanFrame f;
-  if (protocol::encode(m, config_.nodes.daq, f)) {
+  if (protocol::encode(drive_.status(static_cast<float>(damper_.current_a()), counter), config_.nodes.drive, f)) {
     send(f);
   } else {
     ++tx_errors_;
   }
-  if (protocol::encode(drive_.status(static_cast<float>(damper_.current_a()), counter), config_.nodes.drive, f)) {
+  protocol::DaqMotion m;
+  m.damper_disp_m = static_cast<float>(servo_.position_m());
+  m.damper_force_n = static_cast<float>(force_n_);
+  m.counter = counter;
+  if (protocol::encode(m, config_.nodes.daq, f)) {
     send(f);
   } else {
     ++tx_errors_;

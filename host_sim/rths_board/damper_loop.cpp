@@ -1,6 +1,7 @@
 #include "host_sim/rths_board/damper_loop.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -126,7 +127,21 @@ LoopEnd DamperLoop::tick() noexcept {
   return end_;
 }
 
-LoopEnd DamperLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const std::atomic<bool>& stop) noexcept {
+void DamperLoop::await_sample(hal::Clock& clock, std::int64_t until_ns) noexcept {
+  drain();
+  // Bounded: a bus that reports frames which are not this tick's sample
+  // cannot keep the loop here past `until_ns` (nor, with a clock that does
+  // not move, for more than a few rounds).
+  for (int round = 0; round < 64 && !fresh_ && lab_reason_ == LabStopReason::kNone; ++round) {
+    const std::int64_t left_ns = until_ns - clock.now_ns();
+    if (left_ns <= 0) break;
+    bus_.wait_readable(std::chrono::nanoseconds(left_ns));
+    drain();
+  }
+}
+
+LoopEnd DamperLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const std::atomic<bool>& stop,
+                                 std::int64_t sample_wait_ns) noexcept {
   timing_.period_ns = period_ns;
   app::PeriodicSchedule schedule(period_ns, clock.now_ns());
   while (end_ == LoopEnd::kRunning) {
@@ -134,6 +149,7 @@ LoopEnd DamperLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, cons
       end_ = LoopEnd::kInterrupted;
       break;
     }
+    await_sample(clock, clock.now_ns() + sample_wait_ns);
     const std::int64_t start_ns = clock.now_ns();
     tick();
     const std::int64_t done_ns = clock.now_ns();

@@ -75,7 +75,12 @@ class DamperLoop {
   std::uint16_t rate_mismatch() const noexcept { return lab_rate_mismatch_hz_; }
 
   LoopEnd tick() noexcept;
-  LoopEnd run_periodic(hal::Clock& clock, std::int64_t period_ns, const std::atomic<bool>& stop) noexcept;
+  /// Free-running: each tick first waits on the bus for the laboratory's
+  /// sample of that tick, at most `sample_wait_ns` past the tick's start (a
+  /// blocking wait, so a laboratory on the same CPU gets to answer), then
+  /// ticks on what has arrived; absolute deadlines every `period_ns`.
+  LoopEnd run_periodic(hal::Clock& clock, std::int64_t period_ns, const std::atomic<bool>& stop,
+                       std::int64_t sample_wait_ns) noexcept;
   void send_run_status() noexcept;
 
   LoopEnd end() const noexcept { return end_; }
@@ -103,6 +108,7 @@ class DamperLoop {
 
  private:
   void drain() noexcept;
+  void await_sample(hal::Clock& clock, std::int64_t until_ns) noexcept;
   void send_accel(std::size_t n) noexcept;
 
   hal::CanBus& bus_;

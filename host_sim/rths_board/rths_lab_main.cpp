@@ -91,6 +91,9 @@ int serve_until_done(Node& lab, mrd::posix::SocketCanBus& bus, const Options& o,
     bus.wait_readable(std::chrono::milliseconds(lab.state() == rb::LabState::kWaiting ? 20 : 5));
     if (lab.serve() > 0) last_command = Clock::now();
   }
+  if constexpr (requires { lab.current_late(); })
+    std::printf("mrd-rths-lab: drive current_late=%u (commands stepped on without that tick's current command)\n",
+                lab.current_late());
   std::printf("mrd-rths-lab: summary steps=%llu state=%s stop=%s stop_step=%llu peak_force_n=%.3f rejected=%u "
               "sequence_gaps=%u tx_errors=%u run=%s\n",
               static_cast<unsigned long long>(lab.steps()), rb::lab_state_name(lab.state()),

@@ -128,7 +128,8 @@ int run_damper_with(const Options& o, const mrd::app::BoardConfig& board, rb::Da
               board.fixed_point ? "fixed" : "float", d.compensation.c_str(), 1e3 * spec.delay_s, 1e3 * spec.lag_s,
               spec.ground_accel_m_s2.size(), o.record.c_str(), o.pga_g);
   if (const int e = wait_for_lab(*loop, *bus, o, board, spec.rate_hz, spec.lab_node); e != 0) return e;
-  const rb::LoopEnd end = loop->run_periodic(clock, period_ns, mrd::peers::g_peer_stop);
+  // Each tick waits for the laboratory's sample up to half a period.
+  const rb::LoopEnd end = loop->run_periodic(clock, period_ns, mrd::peers::g_peer_stop, period_ns / 2);
   const std::string status = rb::loop_end_status(end, loop->lab_reason());
   try {
     if (end == rb::LoopEnd::kFinished) {

@@ -13,9 +13,17 @@
 #   2. the laboratory's stop: no compensation and a 0.05 mm tracking limit, so
 #      the laboratory stops, holds and reports it; the runtime ends with the
 #      stop's status (exit 3) and its folder is listed (stop.json, no summary).
+#   3. the thesis's set-up, for each mode of $MRD_EMU_RTHS_DAMPER_MODES
+#      (default "passive-on semi-active"; empty: none): mrd-rths-lab
+#      --specimen damper (a 15 ms actuator with a 2 ms lag stroking the MR
+#      damper, its drive and DAQ) and mrd-rths --specimen damper (the thesis
+#      building, the model-based compensation, the board's firmware control
+#      task beside it) at 1 kHz over the record's first
+#      $MRD_EMU_RTHS_DAMPER_DURATION_S seconds (default 5) at 0.1127 g.
 # The serial console goes to $OUT/serial.txt; lines are tagged
 # [rths-N-runtime], [rths-N-lab], [rths-N-summary], [rths-stop-runtime],
-# [rths-stop-lab], [rths-stop-files], [rths-stop-json].
+# [rths-stop-lab], [rths-stop-files], [rths-stop-json], [rths-damper-MODE-runtime],
+# [rths-damper-MODE-lab], [rths-damper-MODE-summary].
 #
 # Usage: rths.sh RECORD OUT_DIR
 # Exit status: 0 the guest finished, 1 failure or something missing (the
@@ -26,6 +34,14 @@ record=${1:?usage: rths.sh RECORD OUT_DIR}
 out=${2:?usage: rths.sh RECORD OUT_DIR}
 runs=${MRD_EMU_RTHS_RUNS:-"1000:adaptive"}
 duration_s=${MRD_EMU_RTHS_DURATION_S:-5}
+damper_modes=${MRD_EMU_RTHS_DAMPER_MODES-"passive-on semi-active"}
+damper_duration_s=${MRD_EMU_RTHS_DAMPER_DURATION_S:-5}
+[[ $damper_duration_s =~ ^[0-9]+(\.[0-9]+)?$ ]] ||
+  emu_fail "MRD_EMU_RTHS_DAMPER_DURATION_S: '$damper_duration_s' is not a duration in s"
+for m in $damper_modes; do
+  [[ $m =~ ^(passive-off|passive-on|semi-active)$ ]] ||
+    emu_fail "MRD_EMU_RTHS_DAMPER_MODES: '$m' is not passive-off, passive-on or semi-active"
+done
 [[ $duration_s =~ ^[0-9]+(\.[0-9]+)?$ ]] || emu_fail "MRD_EMU_RTHS_DURATION_S: '$duration_s' is not a duration in s"
 for r in $runs; do
   [[ $r =~ ^[0-9]+:(none|sample|polynomial|adaptive|model)$ ]] ||
@@ -50,6 +66,8 @@ cp "$record" "$rootfs/mrd/record.csv"
 {
   echo "DURATION=$duration_s"
   echo "RUNS=\"$runs\""
+  echo "DAMPER_MODES=\"$damper_modes\""
+  echo "DAMPER_DURATION=$damper_duration_s"
   cat <<'SCENARIO'
 ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
 n=0
@@ -80,6 +98,20 @@ tag rths-stop-lab /tmp/lab-stop.log
 ls /tmp/rths-stop > /tmp/rths-stop-files.txt
 tag rths-stop-files /tmp/rths-stop-files.txt
 tag rths-stop-json /tmp/rths-stop/stop.json
+for mode in $DAMPER_MODES; do
+  echo "EMU: rths damper $mode: 1000 Hz, ${DAMPER_DURATION} s"
+  ./mrd-rths-lab --board board.toml --specimen damper --rate-hz 1000 --delay-ms 15 --lag-ms 2 \
+      > /tmp/lab-damper.log 2>&1 &
+  lab=$!
+  ./mrd-rths --board board.toml --specimen damper --record record.csv --rate-hz 1000 --mode "$mode" \
+      --pga-g 0.1127 --delay-ms 15 --lag-ms 2 --duration-s "$DAMPER_DURATION" --out /tmp/rths-damper-$mode \
+      > /tmp/rths-damper.log 2>&1
+  echo "EMU: rths damper $mode: runtime exit $?"
+  wait $lab; echo "EMU: rths damper $mode: lab exit $?"
+  tag rths-damper-$mode-runtime /tmp/rths-damper.log
+  tag rths-damper-$mode-lab /tmp/lab-damper.log
+  tag rths-damper-$mode-summary /tmp/rths-damper-$mode/summary.json
+done
 echo "EMU: done rths"
 SCENARIO
 } >"$rootfs/mrd/scenario.sh"

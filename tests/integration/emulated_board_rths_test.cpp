@@ -12,10 +12,24 @@
 //  2. the laboratory's stop (no compensation, 0.05 mm tracking limit): the
 //     laboratory holds and reports tracking_limit, the runtime ends at its
 //     first tick after the report with that status and exit 3, and its folder holds stop.json
-//     and no summary or temporary file.
+//     and no summary or temporary file;
+//  3. the thesis's set-up (mrd-rths --specimen damper with the board's
+//     firmware control task beside it, mrd-rths-lab --specimen damper: a
+//     15 ms actuator with a 2 ms lag stroking the MR damper) at 1 kHz over El
+//     Centro's first 5 s at 0.1127 g, passive-on and semi-active: every tick
+//     run, and the peak base displacement within the 2 % of the
+//     all-numerical closed loop's over the same 5 s (run::run_closed_loop on
+//     the host: no actuator, no bus); lateness, overruns, stale
+//     measurements and the drive's late current commands printed.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "emulated_board_support.hpp"
+#include "host_sim/excitation/scaled_motion.hpp"
+#include "host_sim/plant/plant.hpp"
+#include "host_sim/run/closed_loop.hpp"
+#include "host_sim/run/controller.hpp"
 
 namespace mrd {
 namespace {
@@ -75,6 +89,37 @@ TEST(EmulatedBoardRths, BenchmarkAt1kHzWithTheLaboratoryAsAPeer) {
   ASSERT_EQ(files.size(), 1u) << "the stopped run's folder should hold one file";
   EXPECT_EQ(files.front(), "[rths-stop-files] stop.json");
   EXPECT_NE(serial.find("[rths-stop-json]   \"status\": \"tracking_limit\""), std::string::npos);
+
+  // 3. The thesis's set-up. The emulated board file has no [damper] or
+  // [fluid]: its damper is the thesis's, as plant::PlantSpec's.
+  const auto ag = excitation::load_scaled_motion(record, 0.1127, 1e-3, 5.0).accel_m_s2;
+  for (const auto mode : {control::ControlMode::kPassiveOn, control::ControlMode::kSemiActive}) {
+    const std::string tag = std::string("[rths-damper-") + control::mode_name(mode);
+    const std::string line = find_line(serial, tag + "-runtime] mrd-rths: status=");
+    ASSERT_FALSE(line.empty()) << "no thesis set-up status line for " << control::mode_name(mode);
+    EXPECT_EQ(key_words(line).at("status"), "ok") << line;
+    const auto d = key_values(line);
+    EXPECT_EQ(d.at("ticks"), static_cast<double>(ag.size()));  // 5 s at 1 kHz and the sample at 0 s
+    EXPECT_EQ(d.at("rejected"), 0.0);
+    EXPECT_EQ(d.at("tx_errors"), 0.0);
+    const std::string lab = find_line(serial, tag + "-lab] mrd-rths-lab: summary");
+    ASSERT_FALSE(lab.empty());
+    EXPECT_EQ(key_values(lab).at("steps"), static_cast<double>(ag.size()));
+    EXPECT_EQ(key_words(lab).at("run"), "finished");
+    EXPECT_EQ(key_words(lab).at("stop"), "none");
+    const double late = key_values(find_line(serial, tag + "-lab] mrd-rths-lab: drive")).at("current_late");
+    plant::PlantSpec spec;
+    auto controller = run::make_controller(mode, spec.step_s);
+    const double ref_m = run::run_closed_loop(spec, ag, *controller).peak_base_displacement_m;
+    const double peak_m = d.at("peak_base_displacement_m");
+    EXPECT_LT(std::fabs(peak_m - ref_m), 0.02 * ref_m) << line;
+    std::printf("emulated board thesis RTHS, %s, 1 kHz, 5 s: peak base displacement %.4f mm vs closed loop %.4f mm "
+                "(%+.2f %%), tracking rms %.3f %%, overruns %.0f, worst lateness %.1f us, tick median %.1f us, p99 "
+                "%.1f us, worst %.1f us, stale measurements %.0f, late current commands %.0f\n",
+                control::mode_name(mode), 1e3 * peak_m, 1e3 * ref_m, 100.0 * (peak_m - ref_m) / ref_m,
+                d.at("tracking_rms_pct"), d.at("overruns"), d.at("worst_late_us"), d.at("median_tick_us"),
+                d.at("p99_tick_us"), d.at("worst_tick_us"), d.at("stale_ticks"), late);
+  }
 }
 
 }  // namespace
