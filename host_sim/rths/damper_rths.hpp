@@ -24,7 +24,8 @@
 ///    controller senses the actuator's stroke, the force, the ground and the
 ///    building's base acceleration and the coil current, as in the closed
 ///    loop; the damper's coil follows its command;
-/// 5. the building advances one exact ZOH step with the measured force.
+/// 5. the building advances one tick with the measured force (one exact ZOH
+///    step; with isolators the closed loop's sub-steps).
 ///
 /// A building with isolators is stepped as the closed loop steps it (their
 /// hysteresis in the plant's sub-steps, numerical_building.hpp), and the
