@@ -1,0 +1,62 @@
+// The board programs of the thesis's set-up refuse bad input before they
+// touch the bus: exit status 2 and a message naming the file or the option.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_runner.hpp"
+
+namespace mrd::rths_board {
+namespace {
+namespace fs = std::filesystem;
+
+const std::string kBoardFile = (fs::path(MRD_BOARDS_DIR) / "emulated-arm64" / "board.toml").string();
+const std::string kRecordFile = (fs::path(MRD_SHARED_DIR) / "ground_motions" / "elcentro_ns.csv").string();
+
+test::RunResult run_rths_program(const char* binary, const std::string& args, const test::TempDir& dir) {
+  return test::run_command("timeout -s KILL 20 " + std::string(binary) + " " + args, dir.path());
+}
+
+TEST(RthsProgramsCli, RuntimeRefusesABuildingWithIsolators) {
+  test::TempDir dir;
+  const std::string building = (fs::path(MRD_SOURCE_DIR) / "buildings" / "lead-rubber-7dof.toml").string();
+  const auto r = run_rths_program(MRD_RTHS, "--board " + kBoardFile + " --specimen damper --record " + kRecordFile +
+                                                " --building " + building + " --out " + (dir.path() / "o").string(),
+                                  dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("lead-rubber-7dof.toml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("isolators"), std::string::npos) << r.err;
+}
+
+TEST(RthsProgramsCli, RuntimeRefusesABuildingWithTwoDamperPlacements) {
+  test::TempDir dir;
+  const std::string building = (fs::path(MRD_SOURCE_DIR) / "buildings" / "fixed-base-8dof.toml").string();
+  const auto r = run_rths_program(MRD_RTHS, "--board " + kBoardFile + " --specimen damper --record " + kRecordFile +
+                                                " --building " + building + " --out " + (dir.path() / "o").string(),
+                                  dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("fixed-base-8dof.toml has 2 damper placements"), std::string::npos) << r.err;
+}
+
+TEST(RthsProgramsCli, RuntimeRefusesADelayOfPartSteps) {
+  test::TempDir dir;
+  const auto r = run_rths_program(MRD_RTHS, "--board " + kBoardFile + " --specimen damper --record " + kRecordFile +
+                                                " --delay-ms 15.5 --out " + (dir.path() / "o").string(),
+                                  dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--delay-ms"), std::string::npos) << r.err;
+}
+
+TEST(RthsProgramsCli, LaboratoryRefusesADelayUnderOneStepAndANodeOfTheDamperLoop) {
+  test::TempDir dir;
+  auto r = run_rths_program(MRD_RTHS_LAB, "--board " + kBoardFile + " --specimen damper --delay-ms 0.5", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--delay-ms"), std::string::npos) << r.err;
+  r = run_rths_program(MRD_RTHS_LAB, "--board " + kBoardFile + " --specimen damper --lab-node 3", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--lab-node"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace mrd::rths_board
