@@ -41,6 +41,12 @@ Each other form is then fitted again with each extra in turn, on top of those ke
     force builds over a time after a reversal, not over a velocity      transition_time_s
   lost motion: a share of the force builds only after the piston has moved m_per_n * Y(I)
     past a reversal (a plateau after each reversal, longer at higher current)   m_per_n, share
+and then, with --check records only (bingham):
+  current exponent: value(I) = limit + (at_zero - limit) exp(-rate_per_a |I|^q), q fitted per
+    law (q > 1: a force that rises slowly at low current, an S-shaped law)   current_exponent
+  viscous exponent: C v becomes C v_r (|v| / v_r)^m sgn v (Herschel-Bulkley; v_r the records'
+    median peak velocity, held)                          viscous_exponent, viscous_ref_m_s
+  stiffness: a spring k x beside the law (the accumulator's gas charge)     stiffness_n_m
 An extra is kept when it lowers the BIC by 10 or more, its parameters are off their bounds and
 it also lowers the RMS gap of the --check records (without --check it is reported, never
 kept; --no-transition-time, --no-lost-motion: not fitted). The form chosen: of the laws each
@@ -90,6 +96,9 @@ struct CalibrateCliOptions {
   bool no_plots = false;
   bool no_lost_motion = false;
   bool no_transition_time = false;
+  bool no_current_exponent = false;
+  bool no_viscous_exponent = false;
+  bool no_stiffness = false;
   bool floors = false;
   std::string transition = "auto";
   std::string lost_motion_form = "both";
@@ -117,6 +126,9 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
       ->check(CLI::IsMember(kLostMotionForms))
       ->capture_default_str();
   app.add_flag("--no-transition-time", o.no_transition_time, "Do not try the transition time (bingham)");
+  app.add_flag("--no-current-exponent", o.no_current_exponent, "Do not try the current laws' exponent (bingham)");
+  app.add_flag("--no-viscous-exponent", o.no_viscous_exponent, "Do not try the viscous force's exponent (bingham)");
+  app.add_flag("--no-stiffness", o.no_stiffness, "Do not try a spring beside the law (bingham)");
   app.add_flag("--floors", o.floors,
                "Also fit the chosen form to each record alone: its floor on the record, beside the gap (one fit per "
                "record)");
@@ -127,6 +139,9 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   opt.lost_motion = !o.no_lost_motion;
   opt.lost_motion_form = kLostMotionForms.at(o.lost_motion_form);
   opt.transition_time = !o.no_transition_time;
+  opt.current_exponent = !o.no_current_exponent;
+  opt.viscous_exponent = !o.no_viscous_exponent;
+  opt.stiffness = !o.no_stiffness;
   if (o.transition == "linear") {
     opt.transition = discrepancy::TransitionShape::linear;
   } else if (o.transition == "tanh") {

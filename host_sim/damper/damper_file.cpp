@@ -100,6 +100,16 @@ std::vector<std::string> warnings_of(const BaselineFile& f, const DamperFile& d)
   if (b.has_transition_time())
     w.push_back("bingham.transition_time_s: the closed loop does not simulate the transition time (" +
                 g4(b.transition_time_s) + " s): its band is v_tf_m_s alone");
+  if (b.has_current_exponent())
+    w.push_back("current_exponent: the closed loop's current laws are Eq. 4.2-4.3's (exponent 1), not the "
+                "calibrated exponents " + g4(b.yield_n.current_exponent) + " (yield_n) and " +
+                g4(b.viscous_ns_m.current_exponent) + " (viscous_ns_m)");
+  if (b.has_bingham_stiffness())
+    w.push_back("bingham.stiffness_n_m: the closed loop does not simulate the spring beside the Bingham law (" +
+                g4(b.stiffness_n_m) + " N/m): its force is the law's alone");
+  if (b.has_viscous_exponent())
+    w.push_back("bingham.viscous_exponent: the closed loop's viscous force is linear in v (C v), not C v_r (|v| / "
+                "v_r)^m with m = " + g4(b.viscous_exponent));
   if (b.force_delay_s > 0.0)
     w.push_back("channels.force_delay_s: the force channel's lag of the test (" + g4(b.force_delay_s) +
                 " s) is the rig's, not the damper's: the closed loop has none");

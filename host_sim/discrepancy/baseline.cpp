@@ -19,12 +19,14 @@ const char* base_law_name(BaseLaw law) noexcept {
 std::string baseline_form_name(const Baseline& b) {
   return std::string(base_law_name(b.law)) + (b.has_tanh_transition() ? "_tanh" : "") +
          (b.has_transition_time() ? "+transition_time" : "") +
-         (b.has_viscous_lost_motion() ? "+viscous_lost_motion" : (b.has_lost_motion() ? "+lost_motion" : ""));
+         (b.has_viscous_lost_motion() ? "+viscous_lost_motion" : (b.has_lost_motion() ? "+lost_motion" : "")) +
+         (b.has_current_exponent() ? "+current_exponent" : "") + (b.has_bingham_stiffness() ? "+stiffness" : "") + (b.has_viscous_exponent() ? "+viscous_exponent" : "");
 }
 
 double CurrentLaw::at(double current_a, double participant_ratio) const noexcept {
   const double b = participant_ratio * limit;
-  return b + (at_zero - b) * std::exp(-rate_per_a * std::fabs(current_a));
+  const double i = std::fabs(current_a);
+  return b + (at_zero - b) * std::exp(-rate_per_a * (current_exponent == 1.0 ? i : std::pow(i, current_exponent)));
 }
 
 double Baseline::force_scale_n() const noexcept {

@@ -101,11 +101,16 @@ struct Baseline;
 /// the baseline has them.
 [[nodiscard]] std::string baseline_form_name(const Baseline& b);
 
-/// value(I, PR) = PR·limit + (at_zero − PR·limit) exp(−rate |I|), Eq. 4.2–4.3, 5.10–5.11.
+/// value(I, PR) = PR·limit + (at_zero − PR·limit) exp(−rate |I|^q), Eq. 4.2–4.3, 5.10–5.11
+/// with q = 1; q > 1 (a calibrated law's current exponent) starts flat and
+/// turns concave: the S-shaped rise of a fluid whose yield stress grows as a
+/// power of the field at low field and saturates with the iron. |I| in A:
+/// at 1 A the value is the same whatever q.
 struct CurrentLaw {
   double at_zero = 0.0;     ///< value at 0 A
   double limit = 0.0;       ///< value approached at high current (scaled by PR)
-  double rate_per_a = 1.0;  ///< exponential rate, 1/A
+  double rate_per_a = 1.0;  ///< exponential rate, 1/A^q
+  double current_exponent = 1.0;  ///< q (1: Eq. 4.2–4.3)
 
   [[nodiscard]] double at(double current_a, double participant_ratio = 1.0) const noexcept;
 };
@@ -138,6 +143,10 @@ struct Baseline {
   double lost_motion_band_m_s = 0.0;  ///< v_p: band of the force inside the play, m/s (0 = none: the share form)
   double transition_time_s = 0.0;    ///< τ: widening of v_TF by τ|a| (bingham), s (0 = Eq. 4.4 alone)
   bool tanh_transition = false;      ///< bingham: Y tanh(v/v_TF) + C v instead of Eq. 4.4
+  /// m: the viscous force's exponent (bingham), C v_r (|v|/v_r)^m sgn v
+  /// (Herschel–Bulkley); 1 = linear (then v_r does not act)
+  double viscous_exponent = 1.0;
+  double viscous_ref_m_s = 0.0;      ///< v_r: the velocity at which C is the slope, m/s (0 = linear)
   /// Lag of the force channel behind the motion channels (anti-alias
   /// filters, conditioning, logger), s: the model force is compared at
   /// t − force_delay_s. 0 for the thesis model.
@@ -167,6 +176,16 @@ struct Baseline {
     return law == BaseLaw::bingham && transition_time_s > 0.0;
   }
   [[nodiscard]] bool has_tanh_transition() const noexcept { return law == BaseLaw::bingham && tanh_transition; }
+  /// Current laws whose exponent q is not 1 (CurrentLaw).
+  [[nodiscard]] bool has_current_exponent() const noexcept {
+    return law != BaseLaw::spencer && (yield_n.current_exponent != 1.0 || viscous_ns_m.current_exponent != 1.0);
+  }
+  /// A spring k x beside the Bingham law (the accumulator's gas charge), stiffness_n_m.
+  [[nodiscard]] bool has_bingham_stiffness() const noexcept { return law == BaseLaw::bingham && stiffness_n_m > 0.0; }
+  /// A viscous force that is not linear in v (bingham): viscous_exponent ≠ 1 at v_r > 0.
+  [[nodiscard]] bool has_viscous_exponent() const noexcept {
+    return law == BaseLaw::bingham && viscous_ref_m_s > 0.0 && viscous_exponent != 1.0;
+  }
 };
 
 /// Bingham force at velocity v for a yield force and viscous coefficient

@@ -64,6 +64,10 @@ void law_table(std::string& t, const char* name, const char* comment, const Curr
   t += sigma_line("limit_sigma", s.limit, value_range);
   t += "rate_per_a = " + num(v.rate_per_a) + "\n";
   t += sigma_line("rate_per_a_sigma", s.rate_per_a, kCurrentRateRange);
+  if (v.current_exponent != 1.0) {
+    t += "current_exponent = " + num(v.current_exponent) + "  # q: exp(-rate_per_a |I|^q)\n";
+    t += sigma_line("current_exponent_sigma", s.current_exponent, kCurrentExponentRange);
+  }
   t += "fitted = " + fitted_list(f) + "  # the others are held (sigma 0)\n";
 }
 
@@ -131,6 +135,10 @@ void read_law(const toml::table& root, const char* name, const std::string& orig
   s.limit = sigma_of(t, "limit_sigma", value_range);
   v.rate_per_a = t.in("rate_per_a", kCurrentRateRange);
   s.rate_per_a = sigma_of(t, "rate_per_a_sigma", kCurrentRateRange);
+  if (t.has("current_exponent")) {
+    v.current_exponent = t.in("current_exponent", kCurrentExponentRange);
+    s.current_exponent = sigma_of(t, "current_exponent_sigma", kCurrentExponentRange);
+  }
   f = {false, false, false};
   const std::vector<std::string> fitted = t.has("fitted") ? t.strings("fitted") : std::vector<std::string>{};
   for (const std::string& p : fitted) {
@@ -282,6 +290,16 @@ std::string baseline_toml(const BaselineFile& f) {
       t += "transition_time_s = " + num(b.transition_time_s) + "  # the band is v_tf_m_s + transition_time_s |a|\n";
       t += sigma_line("transition_time_s_sigma", f.sigma.transition_time_s, kTransitionTimeRange);
     }
+    if (b.has_bingham_stiffness()) {
+      t += "stiffness_n_m = " + num(b.stiffness_n_m) + "  # a spring k x beside the law (the accumulator)\n";
+      t += sigma_line("stiffness_n_m_sigma", f.sigma.stiffness_n_m, kStiffnessRange);
+    }
+    if (b.has_viscous_exponent()) {
+      t += "viscous_exponent = " + num(b.viscous_exponent) +
+           "  # the viscous force C v_r (|v| / v_r)^m sgn v, m this exponent\n";
+      t += sigma_line("viscous_exponent_sigma", f.sigma.viscous_exponent, kViscousExponentRange);
+      t += "viscous_ref_m_s = " + num(b.viscous_ref_m_s) + "  # v_r: C is the force per velocity there\n";
+    }
   } else {
     t += "\n[bouc_wen]  # F = Y z + C v + k0 x, z' = (v/x_y)(1 - |z|^2 (1/2 + 1/2 sgn(v z)))\n";
     t += "yield_disp_m = " + num(b.yield_disp_m) + "\n";
@@ -412,6 +430,18 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
       if (t.has("transition_time_s")) {
         b.transition_time_s = t.in("transition_time_s", kTransitionTimeRange);
         f.sigma.transition_time_s = sigma_of(t, "transition_time_s_sigma", kTransitionTimeRange);
+      }
+      if (t.has("stiffness_n_m")) {
+        b.stiffness_n_m = t.in("stiffness_n_m", kStiffnessRange);
+        f.sigma.stiffness_n_m = sigma_of(t, "stiffness_n_m_sigma", kStiffnessRange);
+      }
+      if (t.has("viscous_exponent") != t.has("viscous_ref_m_s"))
+        fail(origin, t.has("viscous_exponent") ? t.where("viscous_exponent") : t.where("viscous_ref_m_s"),
+             "bingham.viscous_exponent", "needs viscous_ref_m_s beside it (and the other way round)");
+      if (t.has("viscous_exponent")) {
+        b.viscous_exponent = t.in("viscous_exponent", kViscousExponentRange);
+        f.sigma.viscous_exponent = sigma_of(t, "viscous_exponent_sigma", kViscousExponentRange);
+        b.viscous_ref_m_s = t.in("viscous_ref_m_s", kVelocityBandRange);
       }
     } else {
       b.yield_disp_m = t.in("yield_disp_m", kYieldDispRange);

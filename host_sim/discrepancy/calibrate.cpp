@@ -23,7 +23,7 @@ namespace {
 
 /// The parameters a calibration can fit.
 enum Slot : std::size_t {
-  kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kBand, kCoilSlow, kCoilFast,
+  kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kBand, kCoilSlow, kCoilFast, kViscExp, kYq, kCq,
   // The spencer law (physics/spencer_law.hpp): α at the records' lowest,
   // middle and highest current (Layout::node_a), c_0 and c_1 at the lowest
   // and highest, γ at 0 A and its rate, k_1, k_0.
@@ -34,7 +34,8 @@ constexpr std::array<const char*, kSlots> kSlotName{
     "yield_n.at_zero",      "yield_n.limit",        "yield_n.rate_per_a", "viscous_ns_m.at_zero", "viscous_ns_m.limit",
     "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m",
     "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share",  "transition_time_s",
-    "lost_motion_band_m_s", "coil.tau_slow_s",      "coil.tau_fast_s",
+    "lost_motion_band_m_s", "coil.tau_slow_s",      "coil.tau_fast_s",   "viscous_exponent",
+    "yield_n.current_exponent", "viscous_ns_m.current_exponent",
     "spencer.alpha_n_m(I_lo)", "spencer.alpha_n_m(I_mid)", "spencer.alpha_n_m(I_hi)", "spencer.c0_ns_m(I_lo)",
     "spencer.c0_ns_m(I_hi)", "spencer.c1_ns_m(I_lo)", "spencer.c1_ns_m(I_hi)", "spencer.gamma_per_m_pow_n",
     "spencer.gamma_rate_per_a", "spencer.k1_n_m", "spencer.k0_n_m"};
@@ -52,11 +53,11 @@ constexpr std::array<const char*, kSlots> kSlotName{
 /// rate as the exponential laws', k_1 as the Bouc–Wen k_0 and k_0 from
 /// 0.1 mN/m (none, in effect: the laboratory's published 0.15 N/m).
 constexpr std::array<double, kSlots> kLower{1e-3,  1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7,
-                                            1e-2,  1e-5, 1e-12, 1e-3, 1e-6, 1e-5, 1e-4, 1e-4,
+                                            1e-2,  1e-5, 1e-12, 1e-3, 1e-6, 1e-5, 1e-4, 1e-4, 0.05, 0.2, 0.2,
                                             1.0,   1.0,  1.0,  1e-3, 1e-3, 1e-3, 1e-3, 1e-2,
                                             0.02,  1e-2, 1e-4};
 constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1,
-                                            1e9, 0.1, 1e-5, 1.0,  0.1,  10.0, 10.0, 10.0,
+                                            1e9, 0.1, 1e-5, 1.0,  0.1,  10.0, 10.0, 10.0, 3.0, 5.0, 5.0,
                                             1e10, 1e10, 1e10, 1e10, 1e10, 1e10, 1e10, 1e20,
                                             20.0, 1e9, 1e9};
 
@@ -72,6 +73,8 @@ static_assert(searched_within(kYa, kYieldForceRange) && searched_within(kYb, kYi
               searched_within(kPlay, kPlayRange) && searched_within(kShare, kShareRange) &&
               searched_within(kTau, kTransitionTimeRange) && searched_within(kBand, kVelocityBandRange) &&
               searched_within(kCoilSlow, kCoilTimeConstantRange) && searched_within(kCoilFast, kCoilTimeConstantRange) &&
+              searched_within(kViscExp, kViscousExponentRange) && searched_within(kYq, kCurrentExponentRange) &&
+              searched_within(kCq, kCurrentExponentRange) &&
               searched_within(kSpA0, kStiffnessRange) && searched_within(kSpA1, kStiffnessRange) &&
               searched_within(kSpA2, kStiffnessRange) && searched_within(kSpC0a, kViscousRange) &&
               searched_within(kSpC0b, kViscousRange) && searched_within(kSpC1a, kViscousRange) &&
@@ -97,6 +100,9 @@ double& slot_ref(Baseline& b, Slot s) {
     case kBand: return b.lost_motion_band_m_s;
     case kCoilSlow: return b.coil.tau_slow_s;
     case kCoilFast: return b.coil.tau_fast_s;
+    case kViscExp: return b.viscous_exponent;
+    case kYq: return b.yield_n.current_exponent;
+    case kCq: return b.viscous_ns_m.current_exponent;
     case kSpGamma: return b.spencer.gamma_per_m_pow_n;
     case kSpGammaRate: return b.spencer.gamma_rate_per_a;
     case kSpK1: return b.spencer.k1_n_m;
@@ -501,10 +507,14 @@ struct Extras {
   bool transition_time = false;
   bool lost_motion = false;
   bool viscous_play = false;  ///< the lost motion's force inside the play viscous (share held at 1)
+  bool current_exponent = false;  ///< the current laws' exponents q fitted
+  bool stiffness = false;     ///< a spring beside the Bingham law (stiffness_n_m)
+  bool viscous_exponent = false;  ///< the Bingham law's viscous force as a power of v
 };
 
 Extras extras_of(const Baseline& b) {
-  return {b.has_transition_time(), b.has_lost_motion(), b.has_viscous_lost_motion()};
+  return {b.has_transition_time(), b.has_lost_motion(), b.has_viscous_lost_motion(), b.has_current_exponent(),
+          b.has_bingham_stiffness(), b.has_viscous_exponent()};
 }
 
 /// Fits `law` (with the tanh transition when `tanh` and the law is Bingham)
@@ -563,12 +573,15 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     layout.free.push_back(kCa);
     if (fit.viscous_fitted.limit) layout.free.push_back(kCb);
     if (fit.viscous_fitted.rate_per_a) layout.free.push_back(kCc);
+    if (extras.current_exponent) layout.free.insert(layout.free.end(), {kYq, kCq});
   }
   if (spencer) {
     // its shape is in its own slots
   } else if (law == BaseLaw::bingham) {
     layout.free.push_back(kVtf);
     if (extras.transition_time) layout.free.push_back(kTau);
+    if (extras.stiffness) layout.free.push_back(kK0);
+    if (extras.viscous_exponent) layout.free.push_back(kViscExp);
   } else {
     layout.free.push_back(kXy);
     layout.free.push_back(kK0);
@@ -613,6 +626,13 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     base.viscous_ns_m = law_through(pts, &CurrentPoint::viscous_ns_m, thesis.viscous_ns_m.rate_per_a, 1e-2 * c_max);
   }
   const double vmax = median(p.vmax_m_s);
+  // The viscous exponent's reference velocity: the start's, the fit's it
+  // grows from, or the records' median peak velocity (held, not fitted).
+  if (extras.viscous_exponent) {
+    base.viscous_ref_m_s = vmax;
+    if (start_at != nullptr && start_at->viscous_ref_m_s > 0.0) base.viscous_ref_m_s = start_at->viscous_ref_m_s;
+    if (from != nullptr && from->baseline.viscous_ref_m_s > 0.0) base.viscous_ref_m_s = from->baseline.viscous_ref_m_s;
+  }
   const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
   std::vector<double> ks;
   for (const auto& q : pts)
@@ -630,6 +650,35 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
       s.viscous_ns_m.at_zero = s.viscous_ns_m.at(top_current_a(p));
     }
     starts.push_back(s);
+  } else if (from != nullptr && extras.current_exponent && !from->baseline.has_current_exponent()) {
+    // From the fit without it: both laws with an exponent of 1.5 or 2.5
+    // (the value at 1 A unchanged).
+    for (const double q : {1.5, 2.5}) {
+      Baseline s = from->baseline;
+      s.yield_n.current_exponent = s.viscous_ns_m.current_exponent = q;
+      starts.push_back(s);
+    }
+  } else if (from != nullptr && extras.stiffness && !from->baseline.has_bingham_stiffness()) {
+    // From the fit without it: a spring whose force at the largest half
+    // range is 1 % or 5 % of the yield force at the largest current (an
+    // accumulator's gas charge: tens of newtons on a 2 kN damper).
+    const double y_top = std::max(std::fabs(from->baseline.yield_n.at(top_current_a(p))), 1e-3);
+    const double amp_max = *std::max_element(p.half_range_m.begin(), p.half_range_m.end());
+    for (const double f : {0.01, 0.05}) {
+      Baseline s = from->baseline;
+      s.stiffness_n_m = clamp_slot(f * y_top / std::max(amp_max, 1e-6), kK0);
+      starts.push_back(s);
+    }
+  } else if (from != nullptr && extras.viscous_exponent && !from->baseline.has_viscous_exponent()) {
+    // From the fit without it: the viscous force the same at v_r, the
+    // records' median peak velocity, and an exponent of 0.6 or 0.85
+    // (shear thinning, as MR fluids show past yield).
+    for (const double m : {0.6, 0.85}) {
+      Baseline s = from->baseline;
+      s.viscous_ref_m_s = vmax;
+      s.viscous_exponent = m;
+      starts.push_back(s);
+    }
   } else if (from != nullptr && extras.lost_motion && !from->baseline.has_lost_motion()) {
     // From the fit without it: a play at the largest current of 5 % or 20 %
     // of the smallest half range (a plateau short against the stroke),
@@ -810,8 +859,8 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     sigma[kYb] = sigma[kYa];
     sigma[kCb] = sigma[kCa];
   }
-  fit.sigma.yield_n = {sigma[kYa], sigma[kYb], sigma[kYc]};
-  fit.sigma.viscous_ns_m = {sigma[kCa], sigma[kCb], sigma[kCc]};
+  fit.sigma.yield_n = {sigma[kYa], sigma[kYb], sigma[kYc], sigma[kYq]};
+  fit.sigma.viscous_ns_m = {sigma[kCa], sigma[kCb], sigma[kCc], sigma[kCq]};
   fit.sigma.v_tf_m_s = sigma[kVtf];
   fit.sigma.yield_disp_m = sigma[kXy];
   fit.sigma.stiffness_n_m = sigma[kK0];
@@ -820,6 +869,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   fit.sigma.lost_motion_share = sigma[kShare];
   fit.sigma.lost_motion_band_m_s = sigma[kBand];
   fit.sigma.transition_time_s = sigma[kTau];
+  fit.sigma.viscous_exponent = sigma[kViscExp];
   fit.sigma.coil_tau_slow_s = sigma[kCoilSlow];
   fit.sigma.coil_tau_fast_s = sigma[kCoilFast];
 
@@ -829,12 +879,15 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
       if (s != kDelay && s != kCoilSlow && s != kCoilFast) shown.push_back(s);
   } else {
     shown = {kYa, kYb, kYc, kCa, kCb, kCc};
+    if (extras.current_exponent) shown.insert(shown.end(), {kYq, kCq});
   }
   if (spencer) {
     // shown above
   } else if (law == BaseLaw::bingham) {
     shown.push_back(kVtf);
     if (extras.transition_time) shown.push_back(kTau);
+    if (extras.stiffness) shown.push_back(kK0);
+    if (extras.viscous_exponent) shown.push_back(kViscExp);
   } else {
     shown.push_back(kXy);
     shown.push_back(kK0);
@@ -1034,11 +1087,20 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     std::vector<Slot> slots;  // the new extra's parameters
     if (add.transition_time) slots.push_back(kTau);
     if (add.lost_motion) slots.insert(slots.end(), {kPlay, add.viscous_play ? kBand : kShare});
+    // The yield law's exponent must be identified; the viscous law's may end
+    // on its bound (a viscous coefficient that hardly changes with the
+    // current leaves it free), reported as such below.
+    if (add.current_exponent) slots.push_back(kYq);
+    if (add.stiffness) slots.push_back(kK0);
+    if (add.viscous_exponent) slots.push_back(kViscExp);
     const LawFit from = res.fits[cur];
     Extras extras = extras_of(from.baseline);
     extras.transition_time = extras.transition_time || add.transition_time;
     extras.lost_motion = extras.lost_motion || add.lost_motion;
     extras.viscous_play = extras.viscous_play || add.viscous_play;
+    extras.current_exponent = extras.current_exponent || add.current_exponent;
+    extras.stiffness = extras.stiffness || add.stiffness;
+    extras.viscous_exponent = extras.viscous_exponent || add.viscous_exponent;
     LawFit f = fit_law(p, from.baseline.law, from.baseline.tanh_transition, options, &from, extras);
     f.record_gaps = baseline_gaps(f.baseline, records, options.smoothing_half_window_s);
     res.fits.push_back(std::move(f));
@@ -1104,8 +1166,21 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
       }
       cur = kept;
     }
+    // The law's shape (baseline.hpp): only with check records, the only ones
+    // that can keep it (each is a fit of its own on every record).
+    if (res.fits[cur].baseline.law == BaseLaw::bingham && !check.empty()) {
+      if (options.current_exponent && p.currents_a.size() >= 3)
+        cur = try_extra(cur, {.current_exponent = true}, "a current exponent on its search bound");
+      if (options.viscous_exponent)
+        cur = try_extra(cur, {.viscous_exponent = true}, "the viscous exponent on its search bound");
+      if (options.stiffness) cur = try_extra(cur, {.stiffness = true}, "the stiffness on its search bound");
+    }
     finals.push_back(cur);
   }
+  if (check.empty() && (options.current_exponent || options.viscous_exponent || options.stiffness))
+    res.notes.push_back(
+        "the Bingham law's current exponent, viscous exponent and stiffness: not fitted (no --check records to show "
+        "that they generalize)");
   // Without check records no extra is kept and the plain forms are
   // chosen by BIC. With them, each form with its kept extras is judged on
   // them too: the BIC of the fitted records alone prefers whichever form's

@@ -54,8 +54,8 @@ struct ParamEstimate {
 
 /// Standard errors of a baseline's parameters, SI (0 = not fitted).
 struct BaselineSigmas {
-  CurrentLaw yield_n{0.0, 0.0, 0.0};
-  CurrentLaw viscous_ns_m{0.0, 0.0, 0.0};
+  CurrentLaw yield_n{0.0, 0.0, 0.0, 0.0};
+  CurrentLaw viscous_ns_m{0.0, 0.0, 0.0, 0.0};
   double v_tf_m_s = 0.0;
   double yield_disp_m = 0.0;
   double stiffness_n_m = 0.0;
@@ -64,6 +64,7 @@ struct BaselineSigmas {
   double lost_motion_share = 0.0;
   double lost_motion_band_m_s = 0.0;
   double transition_time_s = 0.0;
+  double viscous_exponent = 0.0;
   double coil_tau_slow_s = 0.0;
   double coil_tau_fast_s = 0.0;
 };
@@ -115,6 +116,13 @@ struct CalibrateOptions {
   /// The lost motion's forms tried, each on the same fit (the one with the
   /// lower check gap kept when both are).
   LostMotionForm lost_motion_form = LostMotionForm::both;
+  /// Also fit the chosen Bingham law with a spring k x beside it, then with
+  /// a viscous exponent (baseline.hpp), each kept as the lost motion above.
+  bool stiffness = true;
+  bool viscous_exponent = true;
+  /// Also fit the chosen Bingham law's current laws with their exponents q
+  /// (CurrentLaw, baseline.hpp), before the two above; three currents or more.
+  bool current_exponent = true;
   std::size_t samples_per_record = 4000;
   double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s;
   std::string name = "calibrated";  ///< Baseline::name of the result

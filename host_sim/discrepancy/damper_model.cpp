@@ -160,8 +160,8 @@ void DamperModel::coefficients(const std::vector<double>& current_a, std::vector
   for (std::size_t k = 0; k < n; ++k) {
     const double i = std::fabs(current_a[k]);
     if (i != i_prev) {
-      e_y = std::exp(-y.rate_per_a * i);
-      e_c = std::exp(-c.rate_per_a * i);
+      e_y = std::exp(-y.rate_per_a * (y.current_exponent == 1.0 ? i : std::pow(i, y.current_exponent)));
+      e_c = std::exp(-c.rate_per_a * (c.current_exponent == 1.0 ? i : std::pow(i, c.current_exponent)));
       i_prev = i;
     }
     a_y[k] = y.at_zero * e_y;
@@ -353,6 +353,11 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const bool timed = p_.has_transition_time();
   const bool tanh_shape = p_.has_tanh_transition();
   const double tau_s = p_.transition_time_s;
+  // The Bingham law's spring and its viscous exponent (baseline.hpp).
+  const double k_bingham = p_.has_bingham_stiffness() ? p_.stiffness_n_m : 0.0;
+  const bool power_viscous = p_.has_viscous_exponent();
+  const double v_r = p_.viscous_ref_m_s;
+  const double m_minus_1 = p_.viscous_exponent - 1.0;
   const bool preyield = set.contains(Effect::preyield_hysteresis) && param(Effect::preyield_hysteresis, 0, 0.0) > 0.0;
   // The spencer law has its own pre-yield (Eq. (9)): a preyield_hysteresis
   // effect leaves it as it is.
@@ -433,8 +438,11 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       z = bouc_wen_step(z, v, dt, x_y);
     } else {
       const double band = timed ? v_tf + tau_s * in_.accel_abs_m_s2[k] : v_tf;
+      // C v_r (|v|/v_r)^m sgn v as C (|v|/v_r)^(m−1) v.
+      const double c_eff = power_viscous ? (av > 0.0 ? cv * std::pow(av / v_r, m_minus_1) : 0.0) : cv;
       // Eq. 4.1, 4.4, 5.12, or the tanh transition (baseline.hpp).
-      fb = tanh_shape ? bingham_tanh_force_n(v, fy, cv, band) : bingham_force_n(v, fy, cv, band);
+      fb = tanh_shape ? bingham_tanh_force_n(v, fy, c_eff, band) : bingham_force_n(v, fy, c_eff, band);
+      elastic = k_bingham * xd[k];
     }
     if (lost_motion) {
       const double e = ws.lm_factor[k];

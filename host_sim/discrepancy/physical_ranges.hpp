@@ -79,6 +79,11 @@ inline constexpr PhysicalRange kForceDelayRange{0.0, 0.1, "s", "a lag"};
 /// 100 ms, twenty times the few milliseconds the fluid's chains and the
 /// valve's pressure take to form again.
 inline constexpr PhysicalRange kTransitionTimeRange{1e-6, 0.1, "s", "a time"};
+/// The Bingham law's viscous exponent (baseline.hpp): shear thinning below 1,
+/// thickening above; MR fluids past yield lie between about 0.2 and 2.
+/// A current law's exponent q (baseline.hpp, CurrentLaw).
+inline constexpr PhysicalRange kCurrentExponentRange{0.01, 10.0, "", "an exponent"};
+inline constexpr PhysicalRange kViscousExponentRange{0.01, 10.0, "", "an exponent"};
 
 // ---- the spencer law (Spencer et al. 1997, physics/spencer_law.hpp) ------------------
 
