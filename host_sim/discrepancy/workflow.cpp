@@ -559,6 +559,76 @@ void drop_wandering_offset(const SelectionContext& ctx, Selection& current, Mode
   current = Selection{f.set, f.params, f.rss_n2, fit_rss(ctx.held, f.set, f.params, ws)};
 }
 
+/// Contact lengths of actuator travel after the end of the play by which the
+/// rod has taken up a compliant stop: e^(−5) = 0.7 % of the exponential
+/// take-up (soft_contact_step) is left, and a contact spring's deflection has
+/// settled to the force within the same travel.
+constexpr double kTakeUpLengths = 5.0;
+/// Least share of the fit samples with the rod engaged for the check to judge:
+/// fewer, and a delay's trace there is too faint to tell either way.
+constexpr double kMinEngagedShare = 0.1;
+
+/// Fit samples at which the actuator has travelled, since its last reversal,
+/// at least `take_up_m`: the rod has crossed the play and taken up its stop.
+std::vector<std::size_t> engaged_samples(const SelectionContext& ctx, double take_up_m) {
+  const ModelInput& in = ctx.fd.model->input();
+  const std::size_t n = in.disp_m.size();
+  std::vector<double> travel(n, 0.0);
+  double since = 0.0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((in.vel_m_s[k] > 0.0) != (in.vel_m_s[k - 1] > 0.0)) since = 0.0;
+    since += std::fabs(in.disp_m[k] - in.disp_m[k - 1]);
+    travel[k] = since;
+  }
+  std::vector<std::size_t> out;
+  for (const std::size_t k : ctx.fd.index) {
+    if (travel[k] >= take_up_m) out.push_back(k);
+  }
+  return out;
+}
+
+/// A transport delay shifts the whole force; free play changes it only where
+/// the rod is taking up the play at a reversal. A time_delay selected beside
+/// a backlash is kept only if it also lowers the residual where the rod has
+/// crossed the play and taken up its stop (the damper force's viscous and
+/// current-driven changes, which a delay shifts too) by ΔBIC ≥ min_delta_bic
+/// on those samples. One that helps only at the engagements is describing
+/// how the rod engages (a smoother stop than the catalogue's), not a delay of
+/// the force channel, and is dropped, the rest refitted.
+void drop_engagement_delay(const SelectionContext& ctx, Selection& current, ModelWorkspace& ws,
+                           std::vector<Effect>& dropped, std::vector<std::string>& findings) {
+  if (!current.set.contains(Effect::backlash) || !current.set.contains(Effect::time_delay)) return;
+  const std::vector<double> play = own_params(current.set, current.params, Effect::backlash);
+  const double contact_m =
+      current.set.form(Effect::backlash) == kBacklashImpactSpring ? play[1] : play[1] * play[0];
+  const double take_up_m = play[0] + kTakeUpLengths * contact_m;
+  const std::vector<std::size_t> engaged = engaged_samples(ctx, take_up_m);
+  if (static_cast<double>(engaged.size()) < kMinEngagedShare * static_cast<double>(ctx.fd.index.size())) return;
+  EffectSet without = current.set;
+  without.effects.erase(std::find(without.effects.begin(), without.effects.end(), Effect::time_delay));
+  FitOutcome f = fit_effects(ctx.fd, without, carry_params(without, current.set, current.params));
+  const FitData on_engaged = make_fit_data(*ctx.fd.model, ctx.fd.measured_force_n, engaged, 0);
+  std::vector<double> resid;
+  const double rss_with = fit_rss(on_engaged, current.set, current.params, ws, &resid);
+  const double rss_without = fit_rss(on_engaged, f.set, f.params, ws);
+  std::vector<double> times(engaged.size());
+  for (std::size_t r = 0; r < engaged.size(); ++r) times[r] = ctx.fd.model->input().time_s[engaged[r]];
+  const double n_eff = noise_effective_samples(times, resid);
+  const double delta_bic = n_eff * std::log(std::max(rss_without, 1e-300) / std::max(rss_with, 1e-300)) -
+                           std::log(std::max(n_eff, 1.0));
+  if (delta_bic >= ctx.opt.min_delta_bic) return;
+  const double delay_s = own_params(current.set, current.params, Effect::time_delay)[0];
+  dropped.push_back(Effect::time_delay);
+  findings.push_back("time_delay (" + format_number("%.3g", delay_s) +
+                     " s) dropped beside backlash: where the rod has taken up the play and its stop (" +
+                     std::to_string(engaged.size()) + " of " + std::to_string(ctx.fd.index.size()) +
+                     " fit samples, at least " + format_number("%.3g", take_up_m * 1e3) +
+                     " mm of travel after a reversal) it lowers the BIC by " + format_number("%.1f", delta_bic) +
+                     " < " + format_number("%g", ctx.opt.min_delta_bic) +
+                     ": it describes how the rod engages, not a delay of the force channel.");
+  current = Selection{f.set, f.params, f.rss_n2, fit_rss(ctx.held, f.set, f.params, ws)};
+}
+
 /// Normalized RMS gap of `model` against the measured force over `index`.
 double gap_over(std::span<const double> measured, std::span<const double> model, std::span<const std::size_t> index) {
   double se = 0.0;
@@ -849,6 +919,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
     forward_selection(ctx, current, ws, res.rounds);
     backward_check(ctx, current, ws, res.dropped);
     drop_wandering_offset(ctx, current, ws, res.dropped, res.findings);
+    drop_engagement_delay(ctx, current, ws, res.dropped, res.findings);
     if (current.set.contains(Effect::time_delay) || current.set.contains(Effect::preyield_hysteresis)) {
       std::vector<double> resid;
       (void)fit_rss(fd, current.set, current.params, ws, &resid);

@@ -175,6 +175,48 @@ TEST(DiscrepancyIndependentStudy, GeneratorAndWorkflowAgreeOnTheCatalogue) {
   for (const auto e : indep::kOutOfCatalogueEffects) EXPECT_FALSE(workflow_knows(e)) << indep::effect_name(e);
 }
 
+/// The first case from `seed` on (at most 16 tries) whose backlash is drawn
+/// in the form `form`, without quantization: a 10 s record, every effect
+/// sized to ENR `enr`. (The seeds the test starts from are the first such.)
+indep::Case first_with_play_form(std::vector<indep::Effect> effects, std::uint64_t seed, const std::string& form,
+                                 double enr, std::uint64_t& seed_used) {
+  for (std::uint64_t s = seed; s < seed + 16; ++s) {
+    indep::Spec spec;
+    spec.effects = effects;
+    spec.seed = s;
+    spec.duration_s = 10.0;
+    spec.target_enr = enr;
+    indep::Case c = indep::generate(spec);
+    if (c.forms[0] == form && c.quantization_form == "none") {
+      seed_used = s;
+      return c;
+    }
+  }
+  seed_used = 0;
+  return {};
+}
+
+// Free play against a transport delay, by what each acts on. A delay shifts
+// the whole force, also where the rod has crossed the play and taken up its
+// stop; free play changes the force only while the rod takes it up. A play
+// that engages more smoothly than the catalogue's stop leaves a trace at the
+// engagements that a sub-millisecond delay partly absorbs: that delay must
+// go (workflow.cpp, drop_engagement_delay), and a true delay beside the same
+// play must stay.
+TEST(DiscrepancyIndependentStudy, ASmoothPlayIsNotGivenADelayAndATrueDelayBesideItIsKept) {
+  const mrd::discrepancy::DiscrepancyOptions opt;
+  std::uint64_t seed = 0;
+  const indep::Case play = first_with_play_form({indep::Effect::backlash}, 71003, "smooth", 24.0, seed);
+  ASSERT_NE(seed, 0u) << "no smooth play drawn in 16 seeds from 71003";
+  const auto r_play = mrd::discrepancy::run_discrepancy(to_measured(play, seed), opt);
+  EXPECT_EQ(named_label(r_play), "backlash") << "seed " << seed << ": " << play.description;
+  const indep::Case both =
+      first_with_play_form({indep::Effect::backlash, indep::Effect::time_delay}, 72003, "smooth", 24.0, seed);
+  ASSERT_NE(seed, 0u) << "no smooth play drawn in 16 seeds from 72003";
+  const auto r_both = mrd::discrepancy::run_discrepancy(to_measured(both, seed), opt);
+  EXPECT_EQ(named_label(r_both), "backlash+time_delay") << "seed " << seed << ": " << both.description;
+}
+
 struct Tally {
   int hit = 0, total = 0;
   void add(bool ok) {
