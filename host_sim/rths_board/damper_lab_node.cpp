@@ -118,7 +118,12 @@ int DamperLabNode::serve() noexcept {
       }
     } else if (decode(f, config_.nodes.controller, c) == protocol::DecodeError::kOk) {
       if (!finished_) {
-        take(c);
+        if (config_.own_clock) {
+          latest_ = c;
+          have_latest_ = latest_new_ = true;
+        } else {
+          take(c);
+        }
         ++taken;
       }
     } else if (decode(f, config_.nodes.controller, r) == protocol::DecodeError::kOk) {
@@ -129,6 +134,15 @@ int DamperLabNode::serve() noexcept {
     }
   }
   return taken;
+}
+
+void DamperLabNode::step_on_clock() noexcept {
+  if (!have_latest_ || finished_) return;
+  RthsCommand c = latest_;
+  if (!latest_new_) ++held_steps_;
+  c.counter = static_cast<std::uint8_t>(steps_ & 0xFF);  // the clock's step, not the runtime's tick
+  latest_new_ = false;
+  take(c);
 }
 
 void DamperLabNode::stop_for_command_timeout() noexcept {

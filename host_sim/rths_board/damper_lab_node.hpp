@@ -44,6 +44,11 @@ struct DamperLabConfig {
   peers::DriveConfig drive{};       ///< nodes are taken from `nodes`
   double force_limit_n = 250e3;     ///< the actuator's force capacity
   double tracking_limit_m = 0.010;
+  /// false: one step per command (the runtime's tick is the lab's); true:
+  /// serve() only keeps the latest command and step_on_clock(), called on the
+  /// laboratory's own clock every period, steps with it, holding the last
+  /// one when none arrived.
+  bool own_clock = false;
 };
 
 class DamperLabNode {
@@ -56,6 +61,14 @@ class DamperLabNode {
   void send_beacon() noexcept;
   /// Every frame received (see the file comment). Returns the commands taken.
   int serve() noexcept;
+  /// Own clock: one step with the latest command received (none since the
+  /// last step: the last one held, counted in held_steps()). Does nothing
+  /// before the first command or once finished.
+  void step_on_clock() noexcept;
+  /// Own clock: a command has arrived (the clock may start).
+  bool has_command() const noexcept { return have_latest_; }
+  /// Own clock: steps taken without a new command.
+  std::uint32_t held_steps() const noexcept { return held_steps_; }
   /// No command for too long while running: hold and report the stop.
   void stop_for_command_timeout() noexcept;
 
@@ -87,6 +100,8 @@ class DamperLabNode {
   peers::DriveLogic drive_;
   double force_n_ = 0.0;
   double held_command_m_ = 0.0;
+  RthsCommand latest_{};
+  bool have_latest_ = false, latest_new_ = false;
   bool have_current_ = false;
   std::uint8_t current_counter_ = 0;
   LabState state_ = LabState::kWaiting;
@@ -94,7 +109,7 @@ class DamperLabNode {
   RunState run_state_ = RunState::kFinished;
   bool finished_ = false;
   std::uint64_t steps_ = 0, stop_step_ = 0;
-  std::uint32_t rejected_ = 0, sequence_gaps_ = 0, current_late_ = 0, tx_errors_ = 0;
+  std::uint32_t rejected_ = 0, sequence_gaps_ = 0, current_late_ = 0, tx_errors_ = 0, held_steps_ = 0;
   std::uint8_t status_counter_ = 0;
   double peak_force_n_ = 0.0;
 };

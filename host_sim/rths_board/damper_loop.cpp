@@ -47,7 +47,8 @@ void DamperLoop::drain() noexcept {
     RthsLabStatus s;
     if (protocol::decode(f, spec_.nodes.daq, m) == protocol::DecodeError::kOk) {
       meas_ = m;
-      if (m.counter == static_cast<std::uint8_t>(k_ & 0xFF)) fresh_ = true;
+      if (spec_.lab_own_clock ? (k_ == 0 || m.counter != taken_counter_) : m.counter == static_cast<std::uint8_t>(k_ & 0xFF))
+        fresh_ = true;
       if (k_ == 0 && m.counter == 0) have_meas0_ = true;
     } else if (decode(f, spec_.lab_node, s) == protocol::DecodeError::kOk) {
       const auto rate = static_cast<std::uint16_t>(spec_.rate_hz + 0.5);
@@ -88,6 +89,7 @@ LoopEnd DamperLoop::tick() noexcept {
   if (fresh_) {
     silent_run_ = 0;
     fresh_ = false;
+    taken_counter_ = meas_.counter;
   } else {
     ++stale_ticks_;
     if (++silent_run_ >= spec_.lab_silent_ticks) return end_ = LoopEnd::kLabSilent;

@@ -56,6 +56,10 @@ struct DamperLoopSpec {
   protocol::NodeIds nodes{};              ///< the runtime sends RthsCommand as `controller`, DaqAccel as `daq`
   std::uint8_t lab_node = kDefaultLabNode;
   int lab_silent_ticks = 50;
+  /// The laboratory steps on its own clock (mrd-rths-lab --own-clock): a
+  /// sample is fresh when it is newer than the last one taken, whatever its
+  /// counter (its counter is the laboratory's step, not this tick).
+  bool lab_own_clock = false;
 };
 
 class DamperLoop {
@@ -122,6 +126,7 @@ class DamperLoop {
   std::vector<double> forces_, accel_;
   std::uint64_t k_ = 0;
   protocol::DaqMotion meas_{};
+  std::uint8_t taken_counter_ = 0;  ///< counter of the sample the last tick took (own clock)
   bool fresh_ = false, have_meas0_ = false, lab_waiting_ = false, sent_accel0_ = false;
   std::uint16_t lab_rate_mismatch_hz_ = 0;
   int silent_run_ = 0;

@@ -15,6 +15,11 @@
 /// board's control task's CurrentCommand) and DAQ (DaqMotion, DriveStatus);
 /// the force limit is then the actuator's 250 kN unless --force-limit-kn.
 ///
+/// With --own-clock the damper laboratory steps every period on its own
+/// CLOCK_MONOTONIC from the first command on, with the latest command (the
+/// last one held when none arrived); its line "own clock overruns=…
+/// worst_late_us=… held_steps=…" comes before the summary.
+///
 /// Last line on stdout: "mrd-rths-lab: summary steps=… state=… stop=…
 /// stop_step=… peak_force_n=… rejected=… sequence_gaps=… tx_errors=… run=…".
 /// Exit status: 0 the runtime ended the run, 1 runtime failure (no CAN, no
@@ -30,6 +35,7 @@
 
 #include "firmware/platform/linux/posix_clock.hpp"
 #include "firmware/platform/linux/socketcan_bus.hpp"
+#include "firmware/app/periodic_schedule.hpp"
 #include "host_sim/peers/peer_main_common.hpp"
 #include "host_sim/rths_board/damper_lab_node.hpp"
 #include "host_sim/rths_board/lab_node.hpp"
@@ -49,7 +55,7 @@ struct Options {
   std::uint64_t plant_seed = 0, noise_seed = 1;
   std::string specimen = "benchmark";
   double delay_ms = 15.0, lag_ms = 2.0, idle_years = 0.0;
-  bool force_limit_given = false;
+  bool force_limit_given = false, own_clock = false;
 };
 
 const char* run_state_name(rb::RunState s, bool finished) {
@@ -65,7 +71,8 @@ const char* run_state_name(rb::RunState s, bool finished) {
 /// Beacons until the first command, then answers commands until the
 /// runtime's run status, a command timeout or a signal; the summary line.
 template <class Node>
-int serve_until_done(Node& lab, mrd::posix::SocketCanBus& bus, const Options& o, std::uint8_t runtime_node) {
+int serve_until_done(Node& lab, mrd::posix::SocketCanBus& bus, const Options& o, std::uint8_t runtime_node,
+                     std::int64_t period_ns = 0) {
   const auto started = Clock::now();
   auto last_command = started;
   auto next_beacon = started;
@@ -87,6 +94,27 @@ int serve_until_done(Node& lab, mrd::posix::SocketCanBus& bus, const Options& o,
       lab.stop_for_command_timeout();
       exit_status = 1;
       break;
+    }
+    if constexpr (requires { lab.step_on_clock(); }) {
+      if (o.own_clock && lab.has_command()) {
+        // Own clock: a step every period on CLOCK_MONOTONIC with the latest
+        // command (the last one held when none arrived), from the first command on.
+        mrd::posix::PosixClock clock;
+        mrd::app::PeriodicSchedule schedule(period_ns, clock.now_ns());
+        while (!lab.finished() && !mrd::peers::g_peer_stop.load()) {
+          if (lab.serve() > 0) last_command = Clock::now();
+          if (Clock::now() - last_command > std::chrono::milliseconds(o.command_timeout_ms)) {
+            lab.stop_for_command_timeout();
+            exit_status = 1;
+            break;
+          }
+          lab.step_on_clock();
+          clock.sleep_until_ns(schedule.after_tick(clock.now_ns()));
+        }
+        std::printf("mrd-rths-lab: own clock overruns=%u worst_late_us=%.1f held_steps=%u\n", schedule.overruns(),
+                    static_cast<double>(schedule.worst_late_ns()) / 1e3, lab.held_steps());
+        break;
+      }
     }
     bus.wait_readable(std::chrono::milliseconds(lab.state() == rb::LabState::kWaiting ? 20 : 5));
     if (lab.serve() > 0) last_command = Clock::now();
@@ -113,6 +141,7 @@ int run_damper(const Options& o, const mrd::app::BoardConfig& board) {
   c.damper = board.damper;
   c.settling_quotient = mrd::physics::settling_quotient_after_idle(mrd::units::years_to_s(o.idle_years), board.settling);
   c.tracking_limit_m = o.tracking_limit_mm * 1e-3;
+  c.own_clock = o.own_clock;
   if (o.force_limit_given) c.force_limit_n = o.force_limit_kn * 1e3;
   const double delay_steps = o.delay_ms * 1e-3 * c.rate_hz;
   if (std::fabs(delay_steps - std::round(delay_steps)) > 1e-6 || std::lround(delay_steps) < 1) {
@@ -151,7 +180,7 @@ int run_damper(const Options& o, const mrd::app::BoardConfig& board) {
               1e-3 * c.force_limit_n);
   std::fputs(mrd::posix::apply_realtime({board.sched_fifo_priority, board.lock_memory, board.cpu}).c_str(), stdout);
   std::fflush(stdout);
-  return serve_until_done(*lab, *bus, o, c.nodes.controller);
+  return serve_until_done(*lab, *bus, o, c.nodes.controller, std::llround(1e9 / c.rate_hz));
 }
 
 int run(const Options& o) {
@@ -235,6 +264,10 @@ int main(int argc, char** argv) {
   app.add_option("--lag-ms", o.lag_ms, "--specimen damper: the actuator's first-order servo lag, ms")
       ->capture_default_str()
       ->check(mrd::app::finite_in(0.0, 1000.0, "ms"));
+  app.add_flag("--own-clock", o.own_clock,
+               "--specimen damper: step every period on this program's own clock (CLOCK_MONOTONIC) with the latest "
+               "command, holding the last one when none arrived (default: one step per command); the runtime then "
+               "needs --lab-own-clock");
   app.add_option("--idle-years", o.idle_years, "--specimen damper: the damper's idle time before the run, years")
       ->capture_default_str()
       ->check(mrd::app::finite_in(0.0, 1000.0, "years"));

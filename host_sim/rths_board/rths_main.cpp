@@ -67,6 +67,7 @@ struct Options {
   // --specimen damper
   std::string specimen = "benchmark", building, mode, compensate = "model";
   double pga_g = 0.1127, delay_ms = 15.0, lag_ms = 2.0, idle_years = 0.0;
+  bool lab_own_clock = false;
 };
 
 /// Waits for the laboratory's beacon on `bus`: 0 when it came, else the exit status.
@@ -199,6 +200,7 @@ int run_damper(const Options& o) {
   spec.nodes = board.nodes;
   spec.lab_node = static_cast<std::uint8_t>(o.lab_node);
   spec.lab_silent_ticks = std::max(1, static_cast<int>(std::lround(o.lab_silent_ms * 1e-3 * spec.rate_hz)));
+  spec.lab_own_clock = o.lab_own_clock;
   d.board = o.board_file;
   d.record = o.record;
   d.pga_g = o.pga_g;
@@ -334,6 +336,9 @@ int main(int argc, char** argv) {
   app.add_option("--compensate", o.compensate, "--specimen damper: model (the prediction over the delay) or none")
       ->capture_default_str()
       ->check(CLI::IsMember({"model", "none"}));
+  app.add_flag("--lab-own-clock", o.lab_own_clock,
+               "--specimen damper: the laboratory steps on its own clock (mrd-rths-lab --own-clock): a sample is "
+               "fresh when newer than the last one taken, whatever its counter");
   app.add_option("--idle-years", o.idle_years, "--specimen damper: the damper's idle time before the run, years")
       ->capture_default_str()
       ->check(mrd::app::finite_in(0.0, 1000.0, "years"));

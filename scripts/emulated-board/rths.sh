@@ -20,6 +20,9 @@
 #      building, the model-based compensation, the board's firmware control
 #      task beside it) at 1 kHz over the record's first
 #      $MRD_EMU_RTHS_DAMPER_DURATION_S seconds (default 5) at 0.1127 g.
+#   4. the same with the laboratory on its own clock (mrd-rths-lab --own-clock,
+#      mrd-rths --lab-own-clock) for each mode of $MRD_EMU_RTHS_OWN_CLOCK_MODES
+#      (default none), tagged [rths-own-clock-MODE-runtime], [...-lab].
 # The serial console goes to $OUT/serial.txt; lines are tagged
 # [rths-N-runtime], [rths-N-lab], [rths-N-summary], [rths-stop-runtime],
 # [rths-stop-lab], [rths-stop-files], [rths-stop-json], [rths-damper-MODE-runtime],
@@ -38,7 +41,8 @@ damper_modes=${MRD_EMU_RTHS_DAMPER_MODES-"passive-on semi-active"}
 damper_duration_s=${MRD_EMU_RTHS_DAMPER_DURATION_S:-5}
 [[ $damper_duration_s =~ ^[0-9]+(\.[0-9]+)?$ ]] ||
   emu_fail "MRD_EMU_RTHS_DAMPER_DURATION_S: '$damper_duration_s' is not a duration in s"
-for m in $damper_modes; do
+own_clock_modes=${MRD_EMU_RTHS_OWN_CLOCK_MODES:-}
+for m in $damper_modes $own_clock_modes; do
   [[ $m =~ ^(passive-off|passive-on|semi-active)$ ]] ||
     emu_fail "MRD_EMU_RTHS_DAMPER_MODES: '$m' is not passive-off, passive-on or semi-active"
 done
@@ -68,6 +72,7 @@ cp "$record" "$rootfs/mrd/record.csv"
   echo "RUNS=\"$runs\""
   echo "DAMPER_MODES=\"$damper_modes\""
   echo "DAMPER_DURATION=$damper_duration_s"
+  echo "OWN_CLOCK_MODES=\"$own_clock_modes\""
   cat <<'SCENARIO'
 ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
 n=0
@@ -111,6 +116,19 @@ for mode in $DAMPER_MODES; do
   tag rths-damper-$mode-runtime /tmp/rths-damper.log
   tag rths-damper-$mode-lab /tmp/lab-damper.log
   tag rths-damper-$mode-summary /tmp/rths-damper-$mode/summary.json
+done
+for mode in $OWN_CLOCK_MODES; do
+  echo "EMU: rths own clock $mode: 1000 Hz, ${DAMPER_DURATION} s"
+  ./mrd-rths-lab --board board.toml --specimen damper --rate-hz 1000 --delay-ms 15 --lag-ms 2 --own-clock \
+      > /tmp/lab-own.log 2>&1 &
+  lab=$!
+  ./mrd-rths --board board.toml --specimen damper --record record.csv --rate-hz 1000 --mode "$mode" \
+      --pga-g 0.1127 --delay-ms 15 --lag-ms 2 --duration-s "$DAMPER_DURATION" --lab-own-clock \
+      --out /tmp/rths-own-$mode > /tmp/rths-own.log 2>&1
+  echo "EMU: rths own clock $mode: runtime exit $?"
+  wait $lab; echo "EMU: rths own clock $mode: lab exit $?"
+  tag rths-own-clock-$mode-runtime /tmp/rths-own.log
+  tag rths-own-clock-$mode-lab /tmp/lab-own.log
 done
 echo "EMU: done rths"
 SCENARIO

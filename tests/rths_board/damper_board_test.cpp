@@ -62,7 +62,8 @@ struct ThesisBoardRig {
   std::unique_ptr<DamperLoop> loop;
   std::unique_ptr<DamperLabNode> lab;
 
-  ThesisBoardRig(control::ControlMode mode, const std::vector<double>& ag, double force_limit_n = 250e3) {
+  ThesisBoardRig(control::ControlMode mode, const std::vector<double>& ag, double force_limit_n = 250e3,
+                 bool own_clock = false) {
     app::BoardConfig board = peers::load_board_file(fs::path(MRD_BOARDS_DIR) / "sim" / "board.toml");
     board.mode = mode;
     firmware_end.set_filters(app::control_task_filters(board.nodes));
@@ -75,6 +76,7 @@ struct ThesisBoardRig {
     s.settling_quotient = sq;
     s.ground_accel_m_s2 = ag;
     s.nodes = board.nodes;
+    s.lab_own_clock = own_clock;
     loop = std::make_unique<DamperLoop>(runtime_end, s, [this] {
       const control::ControllerOutput out = firmware->tick();
       clock.advance_ns(1'000'000);
@@ -85,6 +87,7 @@ struct ThesisBoardRig {
     c.damper = plant.damper;
     c.settling_quotient = sq;
     c.force_limit_n = force_limit_n;
+    c.own_clock = own_clock;
     lab = std::make_unique<DamperLabNode>(lab_end, c);
   }
 
@@ -117,6 +120,57 @@ TEST(ThesisRthsBoard, PeakBaseDisplacementWithinTwoPercentOfTheClosedLoop) {
                 rig.loop->rms_tracking_error_pct(), 1e-3 * rig.lab->peak_force_n());
     EXPECT_LT(std::fabs(peak_m - ref_m), 0.02 * ref_m) << control::mode_name(mode);
   }
+}
+
+/// The laboratory on its own clock: after each runtime tick it steps
+/// `steps_after(tick)` times (1: the clocks agree).
+template <class StepsAfter>
+LoopEnd run_lab_on_own_clock(ThesisBoardRig& rig, StepsAfter steps_after) {
+  rig.lab->send_beacon();
+  EXPECT_TRUE(rig.loop->lab_ready());
+  LoopEnd e = LoopEnd::kRunning;
+  for (std::uint64_t k = 0; (e = rig.loop->tick()) == LoopEnd::kRunning; ++k) {
+    rig.lab->serve();
+    for (int i = steps_after(k); i > 0; --i) rig.lab->step_on_clock();
+  }
+  rig.loop->send_run_status();
+  rig.lab->serve();
+  return e;
+}
+
+TEST(ThesisRthsBoard, LabOnItsOwnClockHoldsTheLastCommandAndAgreesWhenTheClocksDo) {
+  // 10 s of El Centro, semi-active. With the clocks agreeing (one lab step
+  // after each tick) the run is the lockstep run's, sample for sample; with a
+  // lab clock 1 % fast (a second step after every 100th tick) the lab holds
+  // the last command for the extra steps, and 1 % slow (no step after every
+  // 100th tick) the runtime uses the last sample again: both runs finish.
+  auto ag = thesis_el_centro_board_1khz();
+  ag.resize(10000);
+  const auto mode = control::ControlMode::kSemiActive;
+  ThesisBoardRig lockstep(mode, ag);
+  ASSERT_EQ(lockstep.run(), LoopEnd::kFinished);
+
+  ThesisBoardRig same(mode, ag, 250e3, true);
+  ASSERT_EQ(run_lab_on_own_clock(same, [](std::uint64_t) { return 1; }), LoopEnd::kFinished);
+  EXPECT_EQ(same.lab->held_steps(), 0u);
+  EXPECT_EQ(same.loop->stale_ticks(), 0u);
+  ASSERT_EQ(same.loop->base_displacement_m().size(), lockstep.loop->base_displacement_m().size());
+  for (std::size_t i = 0; i < ag.size(); ++i)
+    ASSERT_EQ(same.loop->base_displacement_m()[i], lockstep.loop->base_displacement_m()[i]) << "tick " << i;
+
+  ThesisBoardRig fast(mode, ag, 250e3, true);
+  ASSERT_EQ(run_lab_on_own_clock(fast, [](std::uint64_t k) { return k % 100 == 99 ? 2 : 1; }), LoopEnd::kFinished);
+  EXPECT_EQ(fast.lab->held_steps(), ag.size() / 100 - 1);  // the last tick's steps are never taken
+  EXPECT_EQ(fast.loop->stale_ticks(), 0u);
+
+  ThesisBoardRig slow(mode, ag, 250e3, true);
+  ASSERT_EQ(run_lab_on_own_clock(slow, [](std::uint64_t k) { return k % 100 == 99 ? 0 : 1; }), LoopEnd::kFinished);
+  EXPECT_EQ(slow.lab->held_steps(), 0u);
+  EXPECT_EQ(slow.loop->stale_ticks(), ag.size() / 100 - 1);
+  const double ref_m = lockstep.loop->peak_base_displacement_m();
+  std::printf("lab on its own clock, semi-active, 10 s: peak base displacement lockstep %.4f mm, lab 1 %% fast %.4f "
+              "mm, 1 %% slow %.4f mm\n",
+              1e3 * ref_m, 1e3 * fast.loop->peak_base_displacement_m(), 1e3 * slow.loop->peak_base_displacement_m());
 }
 
 TEST(ThesisRthsBoard, LabForceLimitEndsTheRunAndTheActuatorHolds) {
