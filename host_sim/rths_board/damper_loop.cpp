@@ -15,9 +15,8 @@ double checked_damper_loop_dt(const DamperLoopSpec& s) {
   if (s.ground_accel_m_s2.empty()) throw std::invalid_argument("RTHS runtime: empty record");
   if (!(s.rate_hz >= 100.0 && s.rate_hz <= 65535.0))
     throw std::invalid_argument("RTHS runtime: rate outside 100..65535 Hz");
-  if (!s.building.isolators.empty() || s.building.dampers.size() != 1)
-    throw std::invalid_argument("RTHS runtime: the building needs one damper placement (the physical part) and no "
-                                "isolators");
+  if (s.building.dampers.size() != 1)
+    throw std::invalid_argument("RTHS runtime: the building needs one damper placement (the physical part)");
   return 1.0 / s.rate_hz;
 }
 
@@ -29,12 +28,18 @@ DamperLoop::DamperLoop(hal::CanBus& bus, const DamperLoopSpec& spec, ControlTick
       dt_s_(checked_damper_loop_dt(spec)),
       control_tick_(std::move(control_tick)),
       actuator_model_(spec.delay_s, spec.lag_s, dt_s_) {
-  structure::validate(spec_.building);
   building_.init(spec_.building, dt_s_);
   model_.init(spec_.damper, dt_s_, spec_.settling_quotient);
-  predictor_ = std::make_unique<rths::DamperCommandPredictor>(spec_.building, building_, spec_.delay_s, spec_.lag_s);
-  forces_.assign(building_.force_elements().size(), 0.0);
-  accel_.assign(static_cast<std::size_t>(building_.dofs()), 0.0);
+  element_ = static_cast<int>(spec_.building.dampers.front().element);
+  count_ = spec_.building.dampers.front().count;
+  const auto& elements = building_.force_elements();
+  slot_ = static_cast<std::size_t>(std::lower_bound(elements.begin(), elements.end(), element_) - elements.begin());
+  if (spec_.building.isolators.empty())
+    predictor_.emplace(spec_.building, building_.linear(), spec_.delay_s, spec_.lag_s);
+  else
+    isolated_predictor_.emplace(spec_.building, building_, dt_s_, spec_.delay_s, spec_.lag_s);
+  forces_.assign(elements.size(), 0.0);
+  accel_.assign(static_cast<std::size_t>(building_.linear().dofs()), 0.0);
   const std::size_t n = spec_.ground_accel_m_s2.size();
   for (auto* v : {&target_, &measured_, &force_, &command_, &current_, &base_}) v->reserve(n);
   tick_ns_.reserve(n);
@@ -62,7 +67,7 @@ void DamperLoop::drain() noexcept {
 }
 
 void DamperLoop::send_accel(std::size_t n) noexcept {
-  building_.abs_accel_m_s2(accel_.data());
+  building_.linear().abs_accel_m_s2(accel_.data());
   protocol::DaqAccel a;
   a.ground_accel_m_s2 = static_cast<float>(n < spec_.ground_accel_m_s2.size() ? spec_.ground_accel_m_s2[n] : 0.0);
   a.base_accel_m_s2 = static_cast<float>(accel_[0]);
@@ -95,26 +100,28 @@ LoopEnd DamperLoop::tick() noexcept {
     if (++silent_run_ >= spec_.lab_silent_ticks) return end_ = LoopEnd::kLabSilent;
   }
   const std::size_t n = static_cast<std::size_t>(k_);
-  const int element = predictor_->element();
+  const structure::DiscreteBuilding& linear = building_.linear();
   const double force_n = static_cast<double>(meas_.damper_force_n);
-  target_.push_back(building_.element_deformation_m(element));
+  target_.push_back(linear.element_deformation_m(element_));
   measured_.push_back(static_cast<double>(meas_.damper_disp_m));
   force_.push_back(force_n);
-  base_.push_back(building_.base_disp_m());
-  peak_base_m_ = std::max(peak_base_m_, std::fabs(building_.base_disp_m()));
+  base_.push_back(linear.base_disp_m());
+  peak_base_m_ = std::max(peak_base_m_, std::fabs(linear.base_disp_m()));
 
   const control::ControllerOutput out = control_tick_();
   const double current_a =
       plant::command_stage_a(plant::CoilDrive{static_cast<double>(out.current_command_a), out.drive_enable});
   current_.push_back(current_a);
   model_.step(current_a, actuator_model_.velocity_m_s(), actuator_model_.position_m());
-  forces_[predictor_->slot()] = predictor_->count() * force_n;
+  forces_[slot_] = count_ * force_n;
   building_.step(spec_.ground_accel_m_s2[n], forces_.data());
   send_accel(n + 1);
-  const double target_next = building_.element_deformation_m(element);
-  const double command =
-      spec_.compensate ? predictor_->predict(building_, spec_.ground_accel_m_s2, n + 1, model_, current_a).position_m
-                       : target_next;
+  const double target_next = linear.element_deformation_m(element_);
+  double command = target_next;
+  if (spec_.compensate)
+    command = predictor_ ? predictor_->predict(linear, spec_.ground_accel_m_s2, n + 1, model_, current_a).position_m
+                         : isolated_predictor_->predict(building_, spec_.ground_accel_m_s2, n + 1, model_, current_a)
+                               .position_m;
   actuator_model_.step(command);
   command_.push_back(command);
   RthsCommand c{command, target_next, static_cast<std::uint8_t>(k_ & 0xFF)};
@@ -123,7 +130,7 @@ LoopEnd DamperLoop::tick() noexcept {
   if (!encode(c, spec_.nodes.controller, f)) return end_ = LoopEnd::kCommandOutOfRange;
   if (bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
   if (k_ >= steps()) {
-    peak_base_m_ = std::max(peak_base_m_, std::fabs(building_.base_disp_m()));
+    peak_base_m_ = std::max(peak_base_m_, std::fabs(building_.linear().base_disp_m()));
     end_ = LoopEnd::kFinished;
   }
   return end_;

@@ -34,6 +34,9 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
+#include "host_sim/rths/numerical_building.hpp"
 #include "host_sim/rths/thesis_actuator.hpp"
 #include "host_sim/rths_board/board_loop.hpp"
 #include "host_sim/structure/building.hpp"
@@ -45,7 +48,7 @@
 namespace mrd::rths_board {
 
 struct DamperLoopSpec {
-  structure::BuildingParams building;  ///< one damper placement, no isolators
+  structure::BuildingParams building;  ///< one damper placement (isolators: their hysteresis in the closed loop's sub-steps)
   physics::MrDamperParams damper{};    ///< the compensator's model of the specimen
   double settling_quotient = 1.0;      ///< the model's idle state
   double delay_s = 0.015;              ///< the actuator's identified delay (≥ one step)
@@ -68,8 +71,8 @@ class DamperLoop {
   using ControlTick = std::function<control::ControllerOutput()>;
 
   /// Reserves every record. Throws std::invalid_argument for an empty
-  /// record, a rate outside 100..65535 Hz, a building with isolators or not
-  /// one damper placement, or a delay under one step.
+  /// record, a rate outside 100..65535 Hz, a building without exactly one
+  /// damper placement, or a delay under one step.
   DamperLoop(hal::CanBus& bus, const DamperLoopSpec& spec, ControlTick control_tick);
 
   /// Drains the bus for the lab's beacon: true once a "waiting" status and
@@ -119,10 +122,14 @@ class DamperLoop {
   DamperLoopSpec spec_;
   double dt_s_;
   ControlTick control_tick_;
-  structure::DiscreteBuilding building_;
+  rths::NumericalBuilding building_;  ///< stepped as the closed loop's plant steps it
   physics::MrDamper model_;
   rths::LookaheadServo actuator_model_;
-  std::unique_ptr<rths::DamperCommandPredictor> predictor_;
+  int element_ = 0;
+  double count_ = 1.0;
+  std::size_t slot_ = 0;
+  std::optional<rths::DamperCommandPredictor> predictor_;           ///< without isolators
+  std::optional<rths::IsolatedCommandPredictor> isolated_predictor_;  ///< with them (copies the building per tick)
   std::vector<double> forces_, accel_;
   std::uint64_t k_ = 0;
   protocol::DaqMotion meas_{};

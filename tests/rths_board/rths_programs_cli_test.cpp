@@ -18,17 +18,6 @@ test::RunResult run_rths_program(const char* binary, const std::string& args, co
   return test::run_command("timeout -s KILL 20 " + std::string(binary) + " " + args, dir.path());
 }
 
-TEST(RthsProgramsCli, RuntimeRefusesABuildingWithIsolators) {
-  test::TempDir dir;
-  const std::string building = (fs::path(MRD_SOURCE_DIR) / "buildings" / "lead-rubber-7dof.toml").string();
-  const auto r = run_rths_program(MRD_RTHS, "--board " + kBoardFile + " --specimen damper --record " + kRecordFile +
-                                                " --building " + building + " --out " + (dir.path() / "o").string(),
-                                  dir);
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("lead-rubber-7dof.toml"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("isolators"), std::string::npos) << r.err;
-}
-
 TEST(RthsProgramsCli, RuntimeRefusesABuildingWithTwoDamperPlacements) {
   test::TempDir dir;
   const std::string building = (fs::path(MRD_SOURCE_DIR) / "buildings" / "fixed-base-8dof.toml").string();
