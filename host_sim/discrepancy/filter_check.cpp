@@ -12,6 +12,11 @@ constexpr double kTauMin_s = 2e-4;
 constexpr double kTauMax_s = 0.2;
 constexpr int kTauGrid = 36;
 constexpr int kGoldenSteps = 24;
+/// Shortest anti-alias filter tried behind the delay, s.
+constexpr double kAntiAliasMin_s = 1e-5;
+/// Longest, in sample periods: a first-order filter with its corner at a
+/// quarter of the sample rate, τ = 1 / (2π f_s / 4) = 2 / (π f_s).
+constexpr double kAntiAliasMaxPerSample = 2.0 / 3.14159265358979323846;
 
 double rss_over(std::span<const double> measured, std::span<const double> model, std::span<const std::size_t> index) {
   double s = 0.0;
@@ -161,7 +166,33 @@ FilterCheck compare_delay_with_lowpass(const DamperModel& model, const EffectSet
   const auto [tau_s, best_rss] = minimize_log(rss_at, kTauMin_s, kTauMax_s, kTauGrid, kGoldenSteps);
   out.tau_s = tau_s;
 
-  const double rss_delay = rss_over(measured_force_n, with_delay, fit_index);
+  // The delay hypothesis is the force channel's own: a transport delay behind
+  // the acquisition's anti-alias filter, whose corner is at or above a
+  // quarter of the sample rate (it passes the band the record resolves), so
+  // its time constant is at most 4 / (2π f_s) = 0.64 sample periods. The
+  // delay is shortened by the filter's, so the pair keeps the fitted mean delay.
+  const double sample_s = t.size() > 1 ? (t.back() - t.front()) / static_cast<double>(t.size() - 1) : 0.0;
+  const double anti_alias_max_s = kAntiAliasMaxPerSample * sample_s;
+  std::vector<double> behind_filter;
+  std::vector<double> shortened(params.begin(), params.end());
+  const auto rss_behind = [&](double tau_aa_s) {
+    shortened[*off] = std::max(out.delay_s - tau_aa_s, 0.0);
+    model.simulate(set, shortened, ws, behind_filter);
+    first_order_lowpass(t, std::vector<double>(behind_filter), tau_aa_s, behind_filter);
+    return rss_over(measured_force_n, behind_filter, fit_index);
+  };
+  double rss_delay = rss_over(measured_force_n, with_delay, fit_index);
+  if (anti_alias_max_s > kAntiAliasMin_s) {
+    const auto [tau_aa_s, rss_aa] =
+        minimize_log(rss_behind, kAntiAliasMin_s, anti_alias_max_s, kTauGrid / 3, kGoldenSteps / 2);
+    if (rss_aa < rss_delay) {
+      rss_delay = rss_aa;
+      out.anti_alias_s = tau_aa_s;
+      shortened[*off] = std::max(out.delay_s - tau_aa_s, 0.0);
+      model.simulate(set, shortened, ws, behind_filter);
+      first_order_lowpass(t, std::vector<double>(behind_filter), tau_aa_s, with_delay);
+    }
+  }
   first_order_lowpass(t, undelayed, tau_s, filtered);
   const double held_delay = rss_over(measured_force_n, with_delay, held_index);
   const double held_lowpass = rss_over(measured_force_n, filtered, held_index);

@@ -16,7 +16,13 @@
 ///   n_eff ln(RSS_delay / RSS_lowpass) ≥ min_delta_bic   on the fit samples, and
 ///   RSS_lowpass < RSS_delay                             on the held-out samples
 /// </pre>
-/// (the same evidence an effect needs to join the model). The delay's model
+/// (the same evidence an effect needs to join the model). The delay stands
+/// for the force channel's lag, which is a transport delay behind the
+/// acquisition's anti-alias filter: RSS_delay is the lower of the pure delay's
+/// and that of the delay behind a first-order filter whose corner is at or
+/// above a quarter of the sample rate (τ ≤ 2/(π f_s), 0.64 ms at 1 kHz; the
+/// delay shortened by it), so that the acquisition's anti-alias filter is not
+/// taken for a low-pass outside the catalogue. The delay's model
 /// was fitted jointly with the other effects and the low-pass was not, so
 /// the comparison leans towards the delay.
 
@@ -50,6 +56,9 @@ struct FilterCheck {
   bool checked = false;           ///< the model had a time_delay to compare
   double delay_s = 0.0;           ///< the model's fitted delay
   double tau_s = 0.0;             ///< the best low-pass time constant
+  /// The anti-alias filter (τ ≤ 2/(π f_s)) behind which the delay fits
+  /// best, s; 0 when the pure delay fits better.
+  double anti_alias_s = 0.0;
   double delta_bic = 0.0;         ///< n_eff ln(RSS_delay / RSS_lowpass), fit samples
   double held_out_reduction = 0.0;  ///< 1 − RSS_lowpass / RSS_delay, held-out samples
   bool lowpass_better = false;
