@@ -1177,7 +1177,9 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     }
     finals.push_back(cur);
   }
-  if (check.empty() && (options.current_exponent || options.viscous_exponent || options.stiffness))
+  const bool bingham_fitted = std::any_of(res.fits.begin(), res.fits.end(),
+                                          [](const LawFit& f) { return f.baseline.law == BaseLaw::bingham; });
+  if (check.empty() && bingham_fitted && (options.current_exponent || options.viscous_exponent || options.stiffness))
     res.notes.push_back(
         "the Bingham law's current exponent, viscous exponent and stiffness: not fitted (no --check records to show "
         "that they generalize)");

@@ -10,6 +10,10 @@
 /// standard errors from the Jacobian, the choice between them, and the
 /// validity range the records cover.
 ///
+/// With check records, the chosen Bingham form is then fitted again with its
+/// shape terms in turn (baseline.hpp: the current laws' exponent q, the
+/// viscous exponent m, the spring k), each kept as the other extras are.
+///
 /// Joint fit: every record's residual (F_model − F_meas) is divided by that
 /// record's RMS force, so that records weigh alike whatever their force
 /// level; each record is thinned to about `samples_per_record` samples (as
