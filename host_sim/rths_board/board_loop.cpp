@@ -6,6 +6,7 @@
 
 #include "firmware/app/periodic_schedule.hpp"
 #include "host_sim/rths/rths_run.hpp"
+#include "host_sim/rths_board/rths_fd_frames.hpp"
 
 namespace mrd::rths_board {
 namespace {
@@ -18,6 +19,14 @@ double checked_rate_dt(const BoardLoopSpec& s) {
   if (s.building.k.rows() != n || s.building.c.rows() != n || s.specimen_dof < 0 || s.specimen_dof >= n)
     throw std::invalid_argument("RTHS runtime: M, C, K of different sizes or the specimen's DOF outside them");
   return 1.0 / s.rate_hz;
+}
+
+hal::CanFdBus* loop_fd_bus(hal::CanBus& bus, bool can_fd) {
+  if (!can_fd) return nullptr;
+  auto* fd = dynamic_cast<hal::CanFdBus*>(&bus);
+  if (fd == nullptr || !fd->fd_enabled())
+    throw std::invalid_argument("RTHS runtime: CAN FD asked for, but the bus does not carry CAN FD frames");
+  return fd;
 }
 
 }  // namespace
@@ -36,6 +45,7 @@ std::string loop_end_status(LoopEnd e, LabStopReason lab_reason) {
 
 BoardLoop::BoardLoop(hal::CanBus& bus, const BoardLoopSpec& spec)
     : bus_(bus),
+      fd_bus_(loop_fd_bus(bus, spec.can_fd)),
       spec_(spec),
       dt_s_(checked_rate_dt(spec)),
       integrator_(spec.building, rths::without_specimen(spec.building, spec.specimen, spec.specimen_dof),
@@ -59,16 +69,39 @@ BoardLoop::BoardLoop(hal::CanBus& bus, const BoardLoopSpec& spec)
   tick_ns_.reserve(n);
 }
 
+void BoardLoop::take_measurement(double displacement_m, double force_n, bool for_this_tick, bool first) noexcept {
+  meas_.displacement_m = displacement_m;
+  meas_.force_n = force_n;
+  if (for_this_tick) fresh_ = true;
+  if (k_ == 0 && first) have_meas0_ = true;
+}
+
 void BoardLoop::drain() noexcept {
-  hal::CanFrame f;
-  while (bus_.receive(f) == hal::CanResult::kOk) {
-    ++frames_rx_;
+  for (;;) {
+    hal::CanFrame f;
+    if (fd_bus_ != nullptr) {
+      hal::CanFdFrame g;
+      if (fd_bus_->receive_fd(g) != hal::CanResult::kOk) break;
+      ++frames_rx_;
+      if (g.fd) {
+        RthsFdMeasurement m;
+        if (decode_fd(g, spec_.lab_node, m) == protocol::DecodeError::kOk) {
+          take_measurement(m.displacement_m, m.force_n, m.counter == static_cast<std::uint16_t>(k_ & 0xFFFF),
+                           m.counter == 0);
+        } else {
+          ++rejected_;
+        }
+        continue;
+      }
+      f = hal::as_classic(g);
+    } else {
+      if (bus_.receive(f) != hal::CanResult::kOk) break;
+      ++frames_rx_;
+    }
     RthsMeasurement m;
     RthsLabStatus s;
-    if (decode(f, spec_.lab_node, m) == protocol::DecodeError::kOk) {
-      meas_ = m;
-      if (m.counter == static_cast<std::uint8_t>(k_ & 0xFF)) fresh_ = true;
-      if (k_ == 0 && m.counter == 0) have_meas0_ = true;
+    if (fd_bus_ == nullptr && decode(f, spec_.lab_node, m) == protocol::DecodeError::kOk) {
+      take_measurement(m.displacement_m, m.force_n, m.counter == static_cast<std::uint8_t>(k_ & 0xFF), m.counter == 0);
     } else if (decode(f, spec_.lab_node, s) == protocol::DecodeError::kOk) {
       const auto rate = static_cast<std::uint16_t>(spec_.rate_hz + 0.5);
       if (s.rate_hz != rate) lab_rate_mismatch_hz_ = s.rate_hz;
@@ -78,6 +111,21 @@ void BoardLoop::drain() noexcept {
       ++rejected_;
     }
   }
+}
+
+bool BoardLoop::send_command(double command_m, double target_m) noexcept {
+  if (fd_bus_ != nullptr) {
+    RthsFdCommand c{command_m, target_m, static_cast<std::uint16_t>(k_ & 0xFFFF)};
+    hal::CanFdFrame f;
+    if (!encode_fd(c, spec_.runtime_node, f)) return false;
+    if (fd_bus_->send_fd(f) != hal::CanResult::kOk) ++tx_errors_;
+    return true;
+  }
+  RthsCommand c{command_m, target_m, static_cast<std::uint8_t>(k_ & 0xFF)};
+  hal::CanFrame f;
+  if (!encode(c, spec_.runtime_node, f)) return false;
+  if (bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
+  return true;
 }
 
 bool BoardLoop::lab_ready() noexcept {
@@ -109,13 +157,10 @@ LoopEnd BoardLoop::tick() noexcept {
     comp_->write_coefficients(coefficient_values_.data() + coefficient_time_s_.size() * coefficient_names_.size());
     coefficient_time_s_.push_back(static_cast<double>(k) * dt_s_);
   }
-  RthsCommand c{command, target_next, static_cast<std::uint8_t>(k_ & 0xFF)};
-  hal::CanFrame f;
-  if (!encode(c, spec_.runtime_node, f)) {
+  if (!send_command(command, target_next)) {
     ++k_;
     return end_ = LoopEnd::kCommandOutOfRange;
   }
-  if (bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
   target_now_ = target_next;
   ++k_;
   if (k_ >= steps()) end_ = LoopEnd::kFinished;

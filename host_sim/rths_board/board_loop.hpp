@@ -34,6 +34,7 @@
 #include "host_sim/rths/substructure.hpp"
 #include "host_sim/rths_board/rths_frames.hpp"
 #include "mrd/hal/can_bus.hpp"
+#include "mrd/hal/can_fd_bus.hpp"
 #include "mrd/hal/clock.hpp"
 
 namespace mrd::rths_board {
@@ -50,6 +51,9 @@ struct BoardLoopSpec {
   std::uint8_t runtime_node = 1;
   std::uint8_t lab_node = kDefaultLabNode;
   int lab_silent_ticks = 50;
+  /// Command and measurement as CAN FD frames (rths_fd_frames.hpp); the bus must be a
+  /// hal::CanFdBus with FD enabled. Status frames stay classic.
+  bool can_fd = false;
 };
 
 enum class LoopEnd { kRunning, kFinished, kLabStopped, kLabSilent, kCommandOutOfRange, kInterrupted };
@@ -118,7 +122,11 @@ class BoardLoop {
  private:
   void drain() noexcept;
 
+  void take_measurement(double displacement_m, double force_n, bool for_this_tick, bool first) noexcept;
+  bool send_command(double command_m, double target_m) noexcept;
+
   hal::CanBus& bus_;
+  hal::CanFdBus* fd_bus_ = nullptr;  ///< set with spec.can_fd
   BoardLoopSpec spec_;
   double dt_s_;
   rths::ChenRiclesIntegrator integrator_;

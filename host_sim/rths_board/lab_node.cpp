@@ -15,6 +15,14 @@ LabStopReason reason_of(rths::LabStop s) noexcept {
   return LabStopReason::kNotFinite;
 }
 
+hal::CanFdBus* lab_fd_bus(hal::CanBus& bus, bool can_fd) {
+  if (!can_fd) return nullptr;
+  auto* fd = dynamic_cast<hal::CanFdBus*>(&bus);
+  if (fd == nullptr || !fd->fd_enabled())
+    throw std::invalid_argument("laboratory: CAN FD asked for, but the bus does not carry CAN FD frames");
+  return fd;
+}
+
 double checked_dt(double rate_hz) {
   if (!(rate_hz >= 100.0 && rate_hz <= 65535.0))
     throw std::invalid_argument("laboratory rate outside 100..65535 Hz");
@@ -24,7 +32,10 @@ double checked_dt(double rate_hz) {
 }  // namespace
 
 LabNode::LabNode(hal::CanBus& bus, const LabNodeConfig& config)
-    : bus_(bus), config_(config), lab_(config.plant, config.spec, checked_dt(config.rate_hz)) {
+    : bus_(bus),
+      fd_bus_(lab_fd_bus(bus, config.can_fd)),
+      config_(config),
+      lab_(config.plant, config.spec, checked_dt(config.rate_hz)) {
   now_ = lab_.measure();
 }
 
@@ -33,6 +44,15 @@ void LabNode::send(const hal::CanFrame& f) noexcept {
 }
 
 void LabNode::send_measurement() noexcept {
+  if (fd_bus_ != nullptr) {
+    RthsFdMeasurement m;
+    m.displacement_m = now_.displacement_m;
+    m.force_n = now_.force_n;
+    m.counter = static_cast<std::uint16_t>(steps_ & 0xFFFF);
+    hal::CanFdFrame f;
+    if (!encode_fd(m, config_.lab_node, f) || fd_bus_->send_fd(f) != hal::CanResult::kOk) ++tx_errors_;
+    return;
+  }
   RthsMeasurement m;
   m.displacement_m = now_.displacement_m;
   m.force_n = now_.force_n;
@@ -60,10 +80,10 @@ void LabNode::send_beacon() noexcept {
   send_status();
 }
 
-void LabNode::take(const RthsCommand& c) noexcept {
-  if (c.counter != static_cast<std::uint8_t>(steps_ & 0xFF)) ++sequence_gaps_;
+void LabNode::take(double command_m, double target_m, bool in_sequence) noexcept {
+  if (!in_sequence) ++sequence_gaps_;
   if (state_ == LabState::kWaiting) state_ = LabState::kRunning;
-  lab_.step(c.command_m, c.target_m);
+  lab_.step(command_m, target_m);
   ++steps_;
   if (state_ == LabState::kRunning && lab_.stopped() != rths::LabStop::kNone) {
     state_ = LabState::kStopped;
@@ -77,13 +97,30 @@ void LabNode::take(const RthsCommand& c) noexcept {
 
 int LabNode::serve() noexcept {
   int taken = 0;
-  hal::CanFrame f;
-  while (bus_.receive(f) == hal::CanResult::kOk) {
+  for (;;) {
+    hal::CanFrame f;
+    if (fd_bus_ != nullptr) {
+      hal::CanFdFrame g;
+      if (fd_bus_->receive_fd(g) != hal::CanResult::kOk) break;
+      if (g.fd) {
+        RthsFdCommand c;
+        if (decode_fd(g, config_.runtime_node, c) != protocol::DecodeError::kOk) {
+          ++rejected_;
+        } else if (!finished_) {
+          take(c.command_m, c.target_m, c.counter == static_cast<std::uint16_t>(steps_ & 0xFFFF));
+          ++taken;
+        }
+        continue;
+      }
+      f = hal::as_classic(g);
+    } else if (bus_.receive(f) != hal::CanResult::kOk) {
+      break;
+    }
     RthsCommand c;
     RthsRunStatus r;
-    if (decode(f, config_.runtime_node, c) == protocol::DecodeError::kOk) {
+    if (fd_bus_ == nullptr && decode(f, config_.runtime_node, c) == protocol::DecodeError::kOk) {
       if (!finished_) {
-        take(c);
+        take(c.command_m, c.target_m, c.counter == static_cast<std::uint8_t>(steps_ & 0xFF));
         ++taken;
       }
     } else if (decode(f, config_.runtime_node, r) == protocol::DecodeError::kOk) {

@@ -21,8 +21,10 @@
 #include <cstdint>
 
 #include "host_sim/rths/laboratory.hpp"
+#include "host_sim/rths_board/rths_fd_frames.hpp"
 #include "host_sim/rths_board/rths_frames.hpp"
 #include "mrd/hal/can_bus.hpp"
+#include "mrd/hal/can_fd_bus.hpp"
 
 namespace mrd::rths_board {
 
@@ -32,11 +34,15 @@ struct LabNodeConfig {
   double rate_hz = 1000.0;  ///< one laboratory step per command, 1/rate_hz long
   rths::LabPlantParams plant;
   rths::LaboratorySpec spec;
+  /// Commands and measurements as CAN FD frames (rths_fd_frames.hpp); the bus must be a
+  /// hal::CanFdBus with FD enabled. Status frames stay classic.
+  bool can_fd = false;
 };
 
 class LabNode {
  public:
-  /// Throws std::invalid_argument for a rate outside 100 Hz..65535 Hz.
+  /// Throws std::invalid_argument for a rate outside 100 Hz..65535 Hz, or for
+  /// `can_fd` on a bus that does not carry FD frames.
   LabNode(hal::CanBus& bus, const LabNodeConfig& config);
 
   /// Measurement 0 and the status (waiting before the first command).
@@ -60,12 +66,13 @@ class LabNode {
   double peak_force_n() const noexcept { return lab_.peak_force_n(); }
 
  private:
-  void take(const RthsCommand& c) noexcept;
+  void take(double command_m, double target_m, bool in_sequence) noexcept;
   void send_measurement() noexcept;
   void send_status() noexcept;
   void send(const hal::CanFrame& f) noexcept;
 
   hal::CanBus& bus_;
+  hal::CanFdBus* fd_bus_ = nullptr;  ///< set with config.can_fd
   LabNodeConfig config_;
   rths::Laboratory lab_;
   rths::LabMeasurement now_{};

@@ -31,8 +31,9 @@
 /// above the frames' 10 nm and 0.01 N.
 ///
 /// Bus load: a tick is two frames of at most 135 bits; at 1 kHz that is 27 %
-/// of a 1 Mbit/s bus, at 4096 Hz 111 %: 4096 Hz needs CAN FD or a faster
-/// link (vcan has no bit rate, so the emulated board runs it).
+/// of a 1 Mbit/s bus, at 4096 Hz 111 %: 4096 Hz needs CAN FD (`--can-fd`,
+/// rths_fd_frames.hpp: 53 % at 1 Mbit/s arbitration, 5 Mbit/s data) or a
+/// faster link (vcan has no bit rate, so the emulated board runs either).
 
 #include <cstdint>
 

@@ -56,6 +56,7 @@ struct Options {
   std::string specimen = "benchmark";
   double delay_ms = 15.0, lag_ms = 2.0, idle_years = 0.0;
   bool force_limit_given = false, own_clock = false;
+  bool can_fd = false;
 };
 
 const char* run_state_name(rb::RunState s, bool finished) {
@@ -193,7 +194,12 @@ int run(const Options& o) {
     return 2;
   }
   if (!o.can_interface.empty()) board.can_interface = o.can_interface;
+  if (o.specimen == "damper" && o.can_fd) {
+    std::fprintf(stderr, "mrd-rths-lab: error: --can-fd: only with --specimen benchmark\n");
+    return 2;
+  }
   if (o.specimen == "damper") return run_damper(o, board);
+  c.can_fd = o.can_fd;
   c.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
   c.runtime_node = board.nodes.controller;
   c.lab_node = static_cast<std::uint8_t>(o.lab_node);
@@ -214,15 +220,15 @@ int run(const Options& o) {
       {mrd::protocol::can_id(mrd::protocol::MsgId::kRthsRunStatus, c.runtime_node), 0x7FF}};
   std::unique_ptr<mrd::posix::SocketCanBus> bus;
   try {
-    bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters);
+    bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters, c.can_fd);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrd-rths-lab: error: %s\n", e.what());
     return 1;
   }
   rb::LabNode lab(*bus, c);
-  std::printf("mrd-rths-lab: CAN %s (node %u, runtime node %u), %.0f Hz, plant %s (beta1 %.4g, beta2 %.6g, a3 %.4g, "
+  std::printf("mrd-rths-lab: CAN%s %s (node %u, runtime node %u), %.0f Hz, plant %s (beta1 %.4g, beta2 %.6g, a3 %.4g, "
               "k_e %.6g N/m), tracking limit %.3f mm, force limit %.3f kN\n",
-              board.can_interface.c_str(), c.lab_node, c.runtime_node, c.rate_hz,
+              c.can_fd ? " FD" : "", board.can_interface.c_str(), c.lab_node, c.runtime_node, c.rate_hz,
               o.plant_seed ? "drawn" : "nominal", c.plant.beta1, c.plant.beta2, c.plant.a3,
               c.plant.specimen.stiffness_n_m, o.tracking_limit_mm, o.force_limit_kn);
   std::fputs(mrd::posix::apply_realtime({board.sched_fifo_priority, board.lock_memory, board.cpu}).c_str(), stdout);
@@ -245,6 +251,9 @@ int main(int argc, char** argv) {
   app.add_option("--lab-node", o.lab_node, "CAN node id of the laboratory")->capture_default_str()->check(
       CLI::Range(1, 15));
   app.add_option("--can", o.can_interface, "Override the board's CAN interface (e.g. vcan0)");
+  app.add_flag("--can-fd", o.can_fd,
+               "Command and measurement as 12-byte CAN FD frames (the runtime's --can-fd; the interface needs the FD "
+               "MTU, 72: a CAN FD controller or vcan)");
   app.add_option("--tracking-limit-mm", o.tracking_limit_mm, "Stop when |measured - target| exceeds it, mm")
       ->capture_default_str()
       ->check(mrd::app::positive_up_to(1000.0, "mm"));

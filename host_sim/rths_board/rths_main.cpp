@@ -68,6 +68,7 @@ struct Options {
   std::string specimen = "benchmark", building, mode, compensate = "model";
   double pga_g = 0.1127, delay_ms = 15.0, lag_ms = 2.0, idle_years = 0.0;
   bool lab_own_clock = false;
+  bool can_fd = false;
 };
 
 /// Waits for the laboratory's beacon on `bus`: 0 when it came, else the exit status.
@@ -217,6 +218,11 @@ int run_damper(const Options& o) {
 }
 
 int run(const Options& o) {
+  if (o.specimen == "damper" && o.can_fd) {
+    std::fprintf(stderr, "mrd-rths: error: --can-fd: only with --specimen benchmark (the thesis's set-up talks the "
+                         "closed loop's classic frames)\n");
+    return kExitUsage;
+  }
   if (o.specimen == "damper") return run_damper(o);
   mrd::app::BoardConfig board;
   rb::BoardLoopSpec spec;
@@ -244,6 +250,7 @@ int run(const Options& o) {
   spec.runtime_node = board.nodes.controller;
   spec.lab_node = static_cast<std::uint8_t>(o.lab_node);
   spec.lab_silent_ticks = std::max(1, static_cast<int>(std::lround(o.lab_silent_ms * 1e-3 * spec.rate_hz)));
+  spec.can_fd = o.can_fd;
   d.board = o.board_file;
   d.record = o.record;
   d.record_scale = o.scale;
@@ -262,16 +269,16 @@ int run(const Options& o) {
   const mrd::hal::CanFilter filters[] = {{lab_ids[0], 0x7FF}, {lab_ids[1], 0x7FF}};
   std::unique_ptr<mrd::posix::SocketCanBus> bus;
   try {
-    bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters);
+    bus = std::make_unique<mrd::posix::SocketCanBus>(board.can_interface, filters, spec.can_fd);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrd-rths: error: %s\n", e.what());
     return kExitRuntime;
   }
   auto loop = std::make_unique<rb::BoardLoop>(*bus, spec);
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / spec.rate_hz));
-  std::printf("mrd-rths: board %s, CAN %s (node %u, lab node %u), %.0f Hz (period %lld ns), %s, compensator %s, "
+  std::printf("mrd-rths: board %s, CAN%s %s (node %u, lab node %u), %.0f Hz (period %lld ns), %s, compensator %s, "
               "%zu ticks of %s x %.2f\n",
-              board.name.c_str(), board.can_interface.c_str(), spec.runtime_node, spec.lab_node, spec.rate_hz,
+              board.name.c_str(), spec.can_fd ? " FD" : "", board.can_interface.c_str(), spec.runtime_node, spec.lab_node, spec.rate_hz,
               static_cast<long long>(period_ns), d.structure.c_str(), o.compensator.c_str(),
               spec.ground_accel_m_s2.size(), o.record.c_str(), o.scale);
 
@@ -353,6 +360,9 @@ int main(int argc, char** argv) {
   app.add_option("--lab-node", o.lab_node, "CAN node id of the laboratory")->capture_default_str()->check(
       CLI::Range(1, 15));
   app.add_option("--can", o.can_interface, "Override the board's CAN interface (e.g. vcan0)");
+  app.add_flag("--can-fd", o.can_fd,
+               "Command and measurement as 12-byte CAN FD frames with bit-rate switch (for 4096 Hz on one bus; "
+               "the interface needs the FD MTU, 72: a CAN FD controller or vcan); the laboratory needs --can-fd too");
   app.add_option("--ready-timeout-s", o.ready_timeout_s, "Wait this long for the laboratory's beacon, s")
       ->capture_default_str()
       ->check(mrd::app::positive_up_to(3600.0, "s"));

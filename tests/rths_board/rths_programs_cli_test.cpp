@@ -47,5 +47,17 @@ TEST(RthsProgramsCli, LaboratoryRefusesADelayUnderOneStepAndANodeOfTheDamperLoop
   EXPECT_NE(r.err.find("--lab-node"), std::string::npos) << r.err;
 }
 
+TEST(RthsProgramsCli, BothProgramsRefuseCanFdWithTheThesisSetUp) {
+  test::TempDir dir;
+  auto r = run_rths_program(MRD_RTHS, "--board " + kBoardFile + " --specimen damper --can-fd --record " + kRecordFile +
+                                          " --out " + (dir.path() / "o").string(),
+                            dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--can-fd"), std::string::npos) << r.err;
+  r = run_rths_program(MRD_RTHS_LAB, "--board " + kBoardFile + " --specimen damper --can-fd", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--can-fd"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace mrd::rths_board

@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace mrd::posix {
@@ -37,10 +38,14 @@ hal::BusState bus_state_after_error(std::uint32_t err_class, std::uint8_t crtl, 
   return now;
 }
 
-SocketCanBus::SocketCanBus(const std::string& interface, std::span<const hal::CanFilter> filters) {
+SocketCanBus::SocketCanBus(const std::string& interface, std::span<const hal::CanFilter> filters)
+    : SocketCanBus(interface, filters, false) {}
+
+SocketCanBus::SocketCanBus(const std::string& interface, std::span<const hal::CanFilter> filters, bool can_fd)
+    : fd_(can_fd) {
   if (interface.empty() || interface.size() >= IFNAMSIZ) fail(interface, "interface name", EINVAL);
-  fd_ = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
-  if (fd_ < 0) fail(interface, "socket(PF_CAN, SOCK_RAW, CAN_RAW)", errno);
+  sock_ = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
+  if (sock_ < 0) fail(interface, "socket(PF_CAN, SOCK_RAW, CAN_RAW)", errno);
 
   std::vector<can_filter> raw;
   raw.reserve(filters.size());
@@ -49,33 +54,47 @@ SocketCanBus::SocketCanBus(const std::string& interface, std::span<const hal::Ca
     raw.push_back({f.id & CAN_SFF_MASK, (f.mask & CAN_SFF_MASK) | CAN_EFF_FLAG | CAN_RTR_FLAG});
   }
   const auto filter_bytes = static_cast<socklen_t>(raw.size() * sizeof(can_filter));
+  const int kOn = 1;
   const can_err_mask_t err_mask = CAN_ERR_CRTL | CAN_ERR_BUSOFF | CAN_ERR_RESTARTED | CAN_ERR_TX_TIMEOUT;
   ifreq ifr{};
   std::strncpy(ifr.ifr_name, interface.c_str(), IFNAMSIZ - 1);
+  ifreq mtu_ifr = ifr;  // SIOCGIFMTU writes over the union that holds the index
   sockaddr_can addr{};
   int err = 0;
   const char* what = nullptr;
-  if (::setsockopt(fd_, SOL_CAN_RAW, CAN_RAW_FILTER, raw.empty() ? nullptr : raw.data(), filter_bytes) < 0) {
+  if (::setsockopt(sock_, SOL_CAN_RAW, CAN_RAW_FILTER, raw.empty() ? nullptr : raw.data(), filter_bytes) < 0) {
     what = "setsockopt(CAN_RAW_FILTER)";
-  } else if (::setsockopt(fd_, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &err_mask, sizeof err_mask) < 0) {
+  } else if (::setsockopt(sock_, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &err_mask, sizeof err_mask) < 0) {
     what = "setsockopt(CAN_RAW_ERR_FILTER)";
-  } else if (::ioctl(fd_, SIOCGIFINDEX, &ifr) < 0) {
+  } else if (::ioctl(sock_, SIOCGIFINDEX, &ifr) < 0) {
     what = "ioctl(SIOCGIFINDEX)";
+  } else if (can_fd && ::setsockopt(sock_, SOL_CAN_RAW, CAN_RAW_FD_FRAMES, &kOn, sizeof kOn) < 0) {
+    what = "setsockopt(CAN_RAW_FD_FRAMES) (a kernel without CAN FD)";
+  } else if (can_fd && ::ioctl(sock_, SIOCGIFMTU, &mtu_ifr) < 0) {
+    what = "ioctl(SIOCGIFMTU)";
   } else {
+    if (can_fd && mtu_ifr.ifr_mtu != static_cast<int>(CANFD_MTU)) {
+      const int mtu = mtu_ifr.ifr_mtu;
+      ::close(sock_);
+      sock_ = -1;
+      throw std::runtime_error("CAN interface '" + interface + "': CAN FD asked for, but the interface is classic CAN only (MTU " +
+                               std::to_string(mtu) + ", CAN FD needs " + std::to_string(CANFD_MTU) +
+                               "): use a CAN FD controller, or for vcan `ip link set " + interface + " mtu 72`");
+    }
     addr.can_family = AF_CAN;
     addr.can_ifindex = ifr.ifr_ifindex;
-    if (::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) < 0) what = "bind";
+    if (::bind(sock_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) < 0) what = "bind";
   }
   if (what) {
     err = errno;
-    ::close(fd_);
-    fd_ = -1;
+    ::close(sock_);
+    sock_ = -1;
     fail(interface, what, err);
   }
 }
 
 SocketCanBus::~SocketCanBus() {
-  if (fd_ >= 0) ::close(fd_);
+  if (sock_ >= 0) ::close(sock_);
 }
 
 hal::CanResult SocketCanBus::send(const hal::CanFrame& frame) noexcept {
@@ -85,46 +104,87 @@ hal::CanResult SocketCanBus::send(const hal::CanFrame& frame) noexcept {
   if (frame.remote) cf.can_id |= CAN_RTR_FLAG;
   cf.len = frame.dlc;
   std::memcpy(cf.data, frame.data.data(), frame.dlc);
-  const ssize_t n = ::write(fd_, &cf, sizeof cf);
+  const ssize_t n = ::write(sock_, &cf, sizeof cf);
   if (n == static_cast<ssize_t>(sizeof cf)) return hal::CanResult::kOk;
   if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == ENOBUFS)) return hal::CanResult::kWouldBlock;
   if (n < 0 && errno == ENETDOWN) state_ = hal::BusState::kBusOff;
   return hal::CanResult::kError;
 }
 
-hal::CanResult SocketCanBus::receive(hal::CanFrame& frame) noexcept {
+hal::CanResult SocketCanBus::read_frame(hal::CanFdFrame& out) noexcept {
   for (;;) {
-    can_frame cf{};
-    const ssize_t n = ::read(fd_, &cf, sizeof cf);
+    canfd_frame cf{};
+    const ssize_t n = ::read(sock_, &cf, sizeof cf);
     if (n < 0) {
       if (errno == EAGAIN || errno == EWOULDBLOCK) return hal::CanResult::kWouldBlock;
       if (errno == EINTR) continue;
       ++read_errors_;
       return hal::CanResult::kError;
     }
-    if (n != static_cast<ssize_t>(sizeof cf)) {
+    const bool is_fd = n == static_cast<ssize_t>(CANFD_MTU);
+    if (n != static_cast<ssize_t>(CAN_MTU) && !is_fd) {
       ++read_errors_;
-      continue;  // not a classic frame: skip it
+      continue;  // neither a classic nor an FD frame: skip it
     }
     if (cf.can_id & CAN_ERR_FLAG) {
       ++error_frames_;
       state_ = bus_state_after_error(cf.can_id & CAN_ERR_MASK, cf.data[1], state_);
       continue;
     }
-    frame = hal::CanFrame{};
-    frame.extended = (cf.can_id & CAN_EFF_FLAG) != 0;
-    frame.remote = (cf.can_id & CAN_RTR_FLAG) != 0;
-    frame.id = cf.can_id & (frame.extended ? CAN_EFF_MASK : CAN_SFF_MASK);
-    frame.dlc = cf.len > CAN_MAX_DLEN ? CAN_MAX_DLEN : cf.len;
-    std::memcpy(frame.data.data(), cf.data, frame.dlc);
+    out = hal::CanFdFrame{};
+    out.fd = is_fd;
+    out.brs = is_fd && (cf.flags & CANFD_BRS) != 0;
+    out.extended = (cf.can_id & CAN_EFF_FLAG) != 0;
+    out.remote = !is_fd && (cf.can_id & CAN_RTR_FLAG) != 0;
+    out.id = cf.can_id & (out.extended ? CAN_EFF_MASK : CAN_SFF_MASK);
+    const auto max_len = static_cast<std::uint8_t>(is_fd ? CANFD_MAX_DLEN : CAN_MAX_DLEN);
+    out.len = cf.len > max_len ? max_len : cf.len;
+    std::memcpy(out.data.data(), cf.data, out.len);
     // A frame received means the controller takes part in traffic again.
     if (state_ == hal::BusState::kBusOff) state_ = hal::BusState::kActive;
     return hal::CanResult::kOk;
   }
 }
 
+hal::CanResult SocketCanBus::receive(hal::CanFrame& frame) noexcept {
+  for (;;) {
+    hal::CanFdFrame f;
+    const hal::CanResult r = read_frame(f);
+    if (r != hal::CanResult::kOk) return r;
+    if (f.fd) {
+      ++fd_skipped_;
+      continue;
+    }
+    frame = hal::as_classic(f);
+    return hal::CanResult::kOk;
+  }
+}
+
+hal::CanResult SocketCanBus::receive_fd(hal::CanFdFrame& frame) noexcept { return read_frame(frame); }
+
+hal::CanResult SocketCanBus::send_fd(const hal::CanFdFrame& frame) noexcept {
+  if (!frame.fd) {
+    if (frame.len > CAN_MAX_DLEN) return hal::CanResult::kError;
+    return send(hal::as_classic(frame));
+  }
+  if (!fd_ || !hal::valid_fd_length(frame.len)) return hal::CanResult::kError;
+  canfd_frame cf{};
+  cf.can_id = frame.extended ? ((frame.id & CAN_EFF_MASK) | CAN_EFF_FLAG) : (frame.id & CAN_SFF_MASK);
+  cf.len = frame.len;
+  cf.flags = frame.brs ? CANFD_BRS : 0;
+#ifdef CANFD_FDF
+  cf.flags |= CANFD_FDF;
+#endif
+  std::memcpy(cf.data, frame.data.data(), frame.len);
+  const ssize_t n = ::write(sock_, &cf, CANFD_MTU);
+  if (n == static_cast<ssize_t>(CANFD_MTU)) return hal::CanResult::kOk;
+  if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == ENOBUFS)) return hal::CanResult::kWouldBlock;
+  if (n < 0 && errno == ENETDOWN) state_ = hal::BusState::kBusOff;
+  return hal::CanResult::kError;
+}
+
 bool SocketCanBus::wait_readable(std::chrono::nanoseconds timeout) noexcept {
-  pollfd p{fd_, POLLIN, 0};
+  pollfd p{sock_, POLLIN, 0};
   timespec ts{};
   const auto ns = timeout.count() < 0 ? 0 : timeout.count();
   ts.tv_sec = static_cast<time_t>(ns / 1000000000);

@@ -7,6 +7,11 @@
 ///
 /// Faults can be injected per endpoint: a bus state (error frames), frames
 /// dropped on transmit, and a hook to edit frames in flight.
+///
+/// CAN FD: an endpoint with set_fd(true) also sends and receives FD frames
+/// (send_fd/receive_fd), like a SocketCAN socket with CAN_RAW_FD_FRAMES; FD
+/// frames reach only such endpoints, and classic receive() skips them. The
+/// tamper hook sees classic frames only.
 
 #include <cstddef>
 #include <functional>
@@ -14,16 +19,22 @@
 #include <vector>
 
 #include "mrd/hal/can_bus.hpp"
+#include "mrd/hal/can_fd_bus.hpp"
 
 namespace mrd::sim {
 
 class MemoryBus;
 
 /// One node's attachment to a MemoryBus.
-class MemoryCanEndpoint final : public hal::CanBus {
+class MemoryCanEndpoint final : public hal::CanFdBus {
  public:
   hal::CanResult send(const hal::CanFrame& frame) noexcept override;
   hal::CanResult receive(hal::CanFrame& frame) noexcept override;
+  hal::CanResult send_fd(const hal::CanFdFrame& frame) noexcept override;
+  hal::CanResult receive_fd(hal::CanFdFrame& frame) noexcept override;
+  bool fd_enabled() const noexcept override { return fd_; }
+  /// Carry FD frames on this endpoint (off by default, as a classic socket).
+  void set_fd(bool on) noexcept { fd_ = on; }
   hal::BusState state() const noexcept override { return state_; }
   /// Returns at once: true when a frame is queued (there is nothing to wait for in memory).
   bool wait_readable(std::chrono::nanoseconds) noexcept override { return count_ > 0; }
@@ -39,11 +50,12 @@ class MemoryCanEndpoint final : public hal::CanBus {
  private:
   friend class MemoryBus;
   MemoryCanEndpoint(MemoryBus& bus, std::size_t capacity) : bus_(&bus), ring_(capacity) {}
-  bool accepts(const hal::CanFrame& f) const noexcept;
-  void deliver(const hal::CanFrame& f) noexcept;
+  bool accepts(const hal::CanFdFrame& f) const noexcept;
+  void deliver(const hal::CanFdFrame& f) noexcept;
 
   MemoryBus* bus_;
-  std::vector<hal::CanFrame> ring_;
+  std::vector<hal::CanFdFrame> ring_;
+  bool fd_ = false;
   std::size_t head_ = 0, count_ = 0, overflows_ = 0;
   std::vector<hal::CanFilter> filters_;
   hal::BusState state_ = hal::BusState::kActive;
@@ -64,6 +76,7 @@ class MemoryBus {
  private:
   friend class MemoryCanEndpoint;
   void broadcast(const MemoryCanEndpoint& from, const hal::CanFrame& f) noexcept;
+  void broadcast_fd(const MemoryCanEndpoint& from, const hal::CanFdFrame& f) noexcept;
   std::vector<std::unique_ptr<MemoryCanEndpoint>> endpoints_;
   Tamper tamper_;
   std::size_t sent_ = 0;
