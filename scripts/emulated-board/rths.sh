@@ -23,6 +23,16 @@
 #   4. the same with the laboratory on its own clock (mrd-rths-lab --own-clock,
 #      mrd-rths --lab-own-clock) for each mode of $MRD_EMU_RTHS_OWN_CLOCK_MODES
 #      (default none), tagged [rths-own-clock-MODE-runtime], [...-lab].
+#   5. CAN FD (--can-fd on both programs), for each run of
+#      $MRD_EMU_RTHS_FD_RUNS ("rate_hz:compensator" …, default none): first
+#      vcan0 is made classic-only (`ip link set vcan0 mtu 16`; vcan's default
+#      is the FD MTU, 72) and mrd-rths-lab --can-fd must refuse it (exit 1,
+#      [rths-fd-refused]); then vcan0 is set back to the FD MTU
+#      (`ip link set vcan0 mtu 72`, down and up again) and the benchmark runs
+#      as in 1 over $MRD_EMU_RTHS_DURATION_S s with mrd-rths --lab-silent-ms
+#      $MRD_EMU_RTHS_FD_LAB_SILENT_MS (default 500: under TCG the laboratory,
+#      on the same vCPU, can miss the 205 ticks of the default 50 ms at
+#      4096 Hz), tagged [rths-fd-N-runtime], [rths-fd-N-lab], [rths-fd-N-summary].
 # The serial console goes to $OUT/serial.txt; lines are tagged
 # [rths-N-runtime], [rths-N-lab], [rths-N-summary], [rths-stop-runtime],
 # [rths-stop-lab], [rths-stop-files], [rths-stop-json], [rths-damper-MODE-runtime],
@@ -42,12 +52,15 @@ damper_duration_s=${MRD_EMU_RTHS_DAMPER_DURATION_S:-5}
 [[ $damper_duration_s =~ ^[0-9]+(\.[0-9]+)?$ ]] ||
   emu_fail "MRD_EMU_RTHS_DAMPER_DURATION_S: '$damper_duration_s' is not a duration in s"
 own_clock_modes=${MRD_EMU_RTHS_OWN_CLOCK_MODES:-}
+fd_runs=${MRD_EMU_RTHS_FD_RUNS:-}
+fd_lab_silent_ms=${MRD_EMU_RTHS_FD_LAB_SILENT_MS:-500}
+[[ $fd_lab_silent_ms =~ ^[0-9]+$ ]] || emu_fail "MRD_EMU_RTHS_FD_LAB_SILENT_MS: '$fd_lab_silent_ms' is not a whole number of ms"
 for m in $damper_modes $own_clock_modes; do
   [[ $m =~ ^(passive-off|passive-on|semi-active)$ ]] ||
     emu_fail "MRD_EMU_RTHS_DAMPER_MODES: '$m' is not passive-off, passive-on or semi-active"
 done
 [[ $duration_s =~ ^[0-9]+(\.[0-9]+)?$ ]] || emu_fail "MRD_EMU_RTHS_DURATION_S: '$duration_s' is not a duration in s"
-for r in $runs; do
+for r in $runs $fd_runs; do
   [[ $r =~ ^[0-9]+:(none|sample|polynomial|adaptive|model)$ ]] ||
     emu_fail "MRD_EMU_RTHS_RUNS: '$r' is not rate_hz:compensator (none, sample, polynomial, adaptive, model)"
 done
@@ -73,6 +86,8 @@ cp "$record" "$rootfs/mrd/record.csv"
   echo "DAMPER_MODES=\"$damper_modes\""
   echo "DAMPER_DURATION=$damper_duration_s"
   echo "OWN_CLOCK_MODES=\"$own_clock_modes\""
+  echo "FD_RUNS=\"$fd_runs\""
+  echo "FD_LAB_SILENT_MS=$fd_lab_silent_ms"
   cat <<'SCENARIO'
 ip link add dev vcan0 type vcan && ip link set vcan0 up || echo "EMU: vcan0 failed"
 n=0
@@ -129,6 +144,31 @@ for mode in $OWN_CLOCK_MODES; do
   wait $lab; echo "EMU: rths own clock $mode: lab exit $?"
   tag rths-own-clock-$mode-runtime /tmp/rths-own.log
   tag rths-own-clock-$mode-lab /tmp/lab-own.log
+done
+n=0
+for r in $FD_RUNS; do
+  n=$((n + 1))
+  rate=${r%%:*}
+  comp=${r##*:}
+  if [ $n -eq 1 ]; then
+    echo "EMU: vcan0 mtu before the FD runs $(cat /sys/class/net/vcan0/mtu)"
+    ip link set vcan0 down && ip link set vcan0 mtu 16 && ip link set vcan0 up || echo "EMU: vcan0 mtu 16 failed"
+    ./mrd-rths-lab --board board.toml --rate-hz "$rate" --can-fd --start-timeout-s 5 > /tmp/lab-fd-refused.log 2>&1
+    echo "EMU: rths fd refused on classic vcan0: lab exit $?"
+    tag rths-fd-refused /tmp/lab-fd-refused.log
+    ip link set vcan0 down && ip link set vcan0 mtu 72 && ip link set vcan0 up || echo "EMU: vcan0 mtu 72 failed"
+    echo "EMU: vcan0 mtu $(cat /sys/class/net/vcan0/mtu)"
+  fi
+  echo "EMU: rths fd run $n: $rate Hz, $comp, ${DURATION} s"
+  ./mrd-rths-lab --board board.toml --rate-hz "$rate" --can-fd > /tmp/lab-fd.log 2>&1 &
+  lab=$!
+  ./mrd-rths --board board.toml --record record.csv --rate-hz "$rate" --compensator "$comp" --can-fd \
+      --lab-silent-ms "$FD_LAB_SILENT_MS" --duration-s "$DURATION" --out /tmp/rths-fd-$n > /tmp/rths-fd.log 2>&1
+  echo "EMU: rths fd run $n: runtime exit $?"
+  wait $lab; echo "EMU: rths fd run $n: lab exit $?"
+  tag rths-fd-$n-runtime /tmp/rths-fd.log
+  tag rths-fd-$n-lab /tmp/lab-fd.log
+  tag rths-fd-$n-summary /tmp/rths-fd-$n/summary.json
 done
 echo "EMU: done rths"
 SCENARIO

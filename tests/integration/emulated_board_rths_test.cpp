@@ -21,9 +21,18 @@
 //     all-numerical closed loop's over the same 5 s (run::run_closed_loop on
 //     the host: no actuator, no bus); lateness, overruns, stale
 //     measurements and the drive's late current commands printed.
+//  4. on request (MRD_EMU_RTHS_FD=1; not in CI, a 4096 Hz run under TCG
+//     takes minutes): CAN FD, mrd-rths and mrd-rths-lab --can-fd at 4096 Hz
+//     over the first MRD_EMU_RTHS_FD_DURATION_S seconds (default 2): vcan0
+//     set classic-only (MTU 16) is refused (exit 1, "classic CAN only"),
+//     vcan0 at MTU 72 carries the run (the runtime's --lab-silent-ms 500,
+//     MRD_EMU_RTHS_FD_LAB_SILENT_MS); every tick run, J2 ≤ 3 %, J4 ≤ 5 %;
+//     overruns, lateness and stale samples printed (TCG's, not a board's).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "emulated_board_support.hpp"
 #include "host_sim/excitation/scaled_motion.hpp"
@@ -120,6 +129,44 @@ TEST(EmulatedBoardRths, BenchmarkAt1kHzWithTheLaboratoryAsAPeer) {
                 d.at("tracking_rms_pct"), d.at("overruns"), d.at("worst_late_us"), d.at("median_tick_us"),
                 d.at("p99_tick_us"), d.at("worst_tick_us"), d.at("stale_ticks"), late);
   }
+}
+
+TEST(EmulatedBoardRths, CanFdAt4096HzOnRequest) {
+  const char* on = std::getenv("MRD_EMU_RTHS_FD");
+  if (on == nullptr || std::string(on) != "1") GTEST_SKIP() << "set MRD_EMU_RTHS_FD=1 for the CAN FD run at 4096 Hz";
+  const char* dur = std::getenv("MRD_EMU_RTHS_FD_DURATION_S");
+  const std::string duration_s = dur != nullptr ? dur : "2";
+  const auto record = testing::fs::path(MRD_SHARED_DIR) / "ground_motions" / "elcentro_ns.csv";
+  ASSERT_TRUE(testing::fs::exists(record)) << "shared El Centro record not found at " << record;
+  const auto out = testing::emulated_out_dir("rths-fd");
+  ASSERT_TRUE(testing::run_emulated_script("MRD_EMU_RTHS_RUNS=1000:adaptive MRD_EMU_RTHS_DAMPER_MODES= "
+                                           "MRD_EMU_RTHS_FD_RUNS=4096:adaptive MRD_EMU_RTHS_DURATION_S=" + duration_s,
+                                           "rths.sh", {record.string(), out.string()}))
+      << "rths.sh failed (reason above), see " << out;
+  const std::string serial = testing::read_text(out / "serial.txt");
+
+  EXPECT_NE(serial.find("EMU: rths fd refused on classic vcan0: lab exit 1"), std::string::npos);
+  EXPECT_NE(serial.find("classic CAN only (MTU 16"), std::string::npos);
+  EXPECT_NE(serial.find("EMU: vcan0 mtu 72"), std::string::npos);
+
+  const std::string line = find_line(serial, "[rths-fd-1-runtime] mrd-rths: status=");
+  ASSERT_FALSE(line.empty()) << "no CAN FD runtime status line in the serial log";
+  EXPECT_EQ(key_words(line).at("status"), "ok") << line;
+  const auto run = key_values(line);
+  EXPECT_EQ(run.at("ticks"), std::round(std::stod(duration_s) * 4096.0));
+  EXPECT_EQ(run.at("rejected"), 0.0);
+  EXPECT_EQ(run.at("tx_errors"), 0.0);
+  EXPECT_LE(run.at("j2_pct"), 3.0);
+  EXPECT_LE(run.at("j4_pct"), 5.0);
+  const std::string lab = find_line(serial, "[rths-fd-1-lab] mrd-rths-lab: summary");
+  ASSERT_FALSE(lab.empty());
+  EXPECT_EQ(key_words(lab).at("run"), "finished");
+  std::printf("emulated board RTHS over CAN FD at 4096 Hz, %s s: J2 %.3f %%, J4 %.3f %%, overruns %.0f of %.0f "
+              "ticks, worst lateness %.1f us, tick median %.1f us, p99 %.1f us, worst %.1f us, stale measurements "
+              "%.0f\n",
+              duration_s.c_str(), run.at("j2_pct"), run.at("j4_pct"), run.at("overruns"), run.at("ticks"),
+              run.at("worst_late_us"), run.at("median_tick_us"), run.at("p99_tick_us"), run.at("worst_tick_us"),
+              run.at("stale_ticks"));
 }
 
 }  // namespace
