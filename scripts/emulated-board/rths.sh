@@ -15,7 +15,8 @@
 #      stop's status (exit 3) and its folder is listed (stop.json, no summary).
 #   3. the thesis's set-up, for each mode of $MRD_EMU_RTHS_DAMPER_MODES
 #      (default "passive-on semi-active"; empty: none): mrd-rths-lab
-#      --specimen damper (a 15 ms actuator with a 2 ms lag stroking the MR
+#      --specimen damper (an actuator with a $MRD_EMU_RTHS_DAMPER_DELAY_MS delay,
+#      default 10 ms, and a 2 ms lag stroking the MR
 #      damper, its drive and DAQ) and mrd-rths --specimen damper (the thesis
 #      building, the model-based compensation, the board's firmware control
 #      task beside it) at 1 kHz over the record's first
@@ -49,6 +50,15 @@ runs=${MRD_EMU_RTHS_RUNS:-"1000:adaptive"}
 duration_s=${MRD_EMU_RTHS_DURATION_S:-5}
 damper_modes=${MRD_EMU_RTHS_DAMPER_MODES-"passive-on semi-active"}
 damper_duration_s=${MRD_EMU_RTHS_DAMPER_DURATION_S:-5}
+# 10 ms: the thesis's shortest delay. Over these 5 s the library's own loop
+# gives -0.31 % semi-active at 10 ms and -1.48 % at 15 ms, and the guest's
+# stale samples move a run by up to about 0.9 point either way; 10 ms keeps
+# the 2 % check about the set-up, not about the emulator's timing (15 ms is
+# held within 2 % on the host, tests/cli and tests/rths_board).
+damper_delay_ms=${MRD_EMU_RTHS_DAMPER_DELAY_MS:-10}
+case "$damper_delay_ms" in
+  ''|*[!0-9]*) emu_fail "MRD_EMU_RTHS_DAMPER_DELAY_MS: '$damper_delay_ms' is not a whole number of ms" ;;
+esac
 [[ $damper_duration_s =~ ^[0-9]+(\.[0-9]+)?$ ]] ||
   emu_fail "MRD_EMU_RTHS_DAMPER_DURATION_S: '$damper_duration_s' is not a duration in s"
 own_clock_modes=${MRD_EMU_RTHS_OWN_CLOCK_MODES:-}
@@ -85,6 +95,7 @@ cp "$record" "$rootfs/mrd/record.csv"
   echo "RUNS=\"$runs\""
   echo "DAMPER_MODES=\"$damper_modes\""
   echo "DAMPER_DURATION=$damper_duration_s"
+  echo "DAMPER_DELAY_MS=$damper_delay_ms"
   echo "OWN_CLOCK_MODES=\"$own_clock_modes\""
   echo "FD_RUNS=\"$fd_runs\""
   echo "FD_LAB_SILENT_MS=$fd_lab_silent_ms"
@@ -120,11 +131,11 @@ tag rths-stop-files /tmp/rths-stop-files.txt
 tag rths-stop-json /tmp/rths-stop/stop.json
 for mode in $DAMPER_MODES; do
   echo "EMU: rths damper $mode: 1000 Hz, ${DAMPER_DURATION} s"
-  ./mrd-rths-lab --board board.toml --specimen damper --rate-hz 1000 --delay-ms 15 --lag-ms 2 \
+  ./mrd-rths-lab --board board.toml --specimen damper --rate-hz 1000 --delay-ms "$DAMPER_DELAY_MS" --lag-ms 2 \
       > /tmp/lab-damper.log 2>&1 &
   lab=$!
   ./mrd-rths --board board.toml --specimen damper --record record.csv --rate-hz 1000 --mode "$mode" \
-      --pga-g 0.1127 --delay-ms 15 --lag-ms 2 --duration-s "$DAMPER_DURATION" --out /tmp/rths-damper-$mode \
+      --pga-g 0.1127 --delay-ms "$DAMPER_DELAY_MS" --lag-ms 2 --duration-s "$DAMPER_DURATION" --out /tmp/rths-damper-$mode \
       > /tmp/rths-damper.log 2>&1
   echo "EMU: rths damper $mode: runtime exit $?"
   wait $lab; echo "EMU: rths damper $mode: lab exit $?"
@@ -134,11 +145,11 @@ for mode in $DAMPER_MODES; do
 done
 for mode in $OWN_CLOCK_MODES; do
   echo "EMU: rths own clock $mode: 1000 Hz, ${DAMPER_DURATION} s"
-  ./mrd-rths-lab --board board.toml --specimen damper --rate-hz 1000 --delay-ms 15 --lag-ms 2 --own-clock \
+  ./mrd-rths-lab --board board.toml --specimen damper --rate-hz 1000 --delay-ms "$DAMPER_DELAY_MS" --lag-ms 2 --own-clock \
       > /tmp/lab-own.log 2>&1 &
   lab=$!
   ./mrd-rths --board board.toml --specimen damper --record record.csv --rate-hz 1000 --mode "$mode" \
-      --pga-g 0.1127 --delay-ms 15 --lag-ms 2 --duration-s "$DAMPER_DURATION" --lab-own-clock \
+      --pga-g 0.1127 --delay-ms "$DAMPER_DELAY_MS" --lag-ms 2 --duration-s "$DAMPER_DURATION" --lab-own-clock \
       --out /tmp/rths-own-$mode > /tmp/rths-own.log 2>&1
   echo "EMU: rths own clock $mode: runtime exit $?"
   wait $lab; echo "EMU: rths own clock $mode: lab exit $?"

@@ -15,7 +15,8 @@
 //     and no summary or temporary file;
 //  3. the thesis's set-up (mrd-rths --specimen damper with the board's
 //     firmware control task beside it, mrd-rths-lab --specimen damper: a
-//     15 ms actuator with a 2 ms lag stroking the MR damper) at 1 kHz over El
+//     10 ms actuator with a 2 ms lag stroking the MR damper; rths.sh says why
+//     10 and not 15 ms) at 1 kHz over El
 //     Centro's first 5 s at 0.1127 g, passive-on and semi-active: every tick
 //     run, and the peak base displacement within the 2 % of the
 //     all-numerical closed loop's over the same 5 s (run::run_closed_loop on
