@@ -504,6 +504,65 @@ void forward_selection(const SelectionContext& ctx, Selection& current, ModelWor
   }
 }
 
+/// Refits, once the forward selection has added effects beside it, the form
+/// of each effect in the model that has several (EffectInfo::forms): its form
+/// was chosen against the model of its own round, and an effect added later
+/// may have taken up what told the forms apart (a gas spring's force at the
+/// ends of the stroke beside free play, whose form was chosen without it).
+/// Each other
+/// form is fitted with the whole model, from the current values of the other
+/// effects and the best start of its own grid; the form kept is the one with
+/// the lower BIC (the current residual's effective sample count) among the
+/// plausible ones. The backward check that follows then judges whether each
+/// later effect still earns its place beside the refitted form.
+void refit_forms(const SelectionContext& ctx, Selection& current, ModelWorkspace& ws,
+                 std::vector<std::string>& findings) {
+  if (current.set.effects.size() < 2) return;
+  struct Job {
+    Effect effect;
+    std::uint8_t form;
+  };
+  std::vector<Job> jobs;
+  for (const Effect e : current.set.effects) {
+    const auto& forms = effect_info(e).forms;
+    for (std::size_t f = 0; f < forms.size(); ++f) {
+      if (f != current.set.form(e)) jobs.push_back({e, static_cast<std::uint8_t>(f)});
+    }
+  }
+  if (jobs.empty()) return;
+  std::vector<FitOutcome> alt(jobs.size());
+  parallel_for(jobs.size(), ctx.opt.threads, [&](std::size_t j) {
+    EffectSet s = current.set;
+    s.forms[static_cast<std::size_t>(jobs[j].effect)] = jobs[j].form;
+    alt[j] = fit_effects(ctx.fd, s, carry_params(s, current.set, current.params), &jobs[j].effect);
+  });
+  std::vector<double> resid;
+  (void)fit_rss(ctx.fd, current.set, current.params, ws, &resid);
+  const double n_eff = std::max(noise_effective_samples(ctx.fit_times_s, resid), 1.0);
+  const auto n = static_cast<std::size_t>(ctx.fd.index.size());
+  const ParamScale scale = ctx.fd.model->param_scale();
+  double best_bic = bic(current.rss, n, n_eff, current.set.param_count());
+  std::optional<std::size_t> best;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const Effect e = jobs[j].effect;
+    if (!implausibility(e, own_params(alt[j].set, alt[j].params, e), scale, jobs[j].form).empty()) continue;
+    if (!collapse_reason(ctx, alt[j]).empty()) continue;
+    const double b = bic(alt[j].rss_n2, n, n_eff, alt[j].set.param_count());
+    if (b < best_bic) {
+      best_bic = b;
+      best = j;
+    }
+  }
+  if (!best) return;
+  const Effect e = jobs[*best].effect;
+  findings.push_back(std::string(effect_name(e)) + " refitted beside the effects added after it: its " +
+                     std::string(form_name(e, jobs[*best].form)) + " form fits the whole model better than its " +
+                     std::string(form_name(e, current.set.form(e))) + " form (BIC lower by " +
+                     format_number("%.1f", bic(current.rss, n, n_eff, current.set.param_count()) - best_bic) + ").");
+  FitOutcome& f = alt[*best];
+  current = Selection{f.set, f.params, f.rss_n2, fit_rss(ctx.held, f.set, f.params, ws)};
+}
+
 /// Backward check: drops, one at a time, the effect whose removal costs the
 /// least when the others then explain the data without it (its ΔBIC or its
 /// share of the residual power below the thresholds).
@@ -917,6 +976,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
     const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
     const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * check.amplitude_m, base_rms};
     forward_selection(ctx, current, ws, res.rounds);
+    refit_forms(ctx, current, ws, res.findings);
     backward_check(ctx, current, ws, res.dropped);
     drop_wandering_offset(ctx, current, ws, res.dropped, res.findings);
     drop_engagement_delay(ctx, current, ws, res.dropped, res.findings);
