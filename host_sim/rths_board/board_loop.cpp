@@ -187,26 +187,36 @@ LoopEnd BoardLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const
     clock.sleep_until_ns(deadline_ns);
   }
   send_run_status();
-  if (!tick_ns_.empty()) {
-    std::vector<std::int64_t> sorted = tick_ns_;
-    std::sort(sorted.begin(), sorted.end());
-    timing_.median_tick_ns = sorted[sorted.size() / 2];
-    timing_.p99_tick_ns = sorted[std::min(sorted.size() - 1, sorted.size() * 99 / 100)];
-  }
+  record_tick_percentiles(tick_ns_, timing_);
   return end_;
 }
 
 void BoardLoop::send_run_status() noexcept {
+  tx_errors_ += send_run_status_frames(bus_, spec_.runtime_node, end_, k_, run_status_counter_);
+}
+
+void record_tick_percentiles(const std::vector<std::int64_t>& tick_ns, LoopTimingRecord& timing) {
+  if (tick_ns.empty()) return;
+  std::vector<std::int64_t> sorted = tick_ns;
+  std::sort(sorted.begin(), sorted.end());
+  timing.median_tick_ns = sorted[sorted.size() / 2];
+  timing.p99_tick_ns = sorted[std::min(sorted.size() - 1, sorted.size() * 99 / 100)];
+}
+
+std::uint32_t send_run_status_frames(hal::CanBus& bus, std::uint8_t node, LoopEnd end, std::uint64_t ticks,
+                                     std::uint8_t& counter) noexcept {
   RthsRunStatus r;
-  r.state = end_ == LoopEnd::kFinished ? RunState::kFinished
-            : end_ == LoopEnd::kLabStopped ? RunState::kLabStopped
-                                           : RunState::kAborted;
-  r.ticks = static_cast<std::uint32_t>(k_);
+  r.state = end == LoopEnd::kFinished     ? RunState::kFinished
+            : end == LoopEnd::kLabStopped ? RunState::kLabStopped
+                                          : RunState::kAborted;
+  r.ticks = static_cast<std::uint32_t>(ticks);
+  std::uint32_t refused = 0;
   for (int i = 0; i < 3; ++i) {
-    r.counter = run_status_counter_++;
+    r.counter = counter++;
     hal::CanFrame f;
-    if (encode(r, spec_.runtime_node, f) && bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
+    if (encode(r, node, f) && bus.send(f) != hal::CanResult::kOk) ++refused;
   }
+  return refused;
 }
 
 rths::Criteria BoardLoop::criteria() const {

@@ -71,6 +71,16 @@ struct LoopTimingRecord {
   std::int64_t period_ns = 0;
 };
 
+/// After a run: the median and 99th-percentile tick of `tick_ns` (each
+/// tick's run time) into `timing`; nothing for an empty record.
+void record_tick_percentiles(const std::vector<std::int64_t>& tick_ns, LoopTimingRecord& timing);
+
+/// Tells the laboratory the run is over: three RthsRunStatus frames from
+/// `node` with the end and the ticks run, `counter` advanced per frame.
+/// Returns the frames the bus refused.
+std::uint32_t send_run_status_frames(hal::CanBus& bus, std::uint8_t node, LoopEnd end, std::uint64_t ticks,
+                                     std::uint8_t& counter) noexcept;
+
 class BoardLoop {
  public:
   /// Reserves every record. Throws std::invalid_argument for an empty

@@ -171,25 +171,12 @@ LoopEnd DamperLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, cons
     clock.sleep_until_ns(deadline_ns);
   }
   send_run_status();
-  if (!tick_ns_.empty()) {
-    std::sort(tick_ns_.begin(), tick_ns_.end());
-    timing_.median_tick_ns = tick_ns_[tick_ns_.size() / 2];
-    timing_.p99_tick_ns = tick_ns_[std::min(tick_ns_.size() - 1, tick_ns_.size() * 99 / 100)];
-  }
+  record_tick_percentiles(tick_ns_, timing_);
   return end_;
 }
 
 void DamperLoop::send_run_status() noexcept {
-  RthsRunStatus r;
-  r.state = end_ == LoopEnd::kFinished     ? RunState::kFinished
-            : end_ == LoopEnd::kLabStopped ? RunState::kLabStopped
-                                           : RunState::kAborted;
-  r.ticks = static_cast<std::uint32_t>(k_);
-  for (int i = 0; i < 3; ++i) {
-    r.counter = run_status_counter_++;
-    hal::CanFrame f;
-    if (encode(r, spec_.nodes.controller, f) && bus_.send(f) != hal::CanResult::kOk) ++tx_errors_;
-  }
+  tx_errors_ += send_run_status_frames(bus_, spec_.nodes.controller, end_, k_, run_status_counter_);
 }
 
 double DamperLoop::rms_tracking_error_pct() const noexcept {
