@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "firmware/app/periodic_schedule.hpp"
+#include "host_sim/rths_board/periodic_run.hpp"
 #include "host_sim/plant/stages.hpp"
 
 namespace mrd::rths_board {
@@ -151,25 +152,9 @@ void DamperLoop::await_sample(hal::Clock& clock, std::int64_t until_ns) noexcept
 
 LoopEnd DamperLoop::run_periodic(hal::Clock& clock, std::int64_t period_ns, const std::atomic<bool>& stop,
                                  std::int64_t sample_wait_ns) noexcept {
-  timing_.period_ns = period_ns;
-  app::PeriodicSchedule schedule(period_ns, clock.now_ns());
-  while (end_ == LoopEnd::kRunning) {
-    if (stop.load()) {
-      end_ = LoopEnd::kInterrupted;
-      break;
-    }
-    await_sample(clock, clock.now_ns() + sample_wait_ns);
-    const std::int64_t start_ns = clock.now_ns();
-    tick();
-    const std::int64_t done_ns = clock.now_ns();
-    timing_.worst_tick_ns = std::max(timing_.worst_tick_ns, done_ns - start_ns);
-    if (tick_ns_.size() < tick_ns_.capacity()) tick_ns_.push_back(done_ns - start_ns);
-    const std::int64_t deadline_ns = schedule.after_tick(done_ns);
-    timing_.overruns = schedule.overruns();
-    timing_.worst_late_ns = schedule.worst_late_ns();
-    if (end_ != LoopEnd::kRunning) break;
-    clock.sleep_until_ns(deadline_ns);
-  }
+  run_ticks_periodic(
+      clock, period_ns, stop, end_, timing_, tick_ns_,
+      [this, &clock, sample_wait_ns] { await_sample(clock, clock.now_ns() + sample_wait_ns); }, [this] { tick(); });
   send_run_status();
   record_tick_percentiles(tick_ns_, timing_);
   return end_;
