@@ -13,13 +13,11 @@ namespace mrd::rths_board {
 namespace {
 
 double checked_rate_dt(const BoardLoopSpec& s) {
-  if (s.ground_accel_m_s2.empty()) throw std::invalid_argument("RTHS runtime: empty record");
-  if (!(s.rate_hz >= 100.0 && s.rate_hz <= 65535.0))
-    throw std::invalid_argument("RTHS runtime: rate outside 100..65535 Hz");
+  const double dt_s = checked_loop_step_s(s.ground_accel_m_s2.size(), s.rate_hz);
   const auto n = s.building.m.rows();
   if (s.building.k.rows() != n || s.building.c.rows() != n || s.specimen_dof < 0 || s.specimen_dof >= n)
     throw std::invalid_argument("RTHS runtime: M, C, K of different sizes or the specimen's DOF outside them");
-  return 1.0 / s.rate_hz;
+  return dt_s;
 }
 
 hal::CanFdBus* loop_fd_bus(hal::CanBus& bus, bool can_fd) {

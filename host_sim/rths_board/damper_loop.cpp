@@ -13,12 +13,10 @@ namespace mrd::rths_board {
 namespace {
 
 double checked_damper_loop_dt(const DamperLoopSpec& s) {
-  if (s.ground_accel_m_s2.empty()) throw std::invalid_argument("RTHS runtime: empty record");
-  if (!(s.rate_hz >= 100.0 && s.rate_hz <= 65535.0))
-    throw std::invalid_argument("RTHS runtime: rate outside 100..65535 Hz");
+  const double dt_s = checked_loop_step_s(s.ground_accel_m_s2.size(), s.rate_hz);
   if (s.building.dampers.size() != 1)
     throw std::invalid_argument("RTHS runtime: the building needs one damper placement (the physical part)");
-  return 1.0 / s.rate_hz;
+  return dt_s;
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "firmware/app/periodic_schedule.hpp"
@@ -12,6 +14,15 @@
 #include "mrd/hal/clock.hpp"
 
 namespace mrd::rths_board {
+
+/// The step of a runtime's loop, 1/rate_hz, after the checks both runtimes
+/// make: a record with samples, a rate in 100..65535 Hz (the status frame's
+/// uint16).
+inline double checked_loop_step_s(std::size_t record_samples, double rate_hz) {
+  if (record_samples == 0) throw std::invalid_argument("RTHS runtime: empty record");
+  if (!(rate_hz >= 100.0 && rate_hz <= 65535.0)) throw std::invalid_argument("RTHS runtime: rate outside 100..65535 Hz");
+  return 1.0 / rate_hz;
+}
 
 /// Ticks on `clock` every `period_ns` while `end` stays kRunning; a set
 /// `stop` ends it as kInterrupted. Each period: `before_tick()` (not timed:

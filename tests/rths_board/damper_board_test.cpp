@@ -18,6 +18,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "firmware/platform/sim/manual_clock.hpp"
 #include "firmware/platform/sim/memory_bus.hpp"
@@ -25,6 +27,7 @@
 #include "host_sim/peers/peer_main_common.hpp"
 #include "host_sim/plant/plant.hpp"
 #include "host_sim/rths_board/damper_lab_node.hpp"
+#include "host_sim/rths_board/board_loop.hpp"
 #include "host_sim/rths_board/damper_loop.hpp"
 #include "host_sim/rths_board/firmware_beside.hpp"
 #include "host_sim/run/closed_loop.hpp"
@@ -207,6 +210,35 @@ TEST(ThesisRthsBoard, LabForceLimitEndsTheRunAndTheActuatorHolds) {
   EXPECT_LT(rig.loop->ticks(), ag.size());
   EXPECT_EQ(rig.lab->state(), LabState::kStopped);
   EXPECT_EQ(rig.lab->run_state(), RunState::kLabStopped);
+}
+
+/// Both runtimes refuse an empty record and a rate outside 100..65535 Hz
+/// (the status frame carries the rate as uint16), with the same message.
+TEST(ThesisRthsBoard, BothRuntimesRefuseAnEmptyRecordAndARateOutsideTheFrame) {
+  const auto message = [](auto&& make) -> std::string {
+    try {
+      make();
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  sim::MemoryBus bus;
+  const auto no_control = [] { return control::ControllerOutput{}; };
+  DamperLoopSpec d;
+  d.ground_accel_m_s2 = {};
+  EXPECT_EQ(message([&] { DamperLoop(bus.attach(), d, no_control); }), "RTHS runtime: empty record");
+  d.ground_accel_m_s2 = {0.0};
+  d.rate_hz = 99.0;
+  EXPECT_EQ(message([&] { DamperLoop(bus.attach(), d, no_control); }), "RTHS runtime: rate outside 100..65535 Hz");
+  d.rate_hz = 65536.0;
+  EXPECT_EQ(message([&] { DamperLoop(bus.attach(), d, no_control); }), "RTHS runtime: rate outside 100..65535 Hz");
+  BoardLoopSpec b;
+  b.ground_accel_m_s2 = {};
+  EXPECT_EQ(message([&] { BoardLoop(bus.attach(), b); }), "RTHS runtime: empty record");
+  b.ground_accel_m_s2 = {0.0};
+  b.rate_hz = std::nan("");
+  EXPECT_EQ(message([&] { BoardLoop(bus.attach(), b); }), "RTHS runtime: rate outside 100..65535 Hz");
 }
 
 TEST(ThesisRthsBoard, RefusesABuildingWithoutOneDamperPlacement) {
