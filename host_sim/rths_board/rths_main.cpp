@@ -151,19 +151,31 @@ int run_damper_with(const Options& o, const mrd::app::BoardConfig& board, rb::Da
   return kExitStopped;
 }
 
+/// The board file with --can-interface applied; a CAN interface is required.
+mrd::app::BoardConfig load_board(const Options& o) {
+  mrd::app::BoardConfig board = mrd::peers::load_board_file(o.board_file);
+  if (!o.can_interface.empty()) board.can_interface = o.can_interface;
+  if (board.can_interface.empty())
+    throw mrd::io::UsageError(o.board_file + ": can.interface: empty (mrd-rths needs a CAN interface)");
+  return board;
+}
+
+/// The loop's rate: --rate-hz, else the board's control period; 100..65535 Hz.
+double loop_rate_hz(const Options& o, const mrd::app::BoardConfig& board) {
+  const double rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
+  if (rate_hz < 100.0 || rate_hz > 65535.0)
+    throw mrd::io::UsageError(o.board_file + ": control.period_us: a loop rate of " + std::to_string(rate_hz) +
+                              " Hz is outside 100..65535 Hz");
+  return rate_hz;
+}
+
 int run_damper(const Options& o) {
   mrd::app::BoardConfig board;
   rb::DamperLoopSpec spec;
   rb::DamperRunDescription d;
   try {
-    board = mrd::peers::load_board_file(o.board_file);
-    if (!o.can_interface.empty()) board.can_interface = o.can_interface;
-    if (board.can_interface.empty())
-      throw mrd::io::UsageError(o.board_file + ": can.interface: empty (mrd-rths needs a CAN interface)");
-    spec.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
-    if (spec.rate_hz < 100.0 || spec.rate_hz > 65535.0)
-      throw mrd::io::UsageError(o.board_file + ": control.period_us: a loop rate of " + std::to_string(spec.rate_hz) +
-                                " Hz is outside 100..65535 Hz");
+    board = load_board(o);
+    spec.rate_hz = loop_rate_hz(o, board);
     const double period_us = 1e6 / spec.rate_hz;
     if (std::fabs(period_us - std::round(period_us)) > 1e-9)
       throw mrd::io::UsageError("--rate-hz: " + std::to_string(spec.rate_hz) +
@@ -228,14 +240,8 @@ int run(const Options& o) {
   rb::BoardLoopSpec spec;
   rb::RunDescription d;
   try {
-    board = mrd::peers::load_board_file(o.board_file);
-    if (!o.can_interface.empty()) board.can_interface = o.can_interface;
-    if (board.can_interface.empty())
-      throw mrd::io::UsageError(o.board_file + ": can.interface: empty (mrd-rths needs a CAN interface)");
-    spec.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
-    if (spec.rate_hz < 100.0 || spec.rate_hz > 65535.0)
-      throw mrd::io::UsageError(o.board_file + ": control.period_us: a loop rate of " + std::to_string(spec.rate_hz) +
-                                " Hz is outside 100..65535 Hz");
+    board = load_board(o);
+    spec.rate_hz = loop_rate_hz(o, board);
     spec.building = mrd::rths::structure_matrices(mrd::rths::benchmark_structure(o.structure_case));
     spec.ground_accel_m_s2 = mrd::rths::benchmark_record(o.record, o.scale, spec.rate_hz);
     if (o.duration_s > 0.0) {

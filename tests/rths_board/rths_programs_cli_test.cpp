@@ -28,6 +28,17 @@ TEST(RthsProgramsCli, RuntimeRefusesABuildingWithTwoDamperPlacements) {
   EXPECT_NE(r.err.find("fixed-base-8dof.toml has 2 damper placements"), std::string::npos) << r.err;
 }
 
+TEST(RthsProgramsCli, RuntimeRefusesARateOutsideTheStatusFrameWithEitherSpecimen) {
+  test::TempDir dir;
+  for (const char* specimen : {"damper", "benchmark"}) {
+    const auto r = run_rths_program(MRD_RTHS, "--board " + kBoardFile + " --specimen " + specimen + " --record " +
+                                                  kRecordFile + " --rate-hz 50 --out " + (dir.path() / "o").string(),
+                                    dir);
+    EXPECT_EQ(r.exit_code, 2) << specimen << ": " << r.err;
+    EXPECT_NE(r.err.find("--rate-hz: expected a number from 100 to 65535 Hz, got '50'"), std::string::npos) << specimen << ": " << r.err;
+  }
+}
+
 TEST(RthsProgramsCli, RuntimeRefusesADelayOfPartSteps) {
   test::TempDir dir;
   const auto r = run_rths_program(MRD_RTHS, "--board " + kBoardFile + " --specimen damper --record " + kRecordFile +
