@@ -271,6 +271,51 @@ TEST(CalibrateLab, LostMotionKeptWhenItGeneralizes) {
   for (std::size_t i = 1; i < held.size(); ++i) EXPECT_LT(with[i], without[i]) << held[i].source;
 }
 
+/// Where in the stroke the residual of `b` on `d` sits: by the distance
+/// the actuator has gone since its last reversal, the share of the squared
+/// residual and the mean of (F_model − F_meas) sgn v over the RMS force
+/// (> 0: the model too strong in the direction of motion).
+void print_residual_by_stroke(const Baseline& b, const MeasuredData& d) {
+  const DamperModel m(model_input(d), b);
+  ModelWorkspace ws;
+  std::vector<double> f;
+  m.simulate(EffectSet{}, {}, ws, f);
+  const ModelInput& in = m.input();
+  constexpr std::array<double, 7> edges_mm{0.0, 0.1, 0.2, 0.3, 0.5, 1.0, 1e9};
+  std::array<double, 6> sq{}, signed_sum{}, count{};
+  double total = 0.0, ff = 0.0, n = 0.0;
+  // Over the samples where the actuator moves, as the gap (baseline_gaps).
+  const SampleRange moving = moving_span(in.vel_m_s);
+  double x_rev = in.disp_m[moving.begin];
+  int dir = 0;
+  for (std::size_t k = moving.begin; k < moving.end; ++k) {
+    const int s = in.vel_m_s[k] > 0.0 ? 1 : -1;
+    if (s != dir) {
+      dir = s;
+      x_rev = in.disp_m[k];
+    }
+    const double e = f[k] - d.force_n[k];
+    const double mm = std::fabs(in.disp_m[k] - x_rev) * 1e3;
+    std::size_t bin = 0;
+    while (bin + 1 < sq.size() && mm >= edges_mm[bin + 1]) ++bin;
+    sq[bin] += e * e;
+    signed_sum[bin] += e * s;
+    count[bin] += 1.0;
+    total += e * e;
+    ff += d.force_n[k] * d.force_n[k];
+    n += 1.0;
+  }
+  const double rms_f = std::sqrt(ff / n);
+  std::string line = "    since reversal (mm: share of residual^2, mean signed error/RMS F, share of time):";
+  for (std::size_t i = 0; i < sq.size(); ++i) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " [%g,%g) %.2f %+.3f %.2f", edges_mm[i], edges_mm[i + 1] > 1e8 ? 99.0 : edges_mm[i + 1],
+                  sq[i] / total, count[i] > 0.0 ? signed_sum[i] / count[i] / rms_f : 0.0, count[i] / n);
+    line += buf;
+  }
+  std::printf("%s\n", line.c_str());
+}
+
 // The held-out study of the README (discrepancy section): each law
 // calibrated on two families with the third as its --check records, judged
 // on that third; the median gap over the fifteen held-out records. Minutes
@@ -294,6 +339,12 @@ TEST(CalibrateLab, LongStudyHeldOutFamily) {
     // (current and viscous exponents, spring), as before them.
     if (std::getenv("MRD_LAB_HELD_OUT_NO_SHAPE") != nullptr)
       opt.current_exponent = opt.viscous_exponent = opt.stiffness = false;
+    // MRD_LAB_HELD_OUT_VERDICTS=1: each held-out record also through `mrd
+    // discrepancy` with the baseline calibrated without it (seconds each).
+    const bool verdicts = std::getenv("MRD_LAB_HELD_OUT_VERDICTS") != nullptr;
+    std::array<int, 4> verdict_count{};
+    // MRD_LAB_HELD_OUT_WHERE=1: where in the stroke each held-out record's residual sits.
+    const bool where = std::getenv("MRD_LAB_HELD_OUT_WHERE") != nullptr;
     opt.law = name == "spencer" ? BaseLaw::spencer : (name == "bouc_wen" ? BaseLaw::bouc_wen : BaseLaw::bingham);
     std::vector<double> all;
     std::string per_family;
@@ -302,15 +353,34 @@ TEST(CalibrateLab, LongStudyHeldOutFamily) {
       const std::vector<MeasuredData> held = lab_family(families[h]);
       const CalibrationResult r = calibrate(fit, opt, held);
       std::vector<double> g = baseline_gaps(r.best().baseline, held);
+      for (std::size_t i = 0; i < held.size(); ++i) {
+        std::string line = "  " + fs::path(held[i].source).filename().string() + " gap " + std::to_string(g[i]);
+        if (verdicts) {
+          DiscrepancyOptions dopt;
+          dopt.baseline = r.best().baseline;
+          const DiscrepancyResult v = run_discrepancy(held[i], dopt);
+          ++verdict_count[static_cast<std::size_t>(v.verdict)];
+          line += std::string(" verdict ") + verdict_name(v.verdict) + " (expected gap " +
+                  std::to_string(dopt.baseline.expected_gap) + ")";
+        }
+        std::printf("%s\n", line.c_str());
+        if (where) print_residual_by_stroke(r.best().baseline, held[i]);
+      }
       std::vector<double> sorted = g;
       std::sort(sorted.begin(), sorted.end());
       per_family += std::string(" ") + families[h] + " " + std::to_string(sorted[sorted.size() / 2]) + " (" +
                     baseline_form_name(r.best().baseline) + ")";
+      std::printf("  %s held out: %s\n", families[h], r.choice_reason.substr(0, 300).c_str());
+      for (const std::string& n : r.notes)
+        if (n.find("kept") != std::string::npos) std::printf("    %s\n", n.c_str());
       all.insert(all.end(), g.begin(), g.end());
     }
     std::sort(all.begin(), all.end());
     std::printf("held-out %s: median %.4f over %zu records;%s\n", name.c_str(), all[all.size() / 2], all.size(),
                 per_family.c_str());
+    if (verdicts)
+      for (std::size_t k = 0; k < verdict_count.size(); ++k)
+        std::printf("  verdict %s: %d\n", verdict_name(static_cast<Verdict>(k)), verdict_count[k]);
   }
 }
 
