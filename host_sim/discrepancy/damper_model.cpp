@@ -202,6 +202,36 @@ double soft_contact_step(double dx, double u, double h, double c, double x_new) 
   return x_new - w * sgn;
 }
 
+/// One step of the play against a progressive stop (backlash, progressive
+/// form): toward a side, the rod takes the share e = ½(1 + tanh(y)) of the
+/// actuator's motion, y = (w − h)/ℓ the actuator's position past the rod
+/// (w = u·sgn dx) beyond the half width h, in engagement lengths ℓ. The stop
+/// engages smoothly and is never fully engaged: dy/ds = (1 − e)/ℓ =
+/// 1/(ℓ(1 + e^{2y})) integrates over the actuator's travel s to
+///   y + e^{2y}/2 = y₀ + e^{2y₀}/2 + s/ℓ,
+/// so far from the stop y grows with s (the rod stands still) and past it the
+/// rod's share of the velocity lacks ℓ/(2 s'), s' the travel since
+/// engagement: a tail over many engagement lengths, where the contact stop's
+/// (soft_contact_step) dies out as e^(−s'/c). Solved by Newton's method from
+/// above (the left side is convex and increasing, and both R and ½ ln 2R for
+/// R ≥ ½ lie at or above its root), to the last bits. Returns the rod's new
+/// position, given the actuator's new position x_new.
+double progressive_contact_step(double dx, double u, double h, double ell, double x_new) {
+  if (dx == 0.0) return x_new - u;
+  const double sgn = dx > 0.0 ? 1.0 : -1.0;
+  const double y0 = (u * sgn - h) / ell;
+  // e^{2y₀}/2 for y₀ above 300 would overflow; y grows as ½ ln(2 s/ℓ) and never gets there.
+  const double r = y0 + 0.5 * std::exp(std::min(2.0 * y0, 600.0)) + std::fabs(dx) / ell;
+  double y = r >= 0.5 ? std::min(r, 0.5 * std::log(2.0 * r)) : r;
+  for (int it = 0; it < 60; ++it) {
+    const double e2 = std::exp(std::min(2.0 * y, 600.0));
+    const double step = (y + 0.5 * e2 - r) / (1.0 + e2);
+    y -= step;
+    if (!(std::fabs(step) > 1e-15 * std::max(1.0, std::fabs(y)))) break;
+  }
+  return x_new - (h + ell * y) * sgn;
+}
+
 /// The rod's velocity over one step through free play of half width h_m
 /// ending in a contact spring of compliance s_m_per_n: backward Euler on
 ///   F(v) = dz(u − dt v) / s,   u = x_a(t + dt) − x_rod(t),
@@ -226,6 +256,19 @@ double impact_rod_velocity(double u_m, double h_m, double s_m_per_n, double dt_s
   return sgn * std::max(v, 0.0);
 }
 
+/// The side of a mounting's free play the rod starts against: the sign of
+/// the actuator's first motion in the record (0 when it never moves). A
+/// record that starts in motion was in motion before it: the actuator had
+/// taken up the play toward the side it moves to, and the rod is pushed; a
+/// rod centred in the play would transmit no force until the actuator had
+/// crossed half of it, which no moving mounting does.
+double playing_start_side(std::span<const double> vel_m_s) {
+  for (const double v : vel_m_s) {
+    if (v != 0.0) return v > 0.0 ? 1.0 : -1.0;
+  }
+  return 0.0;
+}
+
 /// Play operator of half width half_gap_m on x, with a soft contact over the
 /// last `contact_share` of the gap: the driven side's
 /// displacement (`driven`), its engaged fraction per sample (`engaged`, the
@@ -236,22 +279,38 @@ double impact_rod_velocity(double u_m, double h_m, double s_m_per_n, double dt_s
 /// also keeps the force smooth in the gap and in the delay between samples,
 /// which the fit needs (a one-sample jump leaves sample-spaced local minima).
 /// `half_gap_m` holds one value (a constant gap) or one per sample.
+/// `progressive`: the stop engages as progressive_contact_step does, over an
+/// engagement length of contact_share times the whole play.
+/// `start_side` (+1, −1 or 0): the side of the play the driven side starts
+/// against, the record's first motion having taken up the play toward it
+/// (playing_start_side); 0 starts it centred. A progressive stop starts as
+/// after a travel of the whole play past it.
 void play_operator(std::span<const double> time_s, std::span<const double> x, std::span<const double> half_gap_m,
                    double contact_share, std::vector<double>& driven, std::vector<double>& engaged,
-                   std::vector<double>& engaged_avg) {
+                   std::vector<double>& engaged_avg, bool progressive = false, double start_side = 0.0) {
   const std::size_t n = x.size();
   driven.resize(n);
   double rod = n > 0 ? x[0] : 0.0;
   const double share = std::clamp(contact_share, 0.0, 1.0);
+  if (n > 0 && start_side != 0.0) {
+    const double h0 = half_gap_m.empty() ? 0.0 : half_gap_m[0];
+    const double c0 = share * 2.0 * h0;
+    rod = progressive && c0 > 0.0 ? progressive_contact_step(start_side * 2.0 * h0, start_side * h0, h0, c0, x[0])
+                                  : x[0] - start_side * h0;
+  }
   for (std::size_t k = 0; k < n; ++k) {
     const double h = half_gap_m.size() == 1 ? half_gap_m[0] : half_gap_m[k];
     const double c = share * 2.0 * h;  // contact length, m
-    if (c <= 0.0 || k == 0) {
+    if (k == 0) {
+      // As initialised: centred, or against the start side.
+    } else if (c <= 0.0) {
       if (x[k] - rod > h) {
         rod = x[k] - h;
       } else if (rod - x[k] > h) {
         rod = x[k] + h;
       }
+    } else if (progressive) {
+      rod = progressive_contact_step(x[k] - x[k - 1], x[k - 1] - rod, h, c, x[k]);
     } else {
       rod = soft_contact_step(x[k] - x[k - 1], x[k - 1] - rod, h, c, x[k]);
     }
@@ -269,16 +328,22 @@ void play_operator(std::span<const double> time_s, std::span<const double> x, st
     else if (dr == 0.0 && h > 0.0) e = 0.0;
     engaged[k] = e;
   }
-  windowed_mean(time_s, engaged, kContactHalfWindow_s, engaged_avg);
+  // A progressive stop takes up the motion smoothly by itself: its engagement is not averaged.
+  if (progressive && contact_share > 0.0) {
+    engaged_avg = engaged;
+  } else {
+    windowed_mean(time_s, engaged, kContactHalfWindow_s, engaged_avg);
+  }
 }
 
 }  // namespace
 
-void DamperModel::backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws) const {
+void DamperModel::backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws,
+                                  bool progressive) const {
   // The rod stays put until the actuator reaches a side of the gap; it moves
   // at the actuator's velocity times the averaged engagement.
   play_operator(in_.time_s, in_.disp_m, std::span<const double>(&half_gap_m, 1), contact_share, ws.disp_m, ws.engaged,
-                ws.vel_m_s);
+                ws.vel_m_s, progressive, playing_start_side(in_.vel_m_s));
   for (std::size_t k = 0; k < size(); ++k) ws.vel_m_s[k] *= in_.vel_m_s[k];
 }
 
@@ -317,12 +382,14 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double impact_half_gap_m = impact ? 0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0) : 0.0;
   const double impact_compliance_m_per_n =
       impact ? std::max(param(Effect::backlash, 1, 0.0), 0.0) / std::max(p_.force_scale_n(), 1e-9) : 0.0;
-  double rod_m = n > 0 ? in_.disp_m[0] : 0.0;
+  // The rod starts against the side of the play the actuator first moves to (playing_start_side).
+  double rod_m = n > 0 ? in_.disp_m[0] - playing_start_side(in_.vel_m_s) * impact_half_gap_m : 0.0;
   if (impact) {
     ws.disp_m.resize(n);
     ws.vel_m_s.resize(n);
   } else if (set.contains(Effect::backlash)) {
-    backlash_motion(0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0), param(Effect::backlash, 1, 0.0), ws);
+    backlash_motion(0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0), param(Effect::backlash, 1, 0.0), ws,
+                    set.form(Effect::backlash) == kBacklashProgressive);
     xd = ws.disp_m.data();
     vd = ws.vel_m_s.data();
   }
@@ -386,7 +453,8 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   double z = 0.0;      // Bouc–Wen variable; the record starts unloaded
   // spencer: (y, z) from rest at the first stroke, its coefficients
   // recomputed when the current, the participant ratio or the fade changes.
-  physics::SpencerState sp{n > 0 ? in_.disp_m[0] : 0.0, 0.0};  // the rod's first position (any play centred)
+  // The rod's first position (through a mounting's play, against the side of the first motion).
+  physics::SpencerState sp{n > 0 ? (impact ? rod_m : xd[0]) : 0.0, 0.0};
   physics::SpencerCoefficients sc;
   double sc_key[4] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0};
   for (std::size_t k = 0; k < n; ++k) {

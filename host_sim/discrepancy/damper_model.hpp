@@ -16,6 +16,11 @@
 ///              last contact_share of the gap is a compliant stop (the rod takes
 ///              up the motion over that length), the engagement averaged over
 ///              ±3 ms                                                          (backlash)
+///            = the same through a progressive stop: the rod's share of the actuator's
+///              motion ½(1 + tanh((w − h)/ℓ)), w the actuator's position past the rod
+///              toward the side, ℓ = engagement_share × free_play   (backlash, progressive)
+///              (every form: the rod starts against the side of the play the actuator
+///              first moves to, the play taken up by the motion before the record)
 ///            = the rod pushed through a contact spring at the end of the play:
 ///              F_Bingham(v_d) = dz(x̄_a − r − dt v_d) / s, backward Euler centred on the
 ///              sample (r the rod at t_k − dt/2, x̄_a the actuator at t_k + dt/2),
@@ -132,7 +137,9 @@ class DamperModel {
   /// Fills ws.disp_m and ws.vel_m_s with the rod's motion when the mounting
   /// has a free play of ±half_gap_m (backlash) whose last contact_share of
   /// the gap is a compliant stop; uses ws.engaged.
-  void backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws) const;
+  /// `progressive`: a stop that engages progressively over contact_share of the whole play (backlash's
+  /// progressive form) instead.
+  void backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws, bool progressive) const;
   void coefficients(const std::vector<double>& current_a, std::vector<double>& a_y, std::vector<double>& b_y,
                     std::vector<double>& a_c, std::vector<double>& b_c) const;
 

@@ -31,6 +31,12 @@ constexpr std::array kBacklashImpactParams{
     // (200 kN for the thesis damper): 0 is a hard stop, up to 20 mm (a rubber pad, a bolt in bending).
     ParamInfo{"stop_deflection_m", 0.0, 0.020, 0.0, false, {0.0, 0.0005, 0.0015, 0.004, 0.01}},
 };
+constexpr std::array kBacklashProgressiveParams{
+    ParamInfo{"free_play_m", 0.0, 0.010, 0.0, false, {0.0002, 0.0006, 0.0015, 0.003, 0.006}},
+    // Length over which a progressive stop engages, as a share of the play (damper_model.cpp,
+    // progressive_contact_step): 0 is a hard stop, up to 1 (a bushing as soft as the play is long).
+    ParamInfo{"engagement_share", 0.0, 1.0, 0.0, false, {0.0, 0.05, 0.15, 0.35, 0.7}},
+};
 constexpr std::array kGasParams{
     // k = γ p A_rod² / V_gas: 1.4 · 5.17 MPa (§3.1) · (π 0.04²)² / V ≈ 0.18 MN/m per litre of gas;
     // 5 MN/m allows a gas volume down to ~0.04 L.
@@ -82,6 +88,11 @@ constexpr std::array kBacklashForms{
     EffectForm{"impact_spring",
                "the rod pushed through a contact spring at the end of the play, its deflection following the force",
                kBacklashImpactParams},
+    EffectForm{"progressive",
+               "the rod taken up by a progressive stop (a bushing stiffening as it closes): its share of the "
+               "actuator's motion rising as (1 + tanh(p / l)) / 2 with its penetration p, a tail over many "
+               "engagement lengths l",
+               kBacklashProgressiveParams},
 };
 constexpr std::array kGasForms{EffectForm{"linear", "k x", kGasParams}};
 constexpr std::array kThermalForms{EffectForm{"linear", "1 - alpha dT, dT = E / C", kThermalParams}};

@@ -96,10 +96,11 @@ struct EffectInfo {
 using EffectForms = std::array<std::uint8_t, kEffectCount>;
 
 /// Forms of the effects with more than one (EffectInfo::forms), by index:
-/// coil_lag's, idle_settling's and backlash's second forms.
+/// coil_lag's, idle_settling's and backlash's second forms, backlash's third.
 inline constexpr std::uint8_t kCoilSingleLag = 1;      ///< coil_lag: one first-order lag of fitted tau
 inline constexpr std::uint8_t kSettlingFullRecovery = 1;  ///< idle_settling: full recovery over its own volume
 inline constexpr std::uint8_t kBacklashImpactSpring = 1;  ///< backlash: a contact spring at the end of the play
+inline constexpr std::uint8_t kBacklashProgressive = 2;   ///< backlash: a progressive stop (tanh engagement)
 
 [[nodiscard]] const EffectInfo& effect_info(Effect e) noexcept;
 /// Parameters of effect `e` in its form `form` (the first form's when out of range).

@@ -623,6 +623,10 @@ void drop_wandering_offset(const SelectionContext& ctx, Selection& current, Mode
 /// take-up (soft_contact_step) is left, and a contact spring's deflection has
 /// settled to the force within the same travel.
 constexpr double kTakeUpLengths = 5.0;
+/// The same for a progressive stop (progressive_contact_step), whose share of
+/// the velocity the rod lacks falls as ℓ/(2 s) with the travel s past the stop,
+/// not exponentially: ℓ/(2 s) = e^(−5) at s = ½ e⁵ ℓ, 74 engagement lengths.
+constexpr double kProgressiveTakeUpLengths = 74.0;
 /// Least share of the fit samples with the rod engaged for the check to judge:
 /// fewer, and a delay's trace there is too faint to tell either way.
 constexpr double kMinEngagedShare = 0.1;
@@ -658,9 +662,10 @@ void drop_engagement_delay(const SelectionContext& ctx, Selection& current, Mode
                            std::vector<Effect>& dropped, std::vector<std::string>& findings) {
   if (!current.set.contains(Effect::backlash) || !current.set.contains(Effect::time_delay)) return;
   const std::vector<double> play = own_params(current.set, current.params, Effect::backlash);
-  const double contact_m =
-      current.set.form(Effect::backlash) == kBacklashImpactSpring ? play[1] : play[1] * play[0];
-  const double take_up_m = play[0] + kTakeUpLengths * contact_m;
+  const std::size_t form = current.set.form(Effect::backlash);
+  const double contact_m = form == kBacklashImpactSpring ? play[1] : play[1] * play[0];
+  const double take_up_m =
+      play[0] + (form == kBacklashProgressive ? kProgressiveTakeUpLengths : kTakeUpLengths) * contact_m;
   const std::vector<std::size_t> engaged = engaged_samples(ctx, take_up_m);
   if (static_cast<double>(engaged.size()) < kMinEngagedShare * static_cast<double>(ctx.fd.index.size())) return;
   EffectSet without = current.set;
@@ -811,7 +816,10 @@ std::string form_sentence(const EffectSet& set, std::span<const double> params, 
                   ? " ending in a contact spring that deflects " + format_number("%.3g", p[1] * 1e3) +
                         " mm under the baseline's force scale " + format_number("%.3g", model.baseline().force_scale_n()) +
                         " N"
-                  : " taken up over " + format_number("%.3g", p[1] * 100.0) + " % of it");
+                  : set.form(e) == kBacklashProgressive
+                        ? " taken up by a progressive stop over an engagement length of " +
+                              format_number("%.3g", p[1] * 100.0) + " % of it"
+                        : " taken up over " + format_number("%.3g", p[1] * 100.0) + " % of it");
     } else {
       what = std::string(form_name(e, set.form(e)));
     }
