@@ -57,7 +57,35 @@ ModelInput model_input(const MeasuredData& data, double smoothing_half_window_s)
   return in;
 }
 
-DamperModel::DamperModel(ModelInput input, Baseline baseline) : in_(std::move(input)) {
+namespace {
+
+/// The side of a mounting's free play the rod starts against: the direction
+/// of the actuator's first stroke, the sign of its first excursion from the
+/// first sample by more than 5 % of the record's peak-to-peak displacement
+/// (0 when it never moves that far). A record that starts in motion was in
+/// motion before it: the actuator had taken up the play toward the side it
+/// moves to, and the rod is pushed; a rod centred in the play would transmit
+/// no force until the actuator had crossed half of it, which no moving
+/// mounting does. The excursion, not the first sample's velocity, decides:
+/// a record that starts at rest has a velocity of sensor noise there, whose
+/// sign says nothing of the stroke to come; 5 % of the stroke is far above
+/// a displacement sensor's noise and short of a sine's first quarter period.
+double playing_start_side(std::span<const double> disp_m) {
+  if (disp_m.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(disp_m.begin(), disp_m.end());
+  const double threshold_m = 0.05 * (*hi - *lo);
+  if (!(threshold_m > 0.0)) return 0.0;
+  for (const double x : disp_m) {
+    const double d = x - disp_m.front();
+    if (std::fabs(d) > threshold_m) return d > 0.0 ? 1.0 : -1.0;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+DamperModel::DamperModel(ModelInput input, Baseline baseline)
+    : in_(std::move(input)), play_start_side_(playing_start_side(in_.disp_m)) {
   const std::size_t n = in_.time_s.size();
   step_s_.resize(n);
   for (std::size_t k = 0; k + 1 < n; ++k) step_s_[k] = in_.time_s[k + 1] - in_.time_s[k];
@@ -256,19 +284,6 @@ double impact_rod_velocity(double u_m, double h_m, double s_m_per_n, double dt_s
   return sgn * std::max(v, 0.0);
 }
 
-/// The side of a mounting's free play the rod starts against: the sign of
-/// the actuator's first motion in the record (0 when it never moves). A
-/// record that starts in motion was in motion before it: the actuator had
-/// taken up the play toward the side it moves to, and the rod is pushed; a
-/// rod centred in the play would transmit no force until the actuator had
-/// crossed half of it, which no moving mounting does.
-double playing_start_side(std::span<const double> vel_m_s) {
-  for (const double v : vel_m_s) {
-    if (v != 0.0) return v > 0.0 ? 1.0 : -1.0;
-  }
-  return 0.0;
-}
-
 /// Play operator of half width half_gap_m on x, with a soft contact over the
 /// last `contact_share` of the gap: the driven side's
 /// displacement (`driven`), its engaged fraction per sample (`engaged`, the
@@ -283,7 +298,7 @@ double playing_start_side(std::span<const double> vel_m_s) {
 /// engagement length of contact_share times the whole play.
 /// `start_side` (+1, −1 or 0): the side of the play the driven side starts
 /// against, the record's first motion having taken up the play toward it
-/// (playing_start_side); 0 starts it centred. A progressive stop starts as
+/// (DamperModel's play_start_side_); 0 starts it centred. A progressive stop starts as
 /// after a travel of the whole play past it.
 void play_operator(std::span<const double> time_s, std::span<const double> x, std::span<const double> half_gap_m,
                    double contact_share, std::vector<double>& driven, std::vector<double>& engaged,
@@ -343,7 +358,7 @@ void DamperModel::backlash_motion(double half_gap_m, double contact_share, Model
   // The rod stays put until the actuator reaches a side of the gap; it moves
   // at the actuator's velocity times the averaged engagement.
   play_operator(in_.time_s, in_.disp_m, std::span<const double>(&half_gap_m, 1), contact_share, ws.disp_m, ws.engaged,
-                ws.vel_m_s, progressive, playing_start_side(in_.vel_m_s));
+                ws.vel_m_s, progressive, play_start_side_);
   for (std::size_t k = 0; k < size(); ++k) ws.vel_m_s[k] *= in_.vel_m_s[k];
 }
 
@@ -382,8 +397,8 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double impact_half_gap_m = impact ? 0.5 * std::max(param(Effect::backlash, 0, 0.0), 0.0) : 0.0;
   const double impact_compliance_m_per_n =
       impact ? std::max(param(Effect::backlash, 1, 0.0), 0.0) / std::max(p_.force_scale_n(), 1e-9) : 0.0;
-  // The rod starts against the side of the play the actuator first moves to (playing_start_side).
-  double rod_m = n > 0 ? in_.disp_m[0] - playing_start_side(in_.vel_m_s) * impact_half_gap_m : 0.0;
+  // The rod starts against the side of the play the actuator first moves to (play_start_side_).
+  double rod_m = n > 0 ? in_.disp_m[0] - play_start_side_ * impact_half_gap_m : 0.0;
   if (impact) {
     ws.disp_m.resize(n);
     ws.vel_m_s.resize(n);

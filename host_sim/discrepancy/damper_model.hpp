@@ -144,6 +144,7 @@ class DamperModel {
                     std::vector<double>& a_c, std::vector<double>& b_c) const;
 
   ModelInput in_;
+  double play_start_side_ = 0.0;  ///< +1, −1 or 0: the side of a mounting's play the rod starts against
   Baseline p_;
   double force_ratio_ = 1.0;
   std::vector<double> step_s_;  ///< dt_k; the last entry repeats the one before

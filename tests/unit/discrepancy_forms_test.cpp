@@ -123,6 +123,46 @@ TEST(DiscrepancyForms, ImpactSpringDeflectsWithTheForceOnceThePlayIsTaken) {
   EXPECT_NEAR(in.disp_m[k] - ws.disp_m[k], 0.5 * play_m, 1e-9);
 }
 
+// A record that starts at rest: 0.2 s of sensor noise (±2 µm, the first
+// step downward, so the first sample's velocity is negative), then a stroke
+// upward at v = 50 mm/s. The rod starts against the side of the first stroke,
+// the upper one (5 % of the 48 mm peak-to-peak is 2.4 mm, far above the
+// noise): 10 ms into the stroke (0.5 mm, a quarter of the 2 mm play) the hard
+// play already transmits the force of the model without play. Started
+// against the lower side, or centred, the rod would still stand (the actuator
+// must first cross 2 mm or 1 mm), and the force would be the one at zero
+// velocity.
+TEST(DiscrepancyForms, TheRodStartsAgainstTheSideOfTheFirstStrokeNotOfTheFirstNoise) {
+  constexpr double v = 0.05, play_m = 0.002;
+  constexpr std::size_t rest = 200, n = 1200;
+  ModelInput in;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * kFormsDt;
+    const double noise_m = k < rest ? (k % 2 == 1 ? -2e-6 : 0.0) : 0.0;
+    const double stroke_m = k < rest ? 0.0 : v * static_cast<double>(k - rest) * kFormsDt;
+    in.time_s.push_back(t);
+    in.disp_m.push_back(noise_m + stroke_m);
+    in.current_cmd_a.push_back(1.0);
+  }
+  // Central differences, the first sample's forward: (−2 µm − 0)/1 ms < 0.
+  in.vel_m_s.resize(n);
+  in.vel_m_s[0] = (in.disp_m[1] - in.disp_m[0]) / kFormsDt;
+  for (std::size_t k = 1; k + 1 < n; ++k) in.vel_m_s[k] = (in.disp_m[k + 1] - in.disp_m[k - 1]) / (2.0 * kFormsDt);
+  in.vel_m_s[n - 1] = v;
+  ASSERT_LT(in.vel_m_s[0], 0.0);
+  const DamperModel model(in);
+  EffectSet set{{Effect::backlash}};
+  ModelWorkspace ws;
+  std::vector<double> base, f;
+  model.simulate(EffectSet{}, {}, ws, base);
+  model.simulate(set, std::vector<double>{play_m, 0.0}, ws, f);
+  const std::size_t k = rest + 10;
+  ASSERT_GT(base[k], 1e3);
+  EXPECT_NEAR(f[k], base[k], 1e-3 * base[k]);
+  // The rod trails the actuator by the half play, from the start of the stroke on.
+  EXPECT_NEAR(in.disp_m[k] - ws.disp_m[k], 0.5 * play_m, 1e-9);
+}
+
 // Free play of P = 2 mm (h = 1 mm) ending in a progressive stop of
 // engagement length l = 0.1 P = 0.2 mm, the actuator moving at v = 50 mm/s.
 // Toward the stop the rod takes the share e = (1 + tanh y) / 2 of the
