@@ -154,6 +154,27 @@ std::string hidden_name(const fs::path& target, const char* suffix) {
 std::string staging_prefix(const fs::path& target) { return hidden_name(target, ".staging-"); }
 std::string old_prefix(const fs::path& target) { return hidden_name(target, ".old-"); }
 
+/// Removes the folder `dir` of a result with its marker last: a kill in the
+/// middle leaves the marker in place, so the next run still knows the rest
+/// for this program's and removes it (remove_stale_staging removes only
+/// folders that hold the marker or are empty). Errors are left in `ec`.
+void remove_marked_tree(const fs::path& dir, std::error_code& ec) {
+  ec.clear();
+  std::error_code it_ec;
+  std::vector<fs::path> rest;
+  for (fs::directory_iterator it(dir, it_ec), end; !it_ec && it != end; it.increment(it_ec)) {
+    if (it->path().filename() != kResultMarker) rest.push_back(it->path());
+  }
+  for (const fs::path& p : rest) {
+    std::error_code rm;
+    fs::remove_all(p, rm);
+    if (rm && !ec) ec = rm;
+  }
+  std::error_code rm;
+  fs::remove_all(dir, rm);
+  if (rm && !ec) ec = rm;
+}
+
 bool process_gone(const std::string& pid_text) {
   if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9) {
     return false;
@@ -177,7 +198,7 @@ void remove_stale_staging(const fs::path& target) {
       std::error_code rm;
       if (it->is_directory(rm) && !it->is_symlink(rm) &&
           (holds_marker(it->path(), kResultMarker) || fs::is_empty(it->path(), rm))) {
-        fs::remove_all(it->path(), rm);
+        remove_marked_tree(it->path(), rm);
       }
     }
   }
@@ -326,7 +347,7 @@ void commit_outputs() {
     if (!previous.empty()) {
       publish(t.slot, previous);
       std::error_code ec;
-      fs::remove_all(previous, ec);
+      remove_marked_tree(previous, ec);
     }
     release(t);
   }
@@ -336,7 +357,7 @@ void abandon_outputs() noexcept {
   Registry& reg = registry();
   for (const Transaction& t : reg.open) {
     std::error_code ec;
-    fs::remove_all(t.staging, ec);
+    remove_marked_tree(t.staging, ec);
     release(t);
     remove_created_parents(t);
   }
