@@ -421,10 +421,13 @@ TEST(DiscrepancyIndependentStudy, DetectionFalsePositivesAndUnexplained) {
   std::fflush(stdout);
 
   EXPECT_LE(clean_fp.rate(), kMaxFalsePositiveRate) << "false positives on clean records";
-  // Rates over fewer cases (the sanitizer build's 12) are too coarse for the floors.
-  if (cases_run >= 60) {
+  // Rates over fewer cases (the sanitizer build's 12) are too coarse for the floors;
+  // a draw of chosen effects (MRD_INDEPENDENT_STUDY_EFFECTS) may hold no case a floor judges.
+  if (cases_run >= 60 && detect_modelled_above.total > 0) {
     EXPECT_GE(detect_modelled_above.rate(), kFloorRightSetRate)
         << "right set above ENR " << kDetectionLimitEnr << ", forms the workflow's models carry";
+  }
+  if (cases_run >= 60 && ooc_unexplained_above.total > 0) {
     EXPECT_GE(ooc_unexplained_above.rate(), kFloorOutOfCatalogueUnexplainedRate)
         << "out-of-catalogue effects unexplained";
   }
