@@ -53,13 +53,18 @@ double dominant_frequency_hz(std::span<const double> time_s, std::span<const dou
 double smoothing_half_window_for(std::span<const double> time_s, std::span<const double> displacement_m,
                                  double cap_s) {
   const std::vector<double> c = mean_crossings_s(time_s, displacement_m);
-  double shortest_half_period_s = 0.0;
+  std::vector<double> half_periods_s;
   for (std::size_t k = 1; k < c.size(); ++k) {
     const double d = c[k] - c[k - 1];
-    if (d > 0.0 && (shortest_half_period_s == 0.0 || d < shortest_half_period_s)) shortest_half_period_s = d;
+    if (d > 0.0) half_periods_s.push_back(d);
   }
-  if (shortest_half_period_s == 0.0) return cap_s;
-  return std::min(cap_s, kSmoothingPeriodShare * 2.0 * shortest_half_period_s);
+  if (half_periods_s.empty()) return cap_s;
+  // The kShortHalfPeriodQuantile of the half periods: the single shortest
+  // of an irregular motion is a graze of the mean band, not its bandwidth.
+  const auto q = static_cast<std::size_t>(kShortHalfPeriodQuantile * static_cast<double>(half_periods_s.size()));
+  std::nth_element(half_periods_s.begin(), half_periods_s.begin() + static_cast<std::ptrdiff_t>(q),
+                   half_periods_s.end());
+  return std::min(cap_s, kSmoothingPeriodShare * 2.0 * half_periods_s[q]);
 }
 
 }  // namespace mrd::discrepancy

@@ -2,6 +2,7 @@
 // (motion_timescale.hpp). Expected values from the sines' closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -51,6 +52,26 @@ TEST(MotionTimescale, WindowFollowsTheShortestPeriod) {
   EXPECT_DOUBLE_EQ(smoothing_half_window_for(slow.time_s, slow.displacement_m, 0.075), 0.075);
   MeasuredData still = sine_record(0.0, 1.0, 2.0, 1000.0);  // no motion, no crossing
   EXPECT_DOUBLE_EQ(smoothing_half_window_for(still.time_s, still.displacement_m, 0.075), 0.075);
+}
+
+// One brief dip in a 2 Hz sine (a stroke interrupted for 30 ms at t = 1.1 s,
+// where the sine is at 0.95 of its amplitude, by a pulse 1.2 amplitudes deep
+// that takes it through the band around the mean and back) cuts one of 39
+// half periods of 250 ms into three, the middle one about 30 ms long. The window follows
+// the motion's period, a tenth of 0.5 s, not the dip: sized to the shortest
+// interval it would be about 0.2 × 30 ms = 6 ms, and the sensor's noise on
+// the whole record would pass almost unsmoothed.
+TEST(MotionTimescale, WindowIgnoresARareShortInterval) {
+  MeasuredData d = sine_record(0.01, 2.0, 10.0, 1000.0);
+  for (std::size_t k = 0; k < d.time_s.size(); ++k) {
+    if (std::fabs(d.time_s[k] - 1.1) <= 0.015) d.displacement_m[k] -= 0.012;
+  }
+  const std::vector<double> c = mean_crossings_s(d.time_s, d.displacement_m);
+  double shortest_s = 1.0;
+  for (std::size_t k = 1; k < c.size(); ++k) shortest_s = std::min(shortest_s, c[k] - c[k - 1]);
+  ASSERT_LT(shortest_s, 0.04) << "the dip must cross the band";
+  // An interval is within one sample (1 ms) of 250 ms: 0.2 × 1 ms, and the rounding of the time stamps' difference.
+  EXPECT_NEAR(smoothing_half_window_for(d.time_s, d.displacement_m, 0.075), 0.1 / 2.0, 2e-4 + 1e-12);
 }
 
 // A linear chirp 1 → 20 Hz over 4 s, 1 mm, at 1 kHz: x = A sin φ,
