@@ -46,9 +46,9 @@ inline constexpr double kSmoothingPeriodShare = 0.1;
 /// sized to it smooths a sensor's noise on the whole record hardly at all
 /// (on the independent generator's random multisines of 0.1–3 Hz, ±15 ms
 /// where the 3 Hz part allows ±33 ms). A tenth of the intervals
-/// are shorter: on a chirp that is the top 5 % of its frequency span
-/// (h·f = 0.105 there for a linear sweep), on a sine any of its equal
-/// half periods.
+/// are shorter: on a linear sweep from f0 ≪ f1 that is the half period at
+/// about 0.95 f1 (a share (f1² − f²)/(f1² − f0²) of the crossings lies above
+/// f; h·f1 = 0.105), on a sine any of its equal half periods.
 inline constexpr double kShortHalfPeriodQuantile = 0.1;
 
 /// The smoothing half window for a record: `cap_s` (the ±75 ms chosen for

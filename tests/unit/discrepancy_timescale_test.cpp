@@ -56,8 +56,9 @@ TEST(MotionTimescale, WindowFollowsTheShortestPeriod) {
 
 // One brief dip in a 2 Hz sine (a stroke interrupted for 30 ms at t = 1.1 s,
 // where the sine is at 0.95 of its amplitude, by a pulse 1.2 amplitudes deep
-// that takes it through the band around the mean and back) cuts one of 39
-// half periods of 250 ms into three, the middle one about 30 ms long. The window follows
+// that takes it through the band around the mean and back) cuts one of the
+// record's half periods of 250 ms into three: up to the dip, the dip itself
+// (about 30 ms), and on to the next crossing. The window follows
 // the motion's period, a tenth of 0.5 s, not the dip: sized to the shortest
 // interval it would be about 0.2 × 30 ms = 6 ms, and the sensor's noise on
 // the whole record would pass almost unsmoothed.
