@@ -7,6 +7,7 @@
 #include <vector>
 #include <sstream>
 #include <string_view>
+#include <utility>
 #include <toml++/toml.h>
 
 namespace mrd::app {
@@ -376,6 +377,16 @@ void read_damper(const toml::table& root, const std::string& origin, BoardConfig
       {"v_tf_m_s", &d.bingham.v_tf_m_s, 1e-6, 1.0, "m/s"},
       {"bouc_wen_yield_disp_m", &d.bouc_wen.yield_disp_m, 0.0, 1.0, "m"},
       {"bouc_wen_stiffness_n_m", &d.bouc_wen.stiffness_n_m, 0.0, 1e10, "N/m"},
+      // A calibrated law's bends (physics::LawShape): absent, the thesis's law.
+      {"yield_current_exponent", &d.shape.yield_current_exponent, 0.01, 10.0, ""},
+      {"viscous_current_exponent", &d.shape.viscous_current_exponent, 0.01, 10.0, ""},
+      {"viscous_exponent", &d.shape.viscous_exponent, 0.01, 10.0, ""},
+      {"viscous_ref_m_s", &d.shape.viscous_ref_m_s, 0.0, 100.0, "m/s"},
+      {"bingham_stiffness_n_m", &d.shape.stiffness_n_m, 0.0, 1e10, "N/m"},
+      {"transition_time_s", &d.shape.transition_time_s, 0.0, 0.1, "s"},
+      {"lost_motion_m_per_n", &d.shape.lost_motion_m_per_n, 0.0, 1.0, "m/N"},
+      {"lost_motion_share", &d.shape.lost_motion_share, 0.0, 1.0, ""},
+      {"lost_motion_band_m_s", &d.shape.lost_motion_band_m_s, 0.0, 100.0, "m/s"},
       {"tau_slow_s", &d.coil.tau_slow_s, 1e-9, 100.0, "s"},
       {"tau_fast_s", &d.coil.tau_fast_s, 1e-9, 100.0, "s"},
       {"weight_slow", &d.coil.weight_slow, 0.0, 1.0, ""},
@@ -400,6 +411,18 @@ void read_damper(const toml::table& root, const std::string& origin, BoardConfig
   if (d.law == physics::ForceLaw::kBoucWen && !(d.bouc_wen.yield_disp_m > 0.0))
     fail(origin, t.where("bouc_wen_yield_disp_m"), "damper.bouc_wen_yield_disp_m",
          "the bouc_wen law needs a yield displacement > 0 m");
+  if (d.shape.viscous_exponent != 1.0 && !(d.shape.viscous_ref_m_s > 0.0))
+    fail(origin, t.where("viscous_exponent"), "damper.viscous_exponent",
+         "a viscous exponent needs viscous_ref_m_s > 0 m/s (the velocity at which c0 is the slope)");
+  if (d.law == physics::ForceLaw::kBoucWen) {
+    const std::pair<const char*, bool> bingham_only[] = {{"viscous_exponent", d.shape.viscous_exponent != 1.0},
+                                                         {"bingham_stiffness_n_m", d.shape.stiffness_n_m != 0.0},
+                                                         {"transition_time_s", d.shape.transition_time_s != 0.0}};
+    for (const auto& [key, set] : bingham_only)
+      if (set)
+        fail(origin, t.where(key), std::string("damper.") + key,
+             "acts on the bingham and bingham_tanh laws only (the bouc_wen law's spring is bouc_wen_stiffness_n_m)");
+  }
 }
 
 /// [fluid]: Table 5.3's particles and carrier, an optional measured maximum
@@ -738,6 +761,20 @@ std::string board_toml(const BoardConfig& c, const std::string& header) {
   if (d.law == physics::ForceLaw::kBoucWen) {
     w.num("bouc_wen_yield_disp_m", d.bouc_wen.yield_disp_m);
     w.num("bouc_wen_stiffness_n_m", d.bouc_wen.stiffness_n_m);
+  }
+  const physics::LawShape& sh = d.shape;
+  if (sh.yield_current_exponent != 1.0) w.num("yield_current_exponent", sh.yield_current_exponent);
+  if (sh.viscous_current_exponent != 1.0) w.num("viscous_current_exponent", sh.viscous_current_exponent);
+  if (sh.has_viscous_exponent()) {
+    w.num("viscous_exponent", sh.viscous_exponent);
+    w.num("viscous_ref_m_s", sh.viscous_ref_m_s);
+  }
+  if (sh.stiffness_n_m != 0.0) w.num("bingham_stiffness_n_m", sh.stiffness_n_m);
+  if (sh.transition_time_s != 0.0) w.num("transition_time_s", sh.transition_time_s);
+  if (sh.lost_motion_m_per_n != 0.0 || sh.lost_motion_share != 0.0 || sh.lost_motion_band_m_s != 0.0) {
+    w.num("lost_motion_m_per_n", sh.lost_motion_m_per_n);
+    w.num("lost_motion_share", sh.lost_motion_share);
+    w.num("lost_motion_band_m_s", sh.lost_motion_band_m_s);
   }
   w.num("tau_slow_s", d.coil.tau_slow_s);
   w.num("tau_fast_s", d.coil.tau_fast_s);

@@ -63,12 +63,18 @@ bool lane_isa_cpu_runs(LaneIsa isa) {
 
 namespace {
 
-/// The lanes step the thesis's Bingham law (Eq. 4.4) only: another law
-/// would be a different closed loop from plant::Plant's.
+/// The lanes step the thesis's Bingham law (Eq. 4.4) only: another law, or
+/// one bent by a calibration's shape, would be a different closed loop from
+/// plant::Plant's.
 void require_bingham_law(const plant::PlantSpec& spec) {
   if (spec.damper.law != physics::ForceLaw::kBingham) {
     throw std::invalid_argument(std::string("the batch steps the damper's bingham law only, not ") +
                                 physics::force_law_name(spec.damper.law) + " (run each closed loop on the plant)");
+  }
+  if (spec.damper.shape.bends()) {
+    throw std::invalid_argument(
+        "the batch steps Eq. 4.2-4.4's bingham law only, not one bent by current or viscous exponents, a spring, "
+        "a transition time or a lost motion (run each closed loop on the plant)");
   }
 }
 

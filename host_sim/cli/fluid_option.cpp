@@ -48,7 +48,7 @@ bool same(const physics::MrDamperParams& a, const physics::MrDamperParams& b) {
          p.b_rise == q.b_rise && p.c_rise == q.c_rise && p.flow_area_m2 == q.flow_area_m2 &&
          p.volume_unit_m3 == q.volume_unit_m3 && a.law == b.law &&
          a.bouc_wen.yield_disp_m == b.bouc_wen.yield_disp_m && a.bouc_wen.stiffness_n_m == b.bouc_wen.stiffness_n_m &&
-         r.current_a == t.current_a && r.force_n == t.force_n && r.stroke_m == t.stroke_m &&
+         a.shape == b.shape && r.current_a == t.current_a && r.force_n == t.force_n && r.stroke_m == t.stroke_m &&
          r.velocity_m_s == t.velocity_m_s;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/physical_ranges.hpp"
 #include "host_sim/discrepancy/toml_fields.hpp"
 #include "host_sim/io/text.hpp"
@@ -17,6 +18,9 @@ using discrepancy::BaselineFile;
 using discrepancy::PhysicalRange;
 
 std::string g4(double v) { return io::format_number("%.4g", v); }
+
+// The closed loop averages the lost motion's engagement over the window the calibration does.
+static_assert(physics::kLostMotionHalfWindow_s == discrepancy::kContactHalfWindow_s);
 
 physics::ForceLaw force_law(const Baseline& b) {
   if (b.law == BaseLaw::bouc_wen) return physics::ForceLaw::kBoucWen;
@@ -40,6 +44,22 @@ physics::MrDamperParams damper_params(const Baseline& b) {
   p.law = force_law(b);
   if (b.law == BaseLaw::bouc_wen) p.bouc_wen = {b.yield_disp_m, b.stiffness_n_m};
   if (b.law == BaseLaw::spencer) p.spencer = b.spencer;
+  // The calibration's shape of the law (LawShape), each term where the baseline applies it.
+  if (b.has_current_exponent()) {
+    p.shape.yield_current_exponent = b.yield_n.current_exponent;
+    p.shape.viscous_current_exponent = b.viscous_ns_m.current_exponent;
+  }
+  if (b.has_viscous_exponent()) {
+    p.shape.viscous_exponent = b.viscous_exponent;
+    p.shape.viscous_ref_m_s = b.viscous_ref_m_s;
+  }
+  if (b.has_bingham_stiffness()) p.shape.stiffness_n_m = b.stiffness_n_m;
+  if (b.has_transition_time()) p.shape.transition_time_s = b.transition_time_s;
+  if (b.has_lost_motion()) {
+    p.shape.lost_motion_m_per_n = b.lost_motion_m_per_n;
+    p.shape.lost_motion_share = b.lost_motion_share;
+    p.shape.lost_motion_band_m_s = b.lost_motion_band_m_s;
+  }
   return p;
 }
 
@@ -93,23 +113,6 @@ std::vector<std::string> warnings_of(const BaselineFile& f, const DamperFile& d)
                 g4(g.shaft_radius_m) + " m, length " + g4(g.fluid_length_m) + " m, fluid " + g4(g.fluid_volume_m3) +
                 " m3)");
   }
-  if (b.has_lost_motion())
-    w.push_back("[lost_motion]: the closed loop does not simulate the lost motion at reversals (m_per_n " +
-                g4(b.lost_motion_m_per_n) + " m/N, share " + g4(b.lost_motion_share) +
-                "): its force is the law's alone");
-  if (b.has_transition_time())
-    w.push_back("bingham.transition_time_s: the closed loop does not simulate the transition time (" +
-                g4(b.transition_time_s) + " s): its band is v_tf_m_s alone");
-  if (b.has_current_exponent())
-    w.push_back("current_exponent: the closed loop's current laws are Eq. 4.2-4.3's (exponent 1), not the "
-                "calibrated exponents " + g4(b.yield_n.current_exponent) + " (yield_n) and " +
-                g4(b.viscous_ns_m.current_exponent) + " (viscous_ns_m)");
-  if (b.has_bingham_stiffness())
-    w.push_back("bingham.stiffness_n_m: the closed loop does not simulate the spring beside the Bingham law (" +
-                g4(b.stiffness_n_m) + " N/m): its force is the law's alone");
-  if (b.has_viscous_exponent())
-    w.push_back("bingham.viscous_exponent: the closed loop's viscous force is linear in v (C v), not C v_r (|v| / "
-                "v_r)^m with m = " + g4(b.viscous_exponent));
   if (b.force_delay_s > 0.0)
     w.push_back("channels.force_delay_s: the force channel's lag of the test (" + g4(b.force_delay_s) +
                 " s) is the rig's, not the damper's: the closed loop has none");

@@ -10,7 +10,10 @@
 ///   [yield_n]       at_zero → bingham.fc_a_n, limit → fc_b_n, rate_per_a → fc_c_per_a
 ///   [viscous_ns_m]  at_zero → bingham.c0_a_ns_m, limit → c0_b_ns_m, rate_per_a → c0_c_per_a
 ///   [bingham]       v_tf_m_s → bingham.v_tf_m_s; transition linear → ForceLaw::kBingham,
-///                   tanh → ForceLaw::kBinghamTanh
+///                   tanh → ForceLaw::kBinghamTanh; transition_time_s, stiffness_n_m,
+///                   viscous_exponent and viscous_ref_m_s → MrDamperParams::shape
+///   current_exponent of [yield_n] and [viscous_ns_m] → shape's current exponents
+///   [lost_motion]   m_per_n, share, band_m_s → shape's lost motion
 ///   [bouc_wen]      → ForceLaw::kBoucWen with yield_disp_m, stiffness_n_m
 ///   [spencer]       → ForceLaw::kSpencer with its model and current laws (SI, as the file
 ///                   holds them); [coil] with equal time constants τ is the paper's
@@ -25,9 +28,12 @@
 /// </pre>
 /// (the thesis's Table 4.1 in baseline.hpp's thesis_baseline(): f_c 4.1 kN at
 /// 0 A → 170 kN at 0.7 1/A, the same three numbers as physics::BinghamParams).
-/// What a baseline holds and the closed loop does not simulate (a lost
-/// motion, a transition time, the test rig's force-channel lag) is named in
-/// a warning, as are a coil or participant ratio not identified from records.
+/// What a baseline holds and the closed loop does not simulate (the test
+/// rig's force-channel lag) is named in a warning, as are a coil or
+/// participant ratio not identified from records. The transition time and
+/// the lost motion are simulated causally (physics/mr_damper.hpp: the
+/// damper's acceleration over the last step, the engagement averaged over
+/// the last 6 ms), where the calibration averages around each sample.
 
 #include <filesystem>
 #include <string>

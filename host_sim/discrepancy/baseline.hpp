@@ -87,8 +87,8 @@
 /// felt on long strokes at low current. On the laboratory damper, fitted on
 /// two families and checked on the third, q and m carry to the held-out
 /// 2 mm / 5 Hz and 25 mm / 0.25 Hz families but not to the faster 5 mm / 3 Hz
-/// one (README, discrepancy section); the closed loop does not simulate them
-/// (damper_file.cpp warns).
+/// one (README, discrepancy section); the closed loop simulates them
+/// (physics::LawShape, physics/mr_damper.hpp).
 ///
 /// A third law, `spencer`, is Spencer et al. (1997)'s modified Bouc–Wen
 /// model with its own current laws (physics/spencer_law.hpp: Eq. (8)–(10)

@@ -85,6 +85,15 @@ void hash_damper_and_fluid(Fnv1a& h, const physics::MrDamperParams& d, const phy
   h.count(static_cast<std::uint64_t>(d.law));
   h.number(d.bouc_wen.yield_disp_m);
   h.number(d.bouc_wen.stiffness_n_m);
+  // A calibration's bends of the law (only when there are some: a plan without them hashes as before them).
+  const physics::LawShape& sh = d.shape;
+  if (sh.bends()) {
+    for (double x : {sh.yield_current_exponent, sh.viscous_current_exponent, sh.viscous_exponent, sh.viscous_ref_m_s,
+                     sh.stiffness_n_m, sh.transition_time_s, sh.lost_motion_m_per_n, sh.lost_motion_share,
+                     sh.lost_motion_band_m_s}) {
+      h.number(x);
+    }
+  }
   const physics::DamperRating& r = d.rating;
   for (double x : {r.current_a, r.force_n, r.stroke_m, r.velocity_m_s}) h.number(x);
   for (double x : {s.gravity_m_s2, s.particle_diameter_m, s.solid_density_kg_m3, s.liquid_density_kg_m3,
@@ -164,7 +173,8 @@ void simulate_runs_one_by_one(const FragilityPlan& plan, std::span<const std::si
 }
 
 bool lanes_take(const FragilityPlan& plan) noexcept {
-  return plan.base.kind == plant::PlantKind::kThesis && plan.base.damper.law == physics::ForceLaw::kBingham;
+  return plan.base.kind == plant::PlantKind::kThesis && plan.base.damper.law == physics::ForceLaw::kBingham &&
+         !plan.base.damper.shape.bends();
 }
 
 void simulate_runs(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out) {

@@ -204,12 +204,12 @@ TEST_F(BuildingCli, TheThesisBuildingsFileGivesTheSameOutputsAsNoFile) {
     expect_same_outputs(out_.path() / "without", out_.path() / "with", files.at(without[i].name));
     // sim names the building it ran; sweep, study and fragility keep the
     // thesis's summary.json for the thesis building (modal's lists the DOFs' names).
-    const nlohmann::json with = summary_without_timing(out_.path() / "with");
+    const nlohmann::json summary = summary_without_timing(out_.path() / "with");
     if (without[i].name == "sim") {
-      EXPECT_EQ(with.at("building"), "thesis-6dof");
+      EXPECT_EQ(summary.at("building"), "thesis-6dof");
     } else if (without[i].name != "modal") {
-      EXPECT_FALSE(with.contains("building")) << without[i].name;
-      EXPECT_FALSE(with.contains("dofs")) << without[i].name;
+      EXPECT_FALSE(summary.contains("building")) << without[i].name;
+      EXPECT_FALSE(summary.contains("dofs")) << without[i].name;
     }
     fs::remove_all(out_.path() / "without");
     fs::remove_all(out_.path() / "with");

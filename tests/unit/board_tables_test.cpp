@@ -154,6 +154,39 @@ TEST(BoardTables, DamperKeysReachTheEstimator) {
   EXPECT_EQ(m.estimator.model.pr.flow_area_m2, 0.0005);
 }
 
+// A calibrated damper's bends of its Bingham law (physics::LawShape)
+// ride in [damper] as `mrd configure` writes them, read back exactly; the
+// keys of the Bingham laws are refused on a bouc_wen damper, and a viscous
+// exponent needs its reference velocity.
+TEST(BoardTables, ACalibratedShapeReadsBackAndIsRefusedWhereItCannotAct) {
+  BoardConfig c = parse_tables("[damper]\nlaw = \"bingham_tanh\"\n");
+  c.damper.shape.yield_current_exponent = 1.0 / 3.0 + 1.0;
+  c.damper.shape.viscous_current_exponent = 0.7;
+  c.damper.shape.viscous_exponent = 0.55;
+  c.damper.shape.viscous_ref_m_s = 0.03;
+  c.damper.shape.stiffness_n_m = 12000.0;
+  c.damper.shape.transition_time_s = 0.004;
+  c.damper.shape.lost_motion_m_per_n = 2.241e-07;
+  c.damper.shape.lost_motion_share = 1.0;
+  c.damper.shape.lost_motion_band_m_s = 0.015;
+  const BoardConfig r = parse_board_config(board_toml(c), "w.toml");
+  EXPECT_TRUE(r.damper.shape == c.damper.shape);
+  EXPECT_EQ(board_toml(r), board_toml(c));
+  // Absent, the shape bends nothing and the writer writes none of its keys.
+  EXPECT_FALSE(parse_tables("").damper.shape.bends());
+  const std::string plain = board_toml(parse_tables(""));
+  for (const char* key : {"current_exponent", "viscous_exponent", "viscous_ref_m_s", "bingham_stiffness_n_m", "transition_time_s",
+                          "lost_motion"})
+    EXPECT_EQ(plain.find(key), std::string::npos) << key;
+  EXPECT_EQ(tables_error_of("[damper]\nlaw = \"bouc_wen\"\nbouc_wen_yield_disp_m = 0.001\nbingham_stiffness_n_m = 10.0\n"),
+            "b.toml:12: damper.bingham_stiffness_n_m: acts on the bingham and bingham_tanh laws only (the bouc_wen law's "
+            "spring is bouc_wen_stiffness_n_m)");
+  EXPECT_EQ(tables_error_of("[damper]\nviscous_exponent = 0.5\n"),
+            "b.toml:10: damper.viscous_exponent: a viscous exponent needs viscous_ref_m_s > 0 m/s (the velocity at "
+            "which c0 is the slope)");
+  EXPECT_EQ(tables_error_of("[damper]\nyield_current_exponent = 20.0\n").rfind("b.toml:10: damper.yield_current_exponent: expected", 0), 0u);
+}
+
 }  // namespace
 }  // namespace mrd::app
 

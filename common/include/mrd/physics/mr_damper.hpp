@@ -11,6 +11,7 @@
 ///   f_c[n], c_0[n] = f_c(|i[n]|, PR[n]), c_0(|i[n]|, PR[n])                      Eq. 5.10–5.11
 ///   F[n]      = TF(v[n]) · ( f_c[n] sgn v[n] + c_0[n] v[n] )                     kBingham: Eq. 4.4, 5.12
 ///             = f_c[n] tanh(v[n]/v_TF) + c_0[n] v[n]                            kBinghamTanh: baseline.hpp
+///               (either bent by MrDamperParams::shape, bingham.hpp's LawShape)
 ///             = f_c[n] z[n] + c_0[n] v[n] + k_0 x[n]                            kBoucWen: baseline.hpp
 ///             = c_1 ẏ(y[n], z_s[n], x[n], v[n]) + k_1 (x[n] − x_0)               kSpencer: spencer_law.hpp
 ///   z[n]      = Z(z[n−1], x[n] − x[n−1]),  z = 0 at x = 0 on reset             bouc_wen_z_after
@@ -36,9 +37,31 @@
 /// the records' currents (the laboratory's α turns negative at 1.3 A), so
 /// above the rated current (rating.current_a) they are held at their value
 /// there, as a field that saturates: the coil current itself is not limited.
+///
+/// A calibrated damper's shape (LawShape: current exponents, viscous
+/// exponent, spring, transition time, lost motion) acts as in the
+/// calibration (discrepancy::DamperModel), with two differences, both
+/// because a causal model cannot look ahead:
+///  - the transition time widens the band by τ|a| with a the damper's
+///    acceleration over the last step, (v[n] − v[n−1])/T (v[−1] = 0 after a
+///    reset), where the calibration averages a measured record's |a| over
+///    ±5 ms to keep the derivative's noise out (a simulated velocity has none);
+///  - the lost motion's engagement e[n] is, as in the calibration, the
+///    play's engaged share (r[k+1] − r[k−1])/(x[k+1] − x[k−1]) clamped to
+///    [0, 1] (r the play's driven side) averaged over the steps k within
+///    ±kLostMotionHalfWindow_s of n (3 either side at 1 kHz), where the
+///    strokes after x[n] are not known yet: they are extrapolated at the
+///    last step's increment, x[n+j] = x[n] + j (x[n] − x[n−1]), so the
+///    engagement is the calibration's for a motion that keeps its velocity
+///    over the half window (3 ms; exact for a linear stroke).
+/// The spring and the play act on the stroke x[n] (step(u, v) moves it by
+/// v[n]·T); the play starts centred on the first step's stroke, as the
+/// calibration's on a record's first sample.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 
 #include "mrd/physics/bingham.hpp"
 #include "mrd/physics/current_dynamics.hpp"
@@ -47,6 +70,14 @@
 #include "mrd/physics/spencer_law.hpp"
 
 namespace mrd::physics {
+
+/// Half the window the lost motion's engagement is averaged over
+/// (LawShape), s: discrepancy::kContactHalfWindow_s, which the calibration
+/// uses (damper_file.cpp holds the two equal).
+inline constexpr double kLostMotionHalfWindow_s = 0.003;
+/// The most steps either side of that window: 3 ms at 47.6 µs a step and
+/// longer; at a shorter step the window is this many steps.
+inline constexpr int kLostMotionMaxHalfSteps = 63;
 
 /// The force law of a damper file's [model] law (host_sim/damper): the
 /// thesis's Bingham law, or one `mrd calibrate` fitted.
@@ -90,6 +121,10 @@ struct MrDamperParams {
   ForceLaw law = ForceLaw::kBingham;
   BoucWenDamperParams bouc_wen{};
   SpencerParams spencer{};  ///< ForceLaw::kSpencer: its model and current laws (SI)
+  /// A calibrated damper's shape of the law (current exponents and lost
+  /// motion: every law but kSpencer; the rest: kBingham and kBinghamTanh);
+  /// the default bends nothing.
+  LawShape shape{};
   DamperRating rating{};
 };
 
@@ -105,7 +140,15 @@ class MrDamper {
     pr_.init(p.pr, sq);
     z_ = 0.0;
     stroke_m_ = 0.0;
+    last_velocity_m_s_ = 0.0;
     spencer_state_ = SpencerState{};
+    const bool bingham = p.law == ForceLaw::kBingham || p.law == ForceLaw::kBinghamTanh;
+    lost_ = p.law != ForceLaw::kSpencer && p.shape.has_lost_motion();
+    bent_ = lost_ || (bingham && (p.shape.has_viscous_exponent() || p.shape.stiffness_n_m != 0.0 ||
+                                  p.shape.transition_time_s != 0.0));
+    // discrepancy's windowed_mean: the samples within the half window (and a nanosecond), at least one.
+    lm_half_ = std::clamp(static_cast<int>((kLostMotionHalfWindow_s + 1e-9) / period_s), 1, kLostMotionMaxHalfSteps);
+    reset_lost_motion();
     update_coefficients();
   }
 
@@ -117,7 +160,9 @@ class MrDamper {
     coil_.reset(current_a);
     z_ = 0.0;
     stroke_m_ = 0.0;
+    last_velocity_m_s_ = 0.0;
     spencer_state_ = SpencerState{};
+    reset_lost_motion();
     update_coefficients();
   }
 
@@ -127,8 +172,14 @@ class MrDamper {
   /// resisting positive velocity. For kBingham the same value as
   /// damper_force_n(bingham, i, v, PR) (Eq. 4.4, 5.10–5.12), with f_c and
   /// c_0 evaluated once per step rather than per call; the Bingham laws
-  /// ignore the stroke; kBoucWen takes z from the last step's stroke to this one.
+  /// ignore the stroke unless bent by a spring (shape); kBoucWen takes z from
+  /// the last step's stroke to this one.
   double force_n(double velocity_m_s, double stroke_m) const noexcept {
+    if (bent_) {
+      const double z =
+          p_.law == ForceLaw::kBoucWen ? bouc_wen_z_after(z_, stroke_m - stroke_m_, p_.bouc_wen.yield_disp_m) : 0.0;
+      return shaped_force_n(velocity_m_s, stroke_m, z);
+    }
     switch (p_.law) {
       case ForceLaw::kBinghamTanh: return tanh_force_n(velocity_m_s);
       case ForceLaw::kBoucWen:
@@ -151,14 +202,16 @@ class MrDamper {
     if (p_.law == ForceLaw::kBoucWen) {
       z_ = bouc_wen_z_after(z_, stroke_m - stroke_m_, p_.bouc_wen.yield_disp_m);
       stroke_m_ = stroke_m;
-      f = bouc_wen_force_at_n(velocity_m_s, stroke_m, z_);
+      f = bent_ ? shaped_force_n(velocity_m_s, stroke_m, z_) : bouc_wen_force_at_n(velocity_m_s, stroke_m, z_);
     } else {
       f = force_n(velocity_m_s, stroke_m);
+      if (bent_) stroke_m_ = stroke_m;
       if (p_.law == ForceLaw::kSpencer) {
         spencer_state_ = spencer_state_after(spencer_, spencer_state_, stroke_m, velocity_m_s, period_s_);
         stroke_m_ = stroke_m;
       }
     }
+    if (lost_) commit_play(stroke_m);
     advance(command_a, velocity_m_s);
     return f;
   }
@@ -167,12 +220,15 @@ class MrDamper {
   /// coil current and PR and (kBoucWen) moves the stroke by v·T, z with it.
   double step(double command_a, double velocity_m_s) noexcept {
     const double f = force_n(velocity_m_s);
+    if (lost_) commit_play(stroke_m_);
     if (p_.law == ForceLaw::kBoucWen) {
       const double dx_m = velocity_m_s * period_s_;
       z_ = bouc_wen_z_after(z_, dx_m, p_.bouc_wen.yield_disp_m);
       stroke_m_ += dx_m;
     } else if (p_.law == ForceLaw::kSpencer) {
       spencer_state_ = spencer_state_after(spencer_, spencer_state_, stroke_m_, velocity_m_s, period_s_);
+      stroke_m_ += velocity_m_s * period_s_;
+    } else if (bent_) {
       stroke_m_ += velocity_m_s * period_s_;
     }
     advance(command_a, velocity_m_s);
@@ -182,7 +238,7 @@ class MrDamper {
   double current_a() const noexcept { return coil_.current_a(); }
   double participant_ratio() const noexcept { return pr_.pr(); }
   double displaced_volume_m3() const noexcept { return pr_.displaced_volume_m3(); }
-  /// Stroke of the last step (kBoucWen, kSpencer; 0 for the Bingham laws), m.
+  /// Stroke of the last step (kBoucWen, kSpencer, a bent Bingham law; 0 for the thesis's Bingham laws), m.
   double stroke_m() const noexcept { return stroke_m_; }
   /// Bouc–Wen variable at stroke_m() (kBoucWen; 0 for the Bingham laws).
   double bouc_wen_z() const noexcept { return z_; }
@@ -204,6 +260,139 @@ class MrDamper {
   double stroke_m_ = 0.0;  ///< stroke z_ belongs to, m (kBoucWen)
   SpencerCoefficients spencer_{};      ///< kSpencer: the model at |i| and PR
   SpencerState spencer_state_{};       ///< kSpencer: (y, z) after the last step
+  double last_velocity_m_s_ = 0.0;     ///< v[n−1]: the last step's velocity (the transition time's |a|)
+  bool bent_ = false;  ///< a law shaped by m, k, τ or the lost motion (the current exponents act in f_c, c_0)
+  bool lost_ = false;  ///< shape's lost motion acts
+  double yield_pr1_n_ = 0.0;  ///< |f_c(|i|, PR = 1)|: the lost motion's play is λ times it
+  /// The play's committed steps, a ring of the last kLostMotionRing: strokes and driven sides, m.
+  static constexpr int kLostMotionRing = kLostMotionMaxHalfSteps + 1;
+  std::array<double, kLostMotionRing> lm_x_m_{};
+  std::array<double, kLostMotionRing> lm_rod_m_{};
+  int lm_head_ = 0;            ///< where the next committed step goes
+  long long lm_count_ = 0;     ///< steps committed since reset (capped at kLostMotionRing)
+  int lm_half_ = 3;            ///< H: steps either side averaged
+
+  /// The lost motion's play as at reset: no step yet.
+  void reset_lost_motion() noexcept {
+    lm_x_m_.fill(0.0);
+    lm_rod_m_.fill(0.0);
+    lm_head_ = 0;
+    lm_count_ = 0;
+  }
+
+  /// The play's half width at the present current: λ |f_c(|i|, PR = 1)| / 2, m.
+  double play_half_width_m() const noexcept { return 0.5 * p_.shape.lost_motion_m_per_n * yield_pr1_n_; }
+
+  /// discrepancy::DamperModel's hard play of half width h: the driven side after the stroke reaches x.
+  static double play_rod_m(double rod_m, double stroke_m, double h_m) noexcept {
+    if (stroke_m - rod_m > h_m) return stroke_m - h_m;
+    if (rod_m - stroke_m > h_m) return stroke_m + h_m;
+    return rod_m;
+  }
+
+  /// The committed step `back` steps before this one (1: the last), stroke and driven side.
+  std::size_t ring_at(int back) const noexcept {
+    return static_cast<std::size_t>((lm_head_ - back + 2 * kLostMotionRing) % kLostMotionRing);
+  }
+
+  /// The driven side at this step's stroke (centred on it at the first step).
+  double play_rod_now_m(double stroke_m) const noexcept {
+    return lm_count_ == 0 ? stroke_m : play_rod_m(lm_rod_m_[ring_at(1)], stroke_m, play_half_width_m());
+  }
+
+  /// e[n]: the engaged shares of the steps within ±H of this one (the
+  /// record's start cuts the window, as the calibration's), the steps after
+  /// this one extrapolated at the last increment.
+  double engaged_mean(double stroke_m) const noexcept {
+    const int H = lm_half_;
+    const double h = play_half_width_m();
+    // Steps n − H − 1 … n + H + 1 at indices 0 … 2H + 2; index H + 1 is this step.
+    std::array<double, 2 * kLostMotionMaxHalfSteps + 3> x{}, r{};
+    const int now = H + 1;
+    const int known = static_cast<int>(std::min<long long>(lm_count_, H + 1));  // committed steps in the window
+    for (int back = 1; back <= known; ++back) {
+      x[static_cast<std::size_t>(now - back)] = lm_x_m_[ring_at(back)];
+      r[static_cast<std::size_t>(now - back)] = lm_rod_m_[ring_at(back)];
+    }
+    x[static_cast<std::size_t>(now)] = stroke_m;
+    r[static_cast<std::size_t>(now)] = play_rod_now_m(stroke_m);
+    const double dx_step = lm_count_ > 0 ? stroke_m - lm_x_m_[ring_at(1)] : 0.0;
+    for (int j = 1; j <= H + 1; ++j) {
+      const auto k = static_cast<std::size_t>(now + j);
+      x[k] = stroke_m + j * dx_step;
+      r[k] = play_rod_m(r[k - 1], x[k], h);
+    }
+    // The first step there is (the record's start, or H back).
+    const int first = now - static_cast<int>(std::min<long long>(lm_count_, H));
+    double sum = 0.0;
+    for (int k = first; k <= now + H; ++k) {
+      const int a = k > now - known ? k - 1 : k;  // the record's first step has no step before it
+      const int b = k + 1;
+      const double dx = x[static_cast<std::size_t>(b)] - x[static_cast<std::size_t>(a)];
+      const double dr = r[static_cast<std::size_t>(b)] - r[static_cast<std::size_t>(a)];
+      double e = 1.0;
+      if (std::fabs(dx) > 1e-15) e = std::clamp(dr / dx, 0.0, 1.0);
+      else if (dr == 0.0 && h > 0.0) e = 0.0;
+      sum += e;
+    }
+    return sum / static_cast<double>(now + H - first + 1);
+  }
+
+  /// Commits this step's stroke and driven side (after the force used them).
+  void commit_play(double stroke_m) noexcept {
+    const double rod = play_rod_now_m(stroke_m);
+    lm_x_m_[static_cast<std::size_t>(lm_head_)] = stroke_m;
+    lm_rod_m_[static_cast<std::size_t>(lm_head_)] = rod;
+    lm_head_ = (lm_head_ + 1) % kLostMotionRing;
+    if (lm_count_ < kLostMotionRing) ++lm_count_;
+  }
+
+  /// The law shaped by p_.shape (LawShape), in discrepancy::DamperModel's
+  /// order: the law's part (Bouc–Wen's f_c z + c_0 v; a Bingham law's with
+  /// the band v_TF + τ|a| and c_0 (|v|/v_r)^(m−1)), the lost motion on it,
+  /// then the spring (k_0 x or k x). `z` is Bouc–Wen's variable at the stroke.
+  double shaped_force_n(double velocity_m_s, double stroke_m, double z) const noexcept {
+    const LawShape& sh = p_.shape;
+    double fb = 0.0;
+    double elastic = 0.0;
+    if (p_.law == ForceLaw::kBoucWen) {
+      fb = fc_n_ * z + c0_ns_m_ * velocity_m_s;
+      elastic = p_.bouc_wen.stiffness_n_m * stroke_m;
+    } else {
+      fb = bent_bingham_law_n(velocity_m_s);
+      elastic = sh.stiffness_n_m * stroke_m;
+    }
+    if (lost_) {
+      const double e = engaged_mean(stroke_m);
+      const double share = std::clamp(sh.lost_motion_share, 0.0, 1.0);
+      fb *= (1.0 - share) + share * e;
+      if (sh.lost_motion_band_m_s > 0.0) fb += (1.0 - e) * fc_n_ * std::tanh(velocity_m_s / sh.lost_motion_band_m_s);
+    }
+    return fb + elastic;
+  }
+
+  /// A Bingham law's part shaped by τ and m (LawShape).
+  double bent_bingham_law_n(double velocity_m_s) const noexcept {
+    const LawShape& sh = p_.shape;
+    const double av = std::fabs(velocity_m_s);
+    const double band =
+        sh.transition_time_s != 0.0
+            ? p_.bingham.v_tf_m_s + sh.transition_time_s * (std::fabs(velocity_m_s - last_velocity_m_s_) / period_s_)
+            : p_.bingham.v_tf_m_s;
+    const double c_eff =
+        sh.has_viscous_exponent()
+            ? (av > 0.0 ? c0_ns_m_ * std::pow(av / sh.viscous_ref_m_s, sh.viscous_exponent - 1.0) : 0.0)
+            : c0_ns_m_;
+    double fb = 0.0;
+    if (p_.law == ForceLaw::kBinghamTanh) {
+      fb = physics::bingham_tanh_force_n(fc_n_, c_eff, velocity_m_s, band);
+    } else {
+      const double sgn = velocity_m_s > 0.0 ? 1.0 : (velocity_m_s < 0.0 ? -1.0 : 0.0);
+      const double tf = av < band ? av / band : 1.0;
+      fb = tf * (fc_n_ * sgn + c_eff * velocity_m_s);
+    }
+    return fb;
+  }
 
   /// Eq. 4.4 × Eq. 5.12: TF(v) · (f_c sgn v + c_0 v).
   double bingham_force_n(double velocity_m_s) const noexcept {
@@ -223,14 +412,16 @@ class MrDamper {
 
   /// Coil current (Eq. 4.5) and PR (Eq. 5.9) to the next step, then f_c and c_0.
   void advance(double command_a, double velocity_m_s) noexcept {
+    last_velocity_m_s_ = velocity_m_s;
     coil_.step(command_a);
     pr_.step(velocity_m_s, period_s_);
     update_coefficients();
   }
 
   void update_coefficients() noexcept {
-    fc_n_ = coulomb_force_n(p_.bingham, coil_.current_a(), pr_.pr());
-    c0_ns_m_ = viscous_coeff_ns_m(p_.bingham, coil_.current_a(), pr_.pr());
+    fc_n_ = coulomb_force_n(p_.bingham, coil_.current_a(), pr_.pr(), p_.shape.yield_current_exponent);
+    c0_ns_m_ = viscous_coeff_ns_m(p_.bingham, coil_.current_a(), pr_.pr(), p_.shape.viscous_current_exponent);
+    if (lost_) yield_pr1_n_ = std::fabs(coulomb_force_n(p_.bingham, coil_.current_a(), 1.0, p_.shape.yield_current_exponent));
     if (p_.law == ForceLaw::kSpencer)
       spencer_ = p_.spencer.at(std::min(std::fabs(coil_.current_a()), p_.rating.current_a), pr_.pr());
   }
