@@ -24,6 +24,7 @@
 #include "host_sim/report/path_ownership.hpp"
 #include "host_sim/risk/cluster.hpp"
 #include "host_sim/risk/fragility_fit.hpp"
+#include "host_sim/risk/fragility_plan.hpp"
 #include "host_sim/risk/fragility_report.hpp"
 #include "host_sim/risk/run_journal.hpp"
 #include "host_sim/risk/stochastic_motion.hpp"
@@ -353,6 +354,11 @@ bool announce_cost(const FragilityOptions& o, const risk::FragilityPlan& plan, b
         shape.steps(), plan.base.step_s, slowest, workers,
         synthetic ? (", after making the records in about " + risk::format_duration(generation_s)).c_str() : "",
         risk::format_duration(wall_s).c_str());
+    if (!risk::lanes_take(plan))
+      std::printf("fragility: the runs step one by one in the scalar loop: the SIMD lanes take Eq. 4.4's bingham law "
+                  "only, not the damper's %s law%s\n",
+                  physics::force_law_name(plan.base.damper.law),
+                  plan.base.damper.shape.bends() ? " shaped by its calibration" : "");
     const risk::DiskEstimate disk = risk::estimate_disk(shape);
     const auto out_fs = risk::file_system_space(o.out_dir);
     const std::uintmax_t memory = risk::estimate_memory(shape);

@@ -182,6 +182,48 @@ TEST_F(DamperFluidCli, ALabCalibratedDamperRunsInClosedLoop) {
   EXPECT_EQ(j.at("building"), "lab-1dof");
 }
 
+// A calibration's shape of the law reaches every command's closed loop: the
+// thesis damper with a current exponent of 2 on its yield force and a lost
+// motion (f_c at 1 A stays 170 − 165.9 e^(−0.7) = 87.6 kN, at 0.5 A it falls
+// from 170 − 165.9 e^(−0.35) = 53.1 kN to 170 − 165.9 e^(−0.175) = 30.7 kN),
+// so a semi-active run differs from the plain damper's; `mrd fragility`
+// steps it in the scalar loop and says why.
+TEST_F(DamperFluidCli, ACalibratedShapeActsInTheClosedLoopAndFragilitySaysItStepsOneByOne) {
+  std::string text = slurp(kThesisDamper);
+  const std::string rate = "rate_per_a = 0.7      # f_c,c, 1/A\n";
+  ASSERT_NE(text.find(rate), std::string::npos);
+  text.replace(text.find(rate), rate.size(), rate + "current_exponent = 2.0\n");
+  text += "\n[lost_motion]\nm_per_n = 2e-09\nshare = 0.5\n";
+  const fs::path shaped = file("shaped.toml", text);
+  const std::string rec = short_record().string();
+  double peaks[2] = {0.0, 0.0};
+  int i = 0;
+  for (const fs::path& damper : {kThesisDamper, shaped}) {
+    const fs::path dir = out_.path() / ("sim" + std::to_string(i));
+    const auto r = run_mrd("sim --damper " + damper.string() + " --record " + rec +
+                               " --pga-g 0.3 --control semi-active --out " + dir.string(),
+                           scratch_.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("lost_motion"), std::string::npos) << r.err;  // simulated, not warned about
+    peaks[i++] = nlohmann::json::parse(slurp(dir / "summary.json")).at("peak_damper_force_kn").get<double>();
+  }
+  EXPECT_NE(peaks[0], peaks[1]);
+  const auto f = run_mrd("fragility --damper " + shaped.string() + " --record " + rec +
+                             " --pga-g 0.2 --idle-years 0 --control semi-active --bootstrap 0 --threads 1 --out " +
+                             (out_.path() / "frag").string(),
+                         scratch_.path());
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take Eq. 4.4's bingham law only, not the "
+                       "damper's bingham law shaped by its calibration"),
+            std::string::npos)
+      << f.out;
+  const auto plain = run_mrd("fragility --record " + rec + " --pga-g 0.2 --idle-years 0 --control semi-active "
+                             "--bootstrap 0 --threads 1 --out " + (out_.path() / "frag0").string(),
+                             scratch_.path());
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("scalar loop"), std::string::npos) << plain.out;
+}
+
 // The 20-year fluid in `mrd settle` after 1 year, by hand (Eq. 5.5–5.8):
 // SQ = 1/20 = 0.05; a_PR = 0.1 + 0.9·e^−0.35 = 0.7342192807; b_PR = 0.605 +
 // 0.395·e^−0.225 = 0.9204139064; c_PR = 5.474·e^−0.1825 = 4.5608527409.
