@@ -147,7 +147,8 @@ class MrDamper {
     bent_ = lost_ || (bingham && (p.shape.has_viscous_exponent() || p.shape.stiffness_n_m != 0.0 ||
                                   p.shape.transition_time_s != 0.0));
     // discrepancy's windowed_mean: the samples within the half window (and a nanosecond), at least one.
-    lm_half_ = std::clamp(static_cast<int>((kLostMotionHalfWindow_s + 1e-9) / period_s), 1, kLostMotionMaxHalfSteps);
+    const double half_steps = period_s > 0.0 ? (kLostMotionHalfWindow_s + 1e-9) / period_s : 1.0;
+    lm_half_ = static_cast<int>(std::clamp(half_steps, 1.0, static_cast<double>(kLostMotionMaxHalfSteps)));
     reset_lost_motion();
     update_coefficients();
   }
