@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mrd/physics/bingham.hpp"
 #include "mrd/physics/damper_laws.hpp"
 
 namespace mrd::discrepancy {
@@ -26,7 +27,7 @@ std::string baseline_form_name(const Baseline& b) {
 double CurrentLaw::at(double current_a, double participant_ratio) const noexcept {
   const double b = participant_ratio * limit;
   const double i = std::fabs(current_a);
-  return b + (at_zero - b) * std::exp(-rate_per_a * (current_exponent == 1.0 ? i : std::pow(i, current_exponent)));
+  return b + (at_zero - b) * physics::current_law_decay(rate_per_a, i, current_exponent);
 }
 
 double Baseline::force_scale_n() const noexcept {

@@ -68,7 +68,8 @@ struct LawShape {
 };
 
 /// exp(−rate |I|^q) of a current law, |I| raised only when q ≠ 1 (so that q = 1
-/// is Eq. 4.2–4.3's exp(−rate |I|) to the bit; discrepancy::CurrentLaw::at).
+/// is Eq. 4.2–4.3's exp(−rate |I|) to the bit); discrepancy::CurrentLaw::at
+/// evaluates its laws with it too.
 inline double current_law_decay(double rate_per_a, double abs_current_a, double exponent) noexcept {
   return std::exp(-rate_per_a * (exponent == 1.0 ? abs_current_a : std::pow(abs_current_a, exponent)));
 }
