@@ -392,6 +392,10 @@ void read_damper(const toml::table& root, const std::string& origin, BoardConfig
       {"weight_slow", &d.coil.weight_slow, 0.0, 1.0, ""},
       {"weight_fast", &d.coil.weight_fast, 0.0, 1.0, ""},
       {"rated_current_a", &d.rating.current_a, 1e-3, 100.0, "A"},
+      // The coil's heating (physics::CoilHeatParams): absent, the thesis coil's.
+      {"coil_resistance_ohm", &d.coil_heat.resistance_ohm, 1e-3, 1e4, "Ω"},
+      {"coil_thermal_resistance_k_w", &d.coil_heat.thermal_resistance_k_w, 1e-3, 1e3, "K/W"},
+      {"coil_thermal_time_constant_s", &d.coil_heat.time_constant_s, 1.0, 1e5, "s"},
       {"rated_force_n", &d.rating.force_n, 1.0, 1e8, "N"},
       {"stroke_m", &d.rating.stroke_m, 1e-4, 10.0, "m"},
       {"max_velocity_m_s", &d.rating.velocity_m_s, 1e-4, 100.0, "m/s"},
@@ -781,6 +785,11 @@ std::string board_toml(const BoardConfig& c, const std::string& header) {
   w.num("weight_slow", d.coil.weight_slow);
   w.num("weight_fast", d.coil.weight_fast);
   w.num("rated_current_a", d.rating.current_a);
+  if (d.coil_heat != physics::CoilHeatParams{}) {
+    w.num("coil_resistance_ohm", d.coil_heat.resistance_ohm);
+    w.num("coil_thermal_resistance_k_w", d.coil_heat.thermal_resistance_k_w);
+    w.num("coil_thermal_time_constant_s", d.coil_heat.time_constant_s);
+  }
   w.num("rated_force_n", d.rating.force_n);
   w.num("stroke_m", d.rating.stroke_m);
   w.num("max_velocity_m_s", d.rating.velocity_m_s);

@@ -101,9 +101,10 @@ SharedModel damper_constants(const plant::PlantSpec& spec) {
   m.flow_area_m2 = spec.damper.pr.flow_area_m2;
   m.volume_unit_m3 = spec.damper.pr.volume_unit_m3;
   m.step_s = spec.step_s;
-  m.thermal_a = std::exp(-spec.step_s / spec.thermal.time_constant_s);
-  m.thermal_gain_k_w = (1.0 - m.thermal_a) * spec.thermal.thermal_resistance_k_w;
-  m.resistance_ohm = spec.thermal.resistance_ohm;
+  const physics::CoilHeatParams& heat = spec.damper.coil_heat;
+  m.thermal_a = std::exp(-spec.step_s / heat.time_constant_s);
+  m.thermal_gain_k_w = (1.0 - m.thermal_a) * heat.thermal_resistance_k_w;
+  m.resistance_ohm = heat.resistance_ohm;
   m.rated_current_a = spec.damper.rating.current_a;
   return m;
 }

@@ -78,7 +78,8 @@ Fields of DIR/summary.json:
   time_above_rated_s              time with |coil current| above the rated 2.5 A, s
   command_changes_per_s           changes of the current command between consecutive ticks, per s of run
   peak_coil_temperature_rise_k    max coil temperature above ambient, K (i^2 R into a first-order
-                                  thermal model: 2 K/W, 20 min; both plants)
+                                  thermal model of the damper's coil: the thesis coil's 4.8 ohm,
+                                  2 K/W, 20 min, or a damper file's [coil]; both plants)
   peak_damper_velocity_m_s        max |base velocity relative to the ground|, m/s
   warnings                        sentences, one per limit of the model the run exceeds: stroke
                                   +-0.2921 m and velocity 0.2491 m/s (Table 3.1), current 0-2.5 A

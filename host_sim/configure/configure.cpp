@@ -108,6 +108,10 @@ Result configure(const Inputs& in) {
       "min(4 × I_r, the command range): the thesis's 10 A for 2.5 A; back-drive its negative");
   c.current_band_a = 0.04 * i_r;
   put("controller.current_band_a", c.current_band_a, "A", "4 % of I_r (the thesis's 0.1 A of 2.5 A)");
+  c.coil_thermal_time_constant_s = d.coil_heat.time_constant_s;
+  put("controller.coil_thermal_time_constant_s", c.coil_thermal_time_constant_s, "s",
+      "the I²t's τ: the damper's coil (its file's [coil] thermal_time_constant_s; absent, the thesis coil's "
+      "assumed 20 min)");
 
   // Direction thresholds from the stroke sensor's noise.
   const double lsb_m = 2.0 * d.rating.stroke_m / std::ldexp(1.0, in.sensor.bits);
@@ -156,8 +160,8 @@ Result configure(const Inputs& in) {
     r.notes.push_back("the damper's force law is not Eq. 4.4's: the estimator's capacity uses its current laws "
                       "with the Bingham form");
   }
-  r.notes.push_back("the coil's thermal time constant (" + num(c.coil_thermal_time_constant_s) +
-                    " s) and derating are the thesis coil's");
+  r.notes.push_back("the coil's derating starts at " + num(c.coil_derate_fraction) +
+                    " of I_r² held (the thesis coil's fraction, whatever this coil's thermal resistance)");
   return r;
 }
 

@@ -97,6 +97,20 @@ physics::DamperRating rating_of_validity(const discrepancy::ValidityRange& v, co
   return r;
 }
 
+/// The coil's heating: the file's R, R_th and τ; where it has no R_th, the
+/// thesis coil's assumption at this coil's rating (the rated current held
+/// continuously settles physics::kRatedCoilRise_k above ambient); where it
+/// has no τ, the thesis coil's 20 min.
+physics::CoilHeatParams coil_heat_of(const discrepancy::CoilCircuit& cc, const physics::DamperRating& rating) {
+  physics::CoilHeatParams h;
+  if (cc.resistance_ohm) h.resistance_ohm = *cc.resistance_ohm;
+  h.thermal_resistance_k_w = cc.thermal_resistance_k_w
+                                 ? *cc.thermal_resistance_k_w
+                                 : physics::rated_rise_thermal_resistance_k_w(rating.current_a, h.resistance_ohm);
+  if (cc.thermal_time_constant_s) h.time_constant_s = *cc.thermal_time_constant_s;
+  return h;
+}
+
 /// The sentences of DamperFile::warnings.
 std::vector<std::string> warnings_of(const BaselineFile& f, const DamperFile& d) {
   const Baseline& b = f.baseline;
@@ -119,6 +133,15 @@ std::vector<std::string> warnings_of(const BaselineFile& f, const DamperFile& d)
   if (!b.coil_identified)
     w.push_back("coil: identified = false: the coil's time constants (" + g4(b.coil.tau_slow_s) + " s, " +
                 g4(b.coil.tau_fast_s) + " s, Eq. 4.5) are assumed, not this damper's");
+  const discrepancy::CoilCircuit& cc = f.coil_circuit;
+  if (!cc.thermal_resistance_k_w || !cc.thermal_time_constant_s) {
+    const physics::CoilHeatParams& h = d.params.coil_heat;
+    w.push_back("coil: no thermal_resistance_k_w or thermal_time_constant_s: the coil's heating is assumed as the "
+                "thesis coil's, " + g4(r.current_a) + " A held continuously settling " +
+                g4(physics::kRatedCoilRise_k) + " K above ambient (R_th " + g4(h.thermal_resistance_k_w) +
+                " K/W at " + g4(h.resistance_ohm) + " ohm" + (cc.resistance_ohm ? "" : ", the thesis coil's") +
+                ") with a time constant of " + g4(h.time_constant_s) + " s");
+  }
   if (!f.pr_identified)
     w.push_back("participant_ratio: identified = false: the idle-time coefficients (Table 5.6) are assumed, not "
                 "this damper's (--fluid FILE gives a fluid's)");
@@ -162,6 +185,7 @@ DamperFile parse_damper_toml(const std::string& text, const std::string& origin)
   d.geometry_given = f.geometry.has_value();
   d.geometry = f.geometry ? *f.geometry : thesis_geometry();
   d.coil_circuit = f.coil_circuit;
+  d.params.coil_heat = coil_heat_of(f.coil_circuit, d.params.rating);
   d.warnings = warnings_of(f, d);
   return d;
 }

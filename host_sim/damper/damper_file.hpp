@@ -19,7 +19,9 @@
 ///                   holds them); [coil] with equal time constants τ is the paper's
 ///                   first-order filter, η = 1/τ
 ///   [coil]          the time constants and weights of Eq. 4.5; the circuit (R, L(i)) for the
-///                   hardware plant
+///                   hardware plant; R, thermal_resistance_k_w and thermal_time_constant_s →
+///                   coil_heat (absent: the thesis coil's assumptions at this coil's rating,
+///                   mrd/physics/coil_heat.hpp, with a warning)
 ///   [participant_ratio]  Table 5.6's coefficients, flow_area_m2, volume_unit_m3
 ///   [rating]        MrDamperParams::rating; absent: derived from [validity] (the largest
 ///                   |current|, force_peak_n, amplitude_max_m as the half stroke,

@@ -156,11 +156,18 @@ void read_law(const toml::table& root, const char* name, const std::string& orig
 }
 
 /// [coil]'s optional circuit: R, and L at 1 A and 2 A together (the
-/// inductance falls as the iron saturates: L(2 A) <= L(1 A)).
+/// inductance falls as the iron saturates: L(2 A) <= L(1 A)); its heating:
+/// R_th only with R (the rise is i² R R_th: without R the thesis coil's
+/// 4.8 ohm would be taken for this coil's), τ alone.
 void read_coil_circuit(Table& c, CoilCircuit& circuit) {
   circuit.resistance_ohm = c.optional_in("resistance_ohm", kCoilResistanceRange);
   circuit.inductance_1a_h = c.optional_in("inductance_1a_h", kCoilInductanceRange);
   circuit.inductance_2a_h = c.optional_in("inductance_2a_h", kCoilInductanceRange);
+  circuit.thermal_resistance_k_w = c.optional_in("thermal_resistance_k_w", kCoilThermalResistanceRange);
+  circuit.thermal_time_constant_s = c.optional_in("thermal_time_constant_s", kCoilThermalTimeConstantRange);
+  if (circuit.thermal_resistance_k_w && !circuit.resistance_ohm)
+    c.refuse("resistance_ohm", "missing key (thermal_resistance_k_w needs it: the coil heats by i^2 R, and R_th "
+                               "is for this coil's R)");
   if (circuit.inductance_1a_h && !circuit.inductance_2a_h)
     c.refuse("inductance_2a_h", "missing key (inductance_1a_h needs it: L(i) is set by the two)");
   if (circuit.inductance_2a_h && !circuit.inductance_1a_h)
@@ -336,6 +343,10 @@ std::string baseline_toml(const BaselineFile& f) {
   if (cc.resistance_ohm) t += "resistance_ohm = " + num(*cc.resistance_ohm) + "\n";
   if (cc.inductance_1a_h) t += "inductance_1a_h = " + num(*cc.inductance_1a_h) + "  # L at 1 A, H\n";
   if (cc.inductance_2a_h) t += "inductance_2a_h = " + num(*cc.inductance_2a_h) + "  # L at 2 A, H\n";
+  if (cc.thermal_resistance_k_w)
+    t += "thermal_resistance_k_w = " + num(*cc.thermal_resistance_k_w) + "  # coil to ambient, K/W\n";
+  if (cc.thermal_time_constant_s)
+    t += "thermal_time_constant_s = " + num(*cc.thermal_time_constant_s) + "  # R_th C, s\n";
   const auto& p = b.pr;
   t += "\n[participant_ratio]  # Eq. 5.6-5.11, Table 5.6";
   t += f.pr_identified ? "\n" : ": assumed (thesis values), not identified from the records\n";

@@ -27,6 +27,8 @@
 ///                    resistance_ohm, inductance_1a_h, inductance_2a_h (optional: the coil's
 ///                    circuit, which the hardware plant uses; Table 3.1: 4.8 ohm, 5.0 H at 1 A,
 ///                    3.0 H at 2 A; the two inductances together or neither)
+///                    thermal_resistance_k_w (with resistance_ohm), thermal_time_constant_s
+///                    (optional: the coil's heating, mrd/physics/coil_heat.hpp)
 ///   [participant_ratio]  Table 5.6 coefficients, flow_area_m2, volume_unit_m3, identified
 ///   [validity]       current_min_a … frequency_max_hz, expected_gap
 ///   [rating]         current_a, force_n, stroke_m (± from the centre), velocity_m_s (optional:
@@ -77,11 +79,14 @@ struct DamperGeometry {
   double fluid_volume_m3 = 0.0;
 };
 
-/// [coil]'s optional circuit: R and L(i) at 1 A and 2 A (plant/coil.hpp).
+/// [coil]'s optional circuit: R and L(i) at 1 A and 2 A (plant/coil.hpp),
+/// and its heating (mrd/physics/coil_heat.hpp).
 struct CoilCircuit {
   std::optional<double> resistance_ohm;
   std::optional<double> inductance_1a_h;
   std::optional<double> inductance_2a_h;  ///< given with inductance_1a_h, never alone
+  std::optional<double> thermal_resistance_k_w;   ///< R_th, K/W; given with resistance_ohm, never alone
+  std::optional<double> thermal_time_constant_s;  ///< τ = R_th C, s
 };
 
 /// Everything damper.toml holds.

@@ -180,6 +180,15 @@ inline constexpr PhysicalRange kCoilResistanceRange{1e-3, 1e4, "ohm", "a resista
 /// resistance would pass the coil time constant's top (the thesis's 5.0 H at
 /// 1 A and 3.0 H at 2 A, Table 3.1).
 inline constexpr PhysicalRange kCoilInductanceRange{1e-6, 1e3, "H", "an inductance"};
+/// The coil's thermal resistance to its surroundings: from 1 mK/W, below a
+/// water-cooled coil of a large damper, to 1000 K/W, above a small solenoid
+/// in still air (the thesis coil's assumed 2 K/W, mrd/physics/coil_heat.hpp).
+inline constexpr PhysicalRange kCoilThermalResistanceRange{1e-3, 1e3, "K/W", "a thermal resistance"};
+/// The coil's thermal time constant: from 1 s, a bare winding of a few grams,
+/// to 1e5 s (28 h), beyond a coil of hundreds of kilograms in a steel housing
+/// (the thesis coil's assumed 20 min); the firmware's fixed-point I²t counts
+/// up to 8.6e6 s at 1 kHz (firmware/core/controller_config.hpp).
+inline constexpr PhysicalRange kCoilThermalTimeConstantRange{1.0, 1e5, "s", "a time constant"};
 
 // ---- what the records cover -------------------------------------------------------
 

@@ -9,29 +9,22 @@
 /// discretized exactly for P held over each step: ΔT[n+1] = a ΔT[n] + (1 − a) R_th P[n],
 /// a = exp(−T/τ). The steady rise for a constant power is P·R_th.
 ///
-/// The thesis gives the coil resistance (4.8 Ω, §3.2, Table 3.1) but no
-/// thermal data. R_th and τ are assumptions: R_th is sized so that the rated
-/// current of 2.5 A held continuously (30 W) settles 60 K above ambient, and
-/// τ = 20 min is the order of a coil of a few kilograms of copper inside the
-/// damper's steel housing. The resistance is taken as constant (no copper
-/// temperature coefficient).
+/// The constants are the damper's (physics::MrDamperParams::coil_heat,
+/// mrd/physics/coil_heat.hpp): the thesis coil's 4.8 Ω with its assumed
+/// 2 K/W and 20 min, or a damper file's coil.
 
 #include <cmath>
 
-namespace mrd::plant {
+#include "mrd/physics/coil_heat.hpp"
 
-struct CoilThermalParams {
-  double resistance_ohm = 4.8;           ///< coil resistance, Ω (Table 3.1)
-  double thermal_resistance_k_w = 2.0;   ///< coil to ambient, K/W (assumption: 2.5 A → 60 K)
-  double time_constant_s = 1200.0;       ///< R_th C, s (assumption)
-};
+namespace mrd::plant {
 
 class CoilThermal {
  public:
   CoilThermal() = default;
-  CoilThermal(const CoilThermalParams& p, double step_s) noexcept { init(p, step_s); }
+  CoilThermal(const physics::CoilHeatParams& p, double step_s) noexcept { init(p, step_s); }
 
-  void init(const CoilThermalParams& p, double step_s) noexcept {
+  void init(const physics::CoilHeatParams& p, double step_s) noexcept {
     p_ = p;
     a_ = std::exp(-step_s / p.time_constant_s);
     rise_k_ = 0.0;
@@ -45,10 +38,10 @@ class CoilThermal {
 
   /// Coil temperature above ambient, K.
   double rise_k() const noexcept { return rise_k_; }
-  const CoilThermalParams& params() const noexcept { return p_; }
+  const physics::CoilHeatParams& params() const noexcept { return p_; }
 
  private:
-  CoilThermalParams p_{};
+  physics::CoilHeatParams p_{};
   double a_ = 1.0;
   double rise_k_ = 0.0;
 };

@@ -56,7 +56,7 @@ void Plant::init(const PlantSpec& spec) {
   for (physics::MrDamper& d : dampers_) {
     d.init(hardware ? hardware_damper_params(spec.damper) : spec.damper, spec.step_s, s_.sq);
   }
-  thermal_.init(spec.thermal, spec.step_s);
+  thermal_.init(spec.damper.coil_heat, spec.step_s);
   figures_ = CoilFigureCounter{spec.damper.rating.current_a};
   if (hardware) {
     drive_.init(spec.hardware.drive, spec.hardware.coil);

@@ -94,7 +94,6 @@ struct PlantSpec {
   structure::BuildingParams building{};
   physics::MrDamperParams damper{};
   physics::SettlingParams settling{};
-  CoilThermalParams thermal{};
   HardwarePlantSpec hardware{};
 };
 

@@ -96,6 +96,10 @@ void hash_damper_and_fluid(Fnv1a& h, const physics::MrDamperParams& d, const phy
   }
   const physics::DamperRating& r = d.rating;
   for (double x : {r.current_a, r.force_n, r.stroke_m, r.velocity_m_s}) h.number(x);
+  // The coil's heating, when it is not the thesis coil's (a plan with the thesis coil hashes as before it).
+  const physics::CoilHeatParams& heat = d.coil_heat;
+  if (heat != physics::CoilHeatParams{})
+    for (double x : {heat.resistance_ohm, heat.thermal_resistance_k_w, heat.time_constant_s}) h.number(x);
   for (double x : {s.gravity_m_s2, s.particle_diameter_m, s.solid_density_kg_m3, s.liquid_density_kg_m3,
                    s.viscosity_pa_s, s.solid_fraction, s.hindered_exponent, s.inner_diameter_m, s.shaft_radius_m,
                    s.fluid_length_m, s.fluid_volume_m3, s.measured_max_settling_time_s}) {

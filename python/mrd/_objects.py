@@ -165,7 +165,9 @@ class Damper(_TomlObject):
     damper and fluid"; dampers/thesis-200kn.toml shows every table).
 
     ``info``: name, rated_current_a, rated_force_n, rated_stroke_m,
-    rated_velocity_m_s, warnings (what the closed loop leaves out).
+    rated_velocity_m_s, coil_resistance_ohm, coil_thermal_resistance_k_w,
+    coil_thermal_time_constant_s (the coil's heating), warnings (what the
+    closed loop leaves out or assumes).
     """
 
     _kind = "damper"

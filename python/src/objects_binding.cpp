@@ -48,6 +48,9 @@ py::dict damper_info(const damper::DamperFile& f) {
   d["rated_force_n"] = f.params.rating.force_n;
   d["rated_stroke_m"] = f.params.rating.stroke_m;
   d["rated_velocity_m_s"] = f.params.rating.velocity_m_s;
+  d["coil_resistance_ohm"] = f.params.coil_heat.resistance_ohm;
+  d["coil_thermal_resistance_k_w"] = f.params.coil_heat.thermal_resistance_k_w;
+  d["coil_thermal_time_constant_s"] = f.params.coil_heat.time_constant_s;
   d["warnings"] = f.warnings;
   return d;
 }

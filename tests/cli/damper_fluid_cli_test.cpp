@@ -224,6 +224,37 @@ TEST_F(DamperFluidCli, ACalibratedShapeActsInTheClosedLoopAndFragilitySaysItStep
   EXPECT_EQ(plain.out.find("scalar loop"), std::string::npos) << plain.out;
 }
 
+// `mrd sim --damper` heats the file's coil. Passive-on holds 2.5 A at rest
+// for 60 s; the rise is i² R R_th (1 − e^(−t/τ)) after the coil's lag of
+// Eq. 4.5 (τ_slow 0.7 s). Against the thesis coil (2 K/W, 1200 s), the same
+// coil with 6 K/W and 600 s rises by 3 · (1 − e^−0.1)/(1 − e^−0.05) =
+// 3 · 0.0951626/0.0487706 = 5.8537 times as much; the lag withholds the same
+// first second's heat from both, weighted by e^(−60/τ) as the rest is, to
+// within (60 s/τ)·(0.7 s/60 s) ≈ 0.1 % of the ratio: 0.5 % holds it.
+TEST_F(DamperFluidCli, SimHeatsTheDamperFilesCoil) {
+  std::string text = slurp(kThesisDamper);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"thermal_resistance_k_w = 2.0", "thermal_resistance_k_w = 6.0"},
+                                 {"thermal_time_constant_s = 1200.0", "thermal_time_constant_s = 600.0"}}) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  }
+  const fs::path hot = file("hot-coil.toml", text);
+  double rise_k[2] = {0.0, 0.0};
+  int i = 0;
+  for (const fs::path& damper : {kThesisDamper, hot}) {
+    const fs::path dir = out_.path() / ("heat" + std::to_string(i));
+    const auto r = run_mrd("sim --damper " + damper.string() + " --record none --duration-s 60 --control passive-on --out " +
+                               dir.string(),
+                           scratch_.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("heating is assumed"), std::string::npos) << r.err;
+    rise_k[i++] = nlohmann::json::parse(slurp(dir / "summary.json")).at("peak_coil_temperature_rise_k").get<double>();
+  }
+  // The thesis coil: 2.5² · 4.8 · 2 · (1 − e^−0.05) = 60 · 0.0487706 = 2.926 K, a little less for the lag.
+  EXPECT_NEAR(rise_k[0], 2.926, 0.03);
+  EXPECT_NEAR(rise_k[1] / rise_k[0], 5.8537, 0.005 * 5.8537);
+}
+
 // The 20-year fluid in `mrd settle` after 1 year, by hand (Eq. 5.5–5.8):
 // SQ = 1/20 = 0.05; a_PR = 0.1 + 0.9·e^−0.35 = 0.7342192807; b_PR = 0.605 +
 // 0.395·e^−0.225 = 0.9204139064; c_PR = 5.474·e^−0.1825 = 4.5608527409.

@@ -187,6 +187,23 @@ TEST(BoardTables, ACalibratedShapeReadsBackAndIsRefusedWhereItCannotAct) {
   EXPECT_EQ(tables_error_of("[damper]\nyield_current_exponent = 20.0\n").rfind("b.toml:10: damper.yield_current_exponent: expected", 0), 0u);
 }
 
+// The damper's coil heating (physics::CoilHeatParams): read back as written,
+// absent the thesis coil's (and not written), refused out of range.
+TEST(BoardTables, TheCoilsHeatingReadsBack) {
+  BoardConfig c = parse_tables("");
+  EXPECT_EQ(c.damper.coil_heat, physics::CoilHeatParams{});
+  EXPECT_EQ(board_toml(c).find("coil_thermal_resistance_k_w"), std::string::npos);
+  c.damper.coil_heat = {12.0, 5.0, 900.0};
+  const BoardConfig r = parse_board_config(board_toml(c), "w.toml");
+  EXPECT_EQ(r.damper.coil_heat, (physics::CoilHeatParams{12.0, 5.0, 900.0}));
+  EXPECT_EQ(board_toml(r), board_toml(c));
+  EXPECT_EQ(tables_error_of("[damper]\ncoil_thermal_time_constant_s = 0.5\n")
+                .rfind("b.toml:10: damper.coil_thermal_time_constant_s: expected", 0),
+            0u);
+  EXPECT_EQ(tables_error_of("[damper]\ncoil_resistance_ohm = -1.0\n").rfind("b.toml:10: damper.coil_resistance_ohm: expected", 0),
+            0u);
+}
+
 }  // namespace
 }  // namespace mrd::app
 

@@ -85,6 +85,21 @@ TEST(Configure, ASmallDamperGetsCurrentsAndForcesOfItsOwnSize) {
   EXPECT_NEAR(r.board.mixing.max_amplitude_m, 0.0065, 1e-12);
 }
 
+// The I²t's time constant is the damper's coil's (the thesis coil's assumed
+// 20 min when its file gives none), and the board file carries the coil to
+// the plant that simulates the board.
+TEST(Configure, TheCoilsThermalTimeConstantIsTheDampersCoils) {
+  EXPECT_EQ(configure(thesis_inputs()).board.controller.coil_thermal_time_constant_s, 1200.0);
+  Inputs in = thesis_inputs();
+  in.damper.coil_heat = {12.0, 5.0, 300.0};
+  const Result r = configure(in);
+  EXPECT_EQ(r.board.controller.coil_thermal_time_constant_s, 300.0);
+  EXPECT_EQ(r.board.damper.coil_heat, (physics::CoilHeatParams{12.0, 5.0, 300.0}));
+  const app::BoardConfig b = app::parse_board_config(app::board_toml(r.board), "board.toml");
+  EXPECT_EQ(b.controller.coil_thermal_time_constant_s, 300.0);
+  EXPECT_EQ(b.damper.coil_heat, (physics::CoilHeatParams{12.0, 5.0, 300.0}));
+}
+
 TEST(Configure, TheBoardFileCarriesEveryDerivedNumberAndReadsBack) {
   Inputs in = thesis_inputs();
   in.settling.measured_max_settling_time_s = 20.0 * 31557600.0;

@@ -153,6 +153,9 @@ tau_fast_s = 0.01
 weight_slow = 0.5
 weight_fast = 0.5
 identified = true
+resistance_ohm = 12.0
+thermal_resistance_k_w = 3.0
+thermal_time_constant_s = 600.0
 
 [participant_ratio]
 a_initial = 1.0
@@ -218,7 +221,7 @@ TEST(DamperFile, CurrentLawsMapOntoEq42To44) {
   EXPECT_EQ(d.params.rating.velocity_m_s, 0.05);
   EXPECT_EQ(d.geometry.inner_diameter_m, 0.04);
   EXPECT_EQ(d.geometry.fluid_volume_m3, 0.0001);
-  EXPECT_FALSE(d.coil_circuit.resistance_ohm.has_value());
+  EXPECT_EQ(d.coil_circuit.resistance_ohm, 12.0);
   EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
   // Eq. 4.4's linear transition is ForceLaw::kBingham, written or left out.
   const std::string linear = edited(kSmallDamper, "transition = \"tanh\"\n", "transition = \"linear\"\n");
@@ -311,7 +314,11 @@ TEST(DamperFile, SpencerMapsItsModelAndIsRefusedWhereBinghamLawsModelIt) {
 TEST(DamperFile, DerivesWhatIsMissingAndNamesWhatIsLeftOut) {
   std::string text = without_table(without_table(kSmallDamper, "rating"), "geometry");
   text = edited(text, "transition = \"tanh\"\n", "transition = \"tanh\"\ntransition_time_s = 0.005\n");
-  text = edited(text, "identified = true\n\n[participant_ratio]", "identified = false\n\n[participant_ratio]");
+  // A calibration's file: a coil not identified, and no circuit or heating.
+  text = edited(text,
+                "identified = true\nresistance_ohm = 12.0\nthermal_resistance_k_w = 3.0\nthermal_time_constant_s = "
+                "600.0\n\n[participant_ratio]",
+                "identified = false\n\n[participant_ratio]");
   text = edited(text, "flow_area_m2 = 0.0005\nvolume_unit_m3 = 0.001\nidentified = true",
                 "flow_area_m2 = 0.0005\nvolume_unit_m3 = 0.001\nidentified = false");
   text += "\n[lost_motion]\nm_per_n = 3e-07\nshare = 0.45\n\n[channels]\nforce_delay_s = 0.006\n";
@@ -338,7 +345,8 @@ TEST(DamperFile, DerivesWhatIsMissingAndNamesWhatIsLeftOut) {
   EXPECT_TRUE(said("channels.force_delay_s"));
   EXPECT_TRUE(said("coil: identified = false"));
   EXPECT_TRUE(said("participant_ratio: identified = false"));
-  EXPECT_EQ(d.warnings.size(), 5u);
+  EXPECT_TRUE(said("the coil's heating is assumed"));
+  EXPECT_EQ(d.warnings.size(), 6u);
   EXPECT_EQ(d.params.shape.lost_motion_m_per_n, 3e-07);
   EXPECT_EQ(d.params.shape.lost_motion_share, 0.45);
   // A rating above what the records cover: the laws are extrapolated.
@@ -351,7 +359,7 @@ TEST(DamperFile, DerivesWhatIsMissingAndNamesWhatIsLeftOut) {
 // has them reads back to the same values, and the writer writes them.
 TEST(DamperFile, RatingGeometryAndCircuitRoundTrip) {
   discrepancy::BaselineFile f = discrepancy::parse_baseline_toml(kSmallDamper, "small.toml");
-  f.coil_circuit = {2.5, 0.8, 0.6};
+  f.coil_circuit = {2.5, 0.8, 0.6, 7.5, 600.0};
   const discrepancy::BaselineFile g = discrepancy::parse_baseline_toml(discrepancy::baseline_toml(f), "w.toml");
   ASSERT_TRUE(g.rating && g.geometry);
   EXPECT_EQ(g.rating->current_a, 1.0);
@@ -365,6 +373,8 @@ TEST(DamperFile, RatingGeometryAndCircuitRoundTrip) {
   EXPECT_EQ(g.coil_circuit.resistance_ohm, 2.5);
   EXPECT_EQ(g.coil_circuit.inductance_1a_h, 0.8);
   EXPECT_EQ(g.coil_circuit.inductance_2a_h, 0.6);
+  EXPECT_EQ(g.coil_circuit.thermal_resistance_k_w, 7.5);
+  EXPECT_EQ(g.coil_circuit.thermal_time_constant_s, 600.0);
   // Left out when absent: the text of a calibration has none of them.
   f.rating.reset();
   f.geometry.reset();
@@ -373,6 +383,7 @@ TEST(DamperFile, RatingGeometryAndCircuitRoundTrip) {
   EXPECT_EQ(t.find("[rating]"), std::string::npos);
   EXPECT_EQ(t.find("[geometry]"), std::string::npos);
   EXPECT_EQ(t.find("resistance_ohm"), std::string::npos);
+  EXPECT_EQ(t.find("thermal_"), std::string::npos);
 }
 
 TEST(DamperFile, AMissingFileIsNamed) {
@@ -423,6 +434,14 @@ TEST(DamperFile, RefusesBadFilesNamingFileLineAndField) {
        "inductance_2a_h", "coil.inductance_2a_h", "expected at most inductance_1a_h (5.0 H)"},
       {"zero resistance", edited(t, "resistance_ohm = 4.8", "resistance_ohm = 0"), "resistance_ohm",
        "coil.resistance_ohm", "expected a resistance in [0.001, 10000] ohm, got 0.0"},
+      // The coil's heating: R_th is for this coil's R (the rise is i² R R_th), so not without it.
+      {"thermal resistance without the resistance", edited(t, "resistance_ohm = 4.8\n", ""), "[coil]",
+       "coil.resistance_ohm", "missing key (thermal_resistance_k_w needs it"},
+      {"zero thermal resistance", edited(t, "thermal_resistance_k_w = 2.0", "thermal_resistance_k_w = 0.0"),
+       "thermal_resistance_k_w", "coil.thermal_resistance_k_w", "expected a thermal resistance in [0.001, 1000] K/W"},
+      {"thermal time constant of half a second",
+       edited(t, "thermal_time_constant_s = 1200.0", "thermal_time_constant_s = 0.5"), "thermal_time_constant_s",
+       "coil.thermal_time_constant_s", "expected a time constant in [1, 100000] s, got 0.5"},
       {"shaft as wide as the bore", edited(t, "shaft_radius_m = 0.04", "shaft_radius_m = 0.1016"), "shaft_radius_m",
        "geometry.shaft_radius_m", "expected less than half inner_diameter_m (0.1016 m)"},
       {"geometry key missing", edited(t, "fluid_volume_m3 = 0.0166  # Table 5.4 (a), method 1\n", ""), "[geometry]",
@@ -453,6 +472,49 @@ TEST(DamperFile, RefusesBadFilesNamingFileLineAndField) {
   }
   // A missing table is named at line 1.
   EXPECT_EQ(error_of(without_table(t, "coil")), "d.toml:1: [coil]: missing table");
+}
+
+// The coil's heating (mrd/physics/coil_heat.hpp). Hand values:
+// - no resistance, no thermal data, rated 1 A: R = 4.8 ohm (the thesis coil's),
+//   R_th = 60 K / ((1 A)² · 4.8 ohm) = 12.5 K/W, τ = 1200 s; the steady rise
+//   at the rated current is then (1 A)² · 4.8 · 12.5 = 60 K;
+// - 12 ohm, no thermal data: R_th = 60 / (1 · 12) = 5 K/W;
+// - 12 ohm, 3 K/W, 600 s: as given.
+TEST(DamperFile, TheCoilHeatsAsItsFileSaysOrAsTheThesisCoilAtItsRating) {
+  const auto heat_warning = [](const DamperFile& d) {
+    for (const std::string& w : d.warnings)
+      if (w.find("heating is assumed") != std::string::npos) return w;
+    return std::string();
+  };
+  const std::string full_coil = "resistance_ohm = 12.0\nthermal_resistance_k_w = 3.0\nthermal_time_constant_s = 600.0\n";
+  const DamperFile given = parse_damper_toml(kSmallDamper, "full.toml");
+  EXPECT_EQ(given.params.coil_heat, (physics::CoilHeatParams{12.0, 3.0, 600.0}));
+  EXPECT_EQ(heat_warning(given), "");
+
+  const DamperFile bare = parse_damper_toml(edited(kSmallDamper, full_coil, ""), "small.toml");
+  EXPECT_EQ(bare.params.coil_heat.resistance_ohm, 4.8);
+  EXPECT_DOUBLE_EQ(bare.params.coil_heat.thermal_resistance_k_w, 12.5);
+  EXPECT_EQ(bare.params.coil_heat.time_constant_s, 1200.0);
+  EXPECT_NE(heat_warning(bare).find("1 A held continuously settling 60 K"), std::string::npos) << heat_warning(bare);
+  EXPECT_NE(heat_warning(bare).find("the thesis coil's"), std::string::npos) << heat_warning(bare);
+
+  const DamperFile r = parse_damper_toml(edited(kSmallDamper, full_coil, "resistance_ohm = 12.0\n"), "r.toml");
+  EXPECT_EQ(r.params.coil_heat.resistance_ohm, 12.0);
+  EXPECT_DOUBLE_EQ(r.params.coil_heat.thermal_resistance_k_w, 5.0);
+  EXPECT_EQ(r.params.coil_heat.time_constant_s, 1200.0);
+  EXPECT_NE(heat_warning(r).find("R_th 5 K/W at 12 ohm"), std::string::npos) << heat_warning(r);
+
+  // τ alone keeps the rating's R_th.
+  const DamperFile tau = parse_damper_toml(
+      edited(kSmallDamper, full_coil, "resistance_ohm = 12.0\nthermal_time_constant_s = 60.0\n"), "tau.toml");
+  EXPECT_DOUBLE_EQ(tau.params.coil_heat.thermal_resistance_k_w, 5.0);
+  EXPECT_EQ(tau.params.coil_heat.time_constant_s, 60.0);
+  EXPECT_NE(heat_warning(tau), "");
+
+  // The thesis file: Table 3.1's 4.8 ohm with the assumed 2 K/W and 20 min, the compiled-in coil to the bit.
+  const DamperFile thesis = read_damper_file(kDampersDir / "thesis-200kn.toml");
+  EXPECT_EQ(thesis.params.coil_heat, physics::CoilHeatParams{});
+  EXPECT_EQ(physics::rated_rise_thermal_resistance_k_w(2.5, 4.8), 2.0);
 }
 
 }  // namespace

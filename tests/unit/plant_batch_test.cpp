@@ -307,6 +307,25 @@ TEST(Batch, AnyBuildingsRunsOfEachModeEqualTheScalarLoop) {
   }
 }
 
+// A damper's own coil (MrDamperParams::coil_heat: 12 ohm, 3 K/W, 60 s) heats
+// in both kinds of lanes as in the scalar loop, and not as the thesis coil.
+TEST(Batch, ADampersOwnCoilHeatsInTheLanesAsInTheScalarLoop) {
+  for (const char* file : {"", "lead-rubber-7dof.toml"}) {
+    SCOPED_TRACE(*file ? file : "thesis shape");
+    mrd::plant::PlantSpec plant = *file ? plant_on(file) : mrd::plant::PlantSpec{};
+    plant.damper.coil_heat = {12.0, 3.0, 60.0};
+    Case c;
+    const ControlMode modes[] = {ControlMode::kPassiveOn, ControlMode::kSemiActive, ControlMode::kPassiveOff};
+    for (std::size_t i = 0; i < 6; ++i)
+      add_run(c, synthetic(static_cast<unsigned>(21 + i % 2), 8.0), 5000 + 500 * i, 1.0, 0.5, modes[i % 3]);
+    expect_batch_equals_scalar(c, plant);
+    const auto own = mrd::batch::run_closed_loop_batch(plant, c.runs);
+    const auto thesis = mrd::batch::run_closed_loop_batch(*file ? plant_on(file) : mrd::plant::PlantSpec{}, c.runs);
+    EXPECT_GT(own[0].coil.peak_coil_temperature_rise_k, 0.0);
+    EXPECT_NE(own[0].coil.peak_coil_temperature_rise_k, thesis[0].coil.peak_coil_temperature_rise_k);
+  }
+}
+
 // The isolated buildings' time series: isolator force and every story's drift.
 TEST(Batch, AnyBuildingsTimeSeriesEqualTheScalarLoop) {
   for (const char* file : {"lead-rubber-7dof.toml", "friction-pendulum-5dof.toml", "thesis-6dof.toml"}) {

@@ -6,6 +6,7 @@
 
 #include "host_sim/plant/coil_figures.hpp"
 #include "host_sim/plant/coil_thermal.hpp"
+#include "host_sim/plant/plant.hpp"
 
 namespace mrd::plant {
 namespace {
@@ -13,7 +14,7 @@ namespace {
 // Steady state: ΔT = P R_th = (2.5 A)² · 4.8 Ω · 2 K/W = 30 W · 2 K/W = 60 K.
 // After one time constant: 60 K (1 − e^−1) = 37.927 K.
 TEST(CoilThermal, SteadyRiseIsPowerTimesThermalResistance) {
-  CoilThermal t{CoilThermalParams{}, 1.0};
+  CoilThermal t{physics::CoilHeatParams{}, 1.0};
   for (int k = 0; k < 1200; ++k) t.step(2.5 * 2.5);
   EXPECT_NEAR(t.rise_k(), 60.0 * (1.0 - std::exp(-1.0)), 1e-9);
   for (int k = 0; k < 1200 * 39; ++k) t.step(2.5 * 2.5);
@@ -22,6 +23,33 @@ TEST(CoilThermal, SteadyRiseIsPowerTimesThermalResistance) {
   const double hot_k = t.rise_k();
   for (int k = 0; k < 1200; ++k) t.step(0.0);
   EXPECT_NEAR(t.rise_k(), hot_k * std::exp(-1.0), 1e-9);
+}
+
+// The plant heats the damper's own coil (MrDamperParams::coil_heat), both
+// plants. 1 A held for 600 s at rest in a coil of 12 Ω with R_th = 3 K/W and
+// τ = 60 s: the steady rise is (1 A)² · 12 Ω · 3 K/W = 36 K, reached within
+// 36 K · e^−10 = 1.6 mK after 10 τ (the coil's lag of Eq. 4.5, 0.7 s on the
+// thesis plant, withholds about 0.7 s of 12 W in the first seconds, decayed by
+// e^−9.9 since: 1 mK more at most). The thesis coil at 1 A: 4.8 Ω · 2 K/W = 9.6 K.
+TEST(CoilThermal, ThePlantHeatsTheDampersOwnCoil) {
+  for (const PlantKind kind : {PlantKind::kThesis, PlantKind::kHardware}) {
+    SCOPED_TRACE(plant_kind_name(kind));
+    const auto rise_after_600_s = [kind](const physics::CoilHeatParams& heat) {
+      PlantSpec spec;
+      spec.kind = kind;
+      spec.damper.coil_heat = heat;
+      spec.hardware.coil.resistance_ohm = heat.resistance_ohm;  // as a damper file sets both
+      Plant p;
+      p.init(spec);
+      for (int n = 0; n < 600000; ++n) {
+        (void)p.sense(0.0);
+        p.advance(CoilDrive{1.0, true});
+      }
+      return p.summary().coil.peak_coil_temperature_rise_k;
+    };
+    EXPECT_NEAR(rise_after_600_s(physics::CoilHeatParams{12.0, 3.0, 60.0}), 36.0, 3e-3);
+    EXPECT_NEAR(rise_after_600_s(physics::CoilHeatParams{4.8, 2.0, 60.0}), 9.6, 1e-3);
+  }
 }
 
 // Ticks of 0.5 s: currents 0, 3, −3, 1 A; commands 0, 1, 1, 2 A.

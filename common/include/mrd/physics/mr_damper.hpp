@@ -64,6 +64,7 @@
 #include <cstddef>
 
 #include "mrd/physics/bingham.hpp"
+#include "mrd/physics/coil_heat.hpp"
 #include "mrd/physics/current_dynamics.hpp"
 #include "mrd/physics/damper_laws.hpp"
 #include "mrd/physics/participant_ratio.hpp"
@@ -126,6 +127,9 @@ struct MrDamperParams {
   /// the default bends nothing.
   LawShape shape{};
   DamperRating rating{};
+  /// The coil's resistance and heating (the closed loop's coil temperature,
+  /// the firmware's I²t time constant); not part of the force.
+  CoilHeatParams coil_heat{};
 };
 
 class MrDamper {
