@@ -72,7 +72,9 @@ run::SimSpec sim_spec(const SimOptions& o) {
     spec.settling = b->settling;
   }
   const discrepancy::CoilCircuit& circuit = d.damper.coil_circuit;
-  if (circuit.resistance_ohm) spec.hardware_coil.resistance_ohm = *circuit.resistance_ohm;
+  // One resistance for the coil's circuit and its heating: the damper file's, or the board's
+  // [damper] coil_resistance_ohm (which mrd configure took from the file), else Table 3.1's.
+  spec.hardware_coil.resistance_ohm = spec.damper.coil_heat.resistance_ohm;
   if (circuit.inductance_1a_h) {
     spec.hardware_coil.inductance_1a_h = *circuit.inductance_1a_h;
     spec.hardware_coil.inductance_2a_h = *circuit.inductance_2a_h;
