@@ -196,11 +196,11 @@ DamperFile read_damper_file(const std::filesystem::path& path) {
 
 void require_law_for(const DamperFile& d, const std::string& command) {
   if (d.params.law != physics::ForceLaw::kSpencer) return;
-  for (const char* ok : {"sim", "sine", "sweep", "study", "settle"})
+  for (const char* ok : {"sim", "sine", "sweep", "study", "settle", "fragility", "rths"})
     if (command == ok) return;
   throw io::UsageError(d.origin + ":" + std::to_string(std::max(d.law_line, 1)) + ": model.law: " +
-                       "\"spencer\" runs in the scalar closed loop (mrd sim, sine, sweep, study, settle); mrd " +
-                       command + " models the damper by its Bingham laws (its estimator, board or batch lanes)");
+                       "\"spencer\" runs in the scalar closed loop (mrd sim, sine, sweep, study, settle, fragility, "
+                       "rths); mrd " + command + " models the damper by its Bingham laws (its estimator or board)");
 }
 
 physics::SettlingParams with_geometry(physics::SettlingParams settling, const discrepancy::DamperGeometry& g) {

@@ -83,10 +83,11 @@ struct DamperFile {
 [[nodiscard]] DamperFile read_damper_file(const std::filesystem::path& path);
 
 /// Refuses a damper whose law `command` cannot simulate: the spencer law
-/// runs in the scalar closed loop (sim, sine, sweep, study) and settle uses
-/// only the cylinder; configure, schedule and fragility model the damper by
-/// its Bingham laws (the control core's estimator, the board file, the batch
-/// lanes). io::UsageError "origin:LINE: model.law: ...".
+/// runs in the scalar closed loop (sim, sine, sweep, study, fragility, whose
+/// SIMD lanes then step nothing, and rths) and settle uses only the
+/// cylinder; configure and schedule model the damper by its Bingham laws
+/// (the control core's estimator, the board file). io::UsageError
+/// "origin:LINE: model.law: ...".
 void require_law_for(const DamperFile& d, const std::string& command);
 
 /// `settling` with its geometry fields (bore, shaft, length, fluid volume)

@@ -85,6 +85,15 @@ void hash_damper_and_fluid(Fnv1a& h, const physics::MrDamperParams& d, const phy
   h.count(static_cast<std::uint64_t>(d.law));
   h.number(d.bouc_wen.yield_disp_m);
   h.number(d.bouc_wen.stiffness_n_m);
+  // Spencer et al.'s model and current laws (only for that law: a plan of another hashes as before it).
+  if (d.law == physics::ForceLaw::kSpencer) {
+    const physics::SpencerParams& sp = d.spencer;
+    for (double x : {sp.alpha_n_m, sp.alpha_per_a_n_m, sp.alpha_per_a2_n_m, sp.c0_ns_m, sp.c0_per_a_ns_m, sp.c1_ns_m,
+                     sp.c1_per_a_ns_m, sp.gamma_per_m_pow_n, sp.gamma_rate_per_a, sp.beta_over_gamma, sp.a, sp.n,
+                     sp.k0_n_m, sp.k1_n_m, sp.x0_m}) {
+      h.number(x);
+    }
+  }
   // A calibration's bends of the law (only when there are some: a plan without them hashes as before them).
   const physics::LawShape& sh = d.shape;
   if (sh.bends()) {

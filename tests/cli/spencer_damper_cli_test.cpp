@@ -252,12 +252,48 @@ TEST_F(SpencerDamperCli, SynthMakesARecordOfItsDamper) {
   EXPECT_EQ(nlohmann::json::parse(slurp(dis / "summary.json")).at("verdict"), "none") << d.out;
 }
 
+// `mrd fragility` and `mrd rths` step it in the scalar closed loop: a
+// fragility run's peaks are `mrd sim`'s (whose force the test above holds to
+// the steady Spencer force), and the RTHS without delay or lag is the closed
+// loop itself.
+TEST_F(SpencerDamperCli, FragilityAndRthsRunItInTheScalarLoop) {
+  const fs::path damper = file("spencer.toml", kSpencerDamper);
+  const std::string common = " --building " + building().string() + " --damper " + damper.string() + " --record " +
+                             ramp_record().string() + " --pga-g 0.3 --control passive-on";
+  const fs::path sim = out_.path() / "sim";
+  const auto s = run_mrd("sim" + common + " --out " + sim.string(), scratch_.path());
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const double sim_force_kn = nlohmann::json::parse(slurp(sim / "summary.json")).at("peak_damper_force_kn").get<double>();
+  ASSERT_GT(sim_force_kn, 0.5);  // the published fit's damper: about a kilonewton at 1 A
+
+  const fs::path frag = out_.path() / "frag";
+  const auto f = run_mrd("fragility" + common + " --idle-years 0 --bootstrap 0 --threads 1 --out " + frag.string(),
+                         scratch_.path());
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take Eq. 4.4's bingham law only, not the "
+                       "damper's spencer law"),
+            std::string::npos)
+      << f.out;
+  const std::vector<double> force_kn = column(slurp(frag / "runs.csv"), "peak_damper_force_kn");
+  ASSERT_EQ(force_kn.size(), 1u);
+  EXPECT_NEAR(force_kn[0], sim_force_kn, 1e-8 * sim_force_kn);  // runs.csv's 9 significant digits
+
+  const fs::path rths = out_.path() / "rths";
+  const auto r = run_mrd("rths --specimen damper --delay-ms 0 --lag-ms 0 --compensate none" + common + " --out " +
+                             rths.string(),
+                         scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(rths / "summary.json"));
+  EXPECT_EQ(j.at("status"), "ok");
+  EXPECT_EQ(j.at("peak_damper_force_n").at("rths").get<double>(), j.at("peak_damper_force_n").at("closed_loop").get<double>());
+  EXPECT_NEAR(j.at("peak_damper_force_n").at("closed_loop").get<double>(), 1e3 * sim_force_kn, 1e-9 * 1e3 * sim_force_kn);
+}
+
 TEST_F(SpencerDamperCli, CommandsOfTheBinghamLawsRefuseItNamingTheLine) {
   const fs::path damper = file("spencer.toml", kSpencerDamper);
   // law = "spencer" is on line 3 of the file.
   const std::string board = (fs::path(MRD_BOARDS_DIR) / "sim" / "board.toml").string();
-  for (const std::string& cmd : {"configure --board " + board, std::string("schedule --years 1"),
-                                 std::string("fragility --pga-g 0.2 --idle-years 0")}) {
+  for (const std::string& cmd : {"configure --board " + board, std::string("schedule --years 1")}) {
     const fs::path out = out_.path() / "refused";
     const auto r = run_mrd(cmd + " --damper " + damper.string() + " --out " + out.string(), scratch_.path());
     EXPECT_EQ(r.exit_code, 2) << cmd << ": " << r.err;

@@ -65,6 +65,17 @@ TEST(RiskStudy, FingerprintChangesWithTheInputs) {
   b = small_plan();
   b.seed = 2;
   EXPECT_NE(a.fingerprint(), b.fingerprint());
+  // Spencer's parameters count for that law only; the coil's heating when it is not the thesis coil's.
+  b = small_plan();
+  b.base.damper.spencer.alpha_n_m = 1.0e4;
+  EXPECT_EQ(a.fingerprint(), b.fingerprint());
+  b.base.damper.law = physics::ForceLaw::kSpencer;
+  FragilityPlan c = b;
+  c.base.damper.spencer.alpha_n_m = 2.0e4;
+  EXPECT_NE(b.fingerprint(), c.fingerprint());
+  c = small_plan();
+  c.base.damper.coil_heat.time_constant_s = 600.0;
+  EXPECT_NE(a.fingerprint(), c.fingerprint());
 }
 
 // The record's CRC checked with zlib's crc32 over magic and bytes 8–63.
