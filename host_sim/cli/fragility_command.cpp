@@ -30,6 +30,7 @@
 #include "host_sim/risk/stochastic_motion.hpp"
 #include "host_sim/risk/study_estimate.hpp"
 #include "host_sim/risk/study_runner.hpp"
+#include "host_sim/structure/isolators.hpp"
 #include "host_sim/run/controller.hpp"
 
 namespace mrd::cli {
@@ -58,6 +59,9 @@ Limit states (exceeded when the peak reaches the threshold):
                   thesis's three above. With it, story_drift's rows, curves and plots are added
                   and the other curves stay as they are, bootstrap bands included (their
                   resampling seeds do not depend on it).
+  bearing_capacity  only for a building whose bearings state displacement_capacity_m: peak
+                  base displacement >= the smallest capacity they state (building file); its
+                  rows, curves and plots are added likewise, ahead of story_drift's.
 Building: --building FILE (README "Your building"; default the thesis building of Table 6.1,
 buildings/thesis-6dof.toml, whose files are the same bytes with or without it). For another
 building, "base displacement" is DOF 0 relative to the ground and "floors" its superstructure
@@ -418,6 +422,10 @@ void execute(const FragilityOptions& o) {
   for (auto& l : limit_states) {
     if (l.name == "stroke") l.threshold = plan.base.damper.rating.stroke_m;  // the damper's (thesis: 0.2921 m)
   }
+  structure::IsolatorBank bearings;
+  bearings.init(plan.base.building);
+  if (bearings.displacement_capacity_m() > 0.0)
+    limit_states.push_back(risk::bearing_capacity_limit_state(bearings.displacement_capacity_m()));
   if (o.drift_m) limit_states.push_back(risk::story_drift_limit_state(*o.drift_m));
   if (announce_cost(o, plan, synthetic, limit_states, journal_folder(o), cluster, threads)) return;
   std::filesystem::path out;

@@ -156,7 +156,7 @@ void execute(const SweepOptions& o) {
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   print_timing(spec, rows, wall_s);
   std::fflush(stdout);
-  print_warnings("sweep", run::sweep_warnings(rows, spec.base.damper.rating));
+  print_warnings("sweep", run::sweep_warnings(rows, spec.base));
   std::vector<std::string> pngs;
   const auto problems = run::write_sweep_report(out, spec, rows, wall_s, &pngs);
   commit_out_dir();

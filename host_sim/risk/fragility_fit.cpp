@@ -21,6 +21,11 @@ LimitState story_drift_limit_state(double story_drift_m) {
           true};
 }
 
+LimitState bearing_capacity_limit_state(double capacity_m) {
+  return {"bearing_capacity", Metric::kBaseDisplacement, capacity_m,
+          "peak isolator displacement reaches the bearings' displacement capacity (building file)", true};
+}
+
 double metric_value(const RunMetrics& m, Metric metric) noexcept {
   switch (metric) {
     case Metric::kBaseDisplacement:

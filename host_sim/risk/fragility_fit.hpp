@@ -42,6 +42,14 @@ std::vector<LimitState> default_limit_states(double isolation_gap_m, double floo
 /// depends on the story heights, which a building file does not hold.
 LimitState story_drift_limit_state(double story_drift_m);
 
+/// The bearing_capacity limit state: peak isolator displacement (the base's,
+/// DOF 0 against the ground) reaches the bearings' displacement capacity,
+/// `capacity_m` (the smallest a building file's bearings state). Added for
+/// a building whose bearings state one, as an opt-in state ahead of
+/// story_drift, so that neither moves the thesis's curves' bands nor
+/// --drift-m this one's.
+LimitState bearing_capacity_limit_state(double capacity_m);
+
 double metric_value(const RunMetrics& m, Metric metric) noexcept;
 
 struct FragilityCurve {

@@ -133,14 +133,8 @@ nlohmann::json closed_loop_summary_json(const plant::PlantSummary& s) {
 
 std::vector<std::string> sim_warnings(const SimRun& run) {
   std::vector<std::string> w = validity_warnings(validity_peaks(run.summary), run.spec.damper.rating);
-  structure::IsolatorBank bank;
-  bank.init(run.spec.building);
-  const double capacity_m = bank.displacement_capacity_m();
-  if (capacity_m > 0.0 && run.summary.peak_base_displacement_m > capacity_m) {
-    w.push_back("peak isolator displacement " + io::format_number("%.4g", run.summary.peak_base_displacement_m) +
-                " m exceeds the bearings' displacement capacity " + io::format_number("%.4g", capacity_m) +
-                " m (building file)");
-  }
+  for (std::string& s : bearing_capacity_warnings({run.summary.peak_base_displacement_m}, run.spec.building))
+    w.push_back(std::move(s));
   return w;
 }
 

@@ -196,14 +196,21 @@ nlohmann::json peaks_json(const plant::PlantSummary& s, bool building_peaks) {
 
 std::vector<std::string> study_warnings(const StudyResult& r) {
   std::vector<ValidityPeaks> peaks;
+  std::vector<double> base_m;
+  const auto add = [&](const plant::PlantSummary& s) {
+    peaks.push_back(validity_peaks(s));
+    base_m.push_back(s.peak_base_displacement_m);
+  };
   for (const auto& row : r.rows) {
-    peaks.push_back(validity_peaks(row.fully_mixed));
-    peaks.push_back(validity_peaks(row.idle));
+    add(row.fully_mixed);
+    add(row.idle);
   }
   if (r.sweep) {
-    for (const auto& row : r.sweep->rows) peaks.push_back(validity_peaks(row.summary));
+    for (const auto& row : r.sweep->rows) add(row.summary);
   }
-  return validity_warnings(peaks, r.options.damper.rating);
+  std::vector<std::string> w = validity_warnings(peaks, r.options.damper.rating);
+  for (std::string& s : bearing_capacity_warnings(base_m, r.options.building)) w.push_back(std::move(s));
+  return w;
 }
 
 namespace {

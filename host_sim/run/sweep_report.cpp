@@ -108,10 +108,16 @@ double simulated_seconds(const std::vector<SweepRow>& rows) {
   return simulated_s;
 }
 
-std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows, const physics::DamperRating& rating) {
+std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows, const plant::PlantSpec& base) {
   std::vector<ValidityPeaks> peaks;
-  for (const auto& r : rows) peaks.push_back(validity_peaks(r.summary));
-  return validity_warnings(peaks, rating);
+  std::vector<double> base_m;
+  for (const auto& r : rows) {
+    peaks.push_back(validity_peaks(r.summary));
+    base_m.push_back(r.summary.peak_base_displacement_m);
+  }
+  std::vector<std::string> w = validity_warnings(peaks, base.damper.rating);
+  for (std::string& s : bearing_capacity_warnings(base_m, base.building)) w.push_back(std::move(s));
+  return w;
 }
 
 nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<SweepRow>& rows, double wall_s,
@@ -128,7 +134,7 @@ nlohmann::json sweep_summary_json(const SweepSpec& spec, const std::vector<Sweep
                         {"simulated_s", simulated_s},     {"real_time_factor", simulated_s / wall_s},
                         {"motions", motions},            {"controls", modes},
                         {"idle_years", spec.idle_years}, {"csv", "sweep.csv"},
-                        {"plots", pngs},                {"warnings", sweep_warnings(rows, spec.base.damper.rating)}};
+                        {"plots", pngs},                {"warnings", sweep_warnings(rows, spec.base)}};
   // The thesis building keeps the thesis's summary; any other is named.
   if (!is_thesis_building(spec.base.building)) {
     j["building"] = spec.base.building.name;

@@ -18,8 +18,10 @@ namespace mrd::run {
 std::vector<std::string> write_sweep_outputs(const std::filesystem::path& dir, const SweepSpec& spec,
                                              const std::vector<SweepRow>& rows, std::vector<std::string>* pngs);
 
-/// Where runs of the sweep leave the model's validity (validity_warnings), as sentences.
-std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows, const physics::DamperRating& rating = {});
+/// Where runs of the sweep leave the model's validity (validity_warnings with
+/// the damper's rating) or pass the bearings' displacement capacity
+/// (bearing_capacity_warnings with the building), as sentences.
+std::vector<std::string> sweep_warnings(const std::vector<SweepRow>& rows, const plant::PlantSpec& base);
 
 /// The sweep as CSV text (header + one row per run): the thesis's ten
 /// columns and, for another building than the thesis's (is_thesis_building),

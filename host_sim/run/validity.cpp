@@ -1,5 +1,8 @@
 #include "host_sim/run/validity.hpp"
 
+#include "host_sim/io/text.hpp"
+#include "host_sim/structure/isolators.hpp"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdio>
@@ -69,6 +72,29 @@ std::vector<std::string> validity_warnings(const ValidityPeaks& p, const physics
     if (!(peak <= rating.*l.limit + tolerance(l, rating))) out.push_back(sentence(l, rating, peak));
   }
   return out;
+}
+
+std::vector<std::string> bearing_capacity_warnings(const std::vector<double>& peak_base_displacement_m,
+                                                   const structure::BuildingParams& building) {
+  structure::IsolatorBank bank;
+  bank.init(building);
+  const double capacity_m = bank.displacement_capacity_m();
+  if (!(capacity_m > 0.0)) return {};
+  std::size_t over = 0;
+  double worst_m = 0.0;
+  for (const double x : peak_base_displacement_m) {
+    if (x > capacity_m) {
+      ++over;
+      worst_m = std::max(worst_m, x);
+    }
+  }
+  if (over == 0) return {};
+  const std::string capacity = "the bearings' displacement capacity " + io::format_number("%.4g", capacity_m) +
+                               " m (building file)";
+  if (peak_base_displacement_m.size() == 1)
+    return {"peak isolator displacement " + io::format_number("%.4g", worst_m) + " m exceeds " + capacity};
+  return {"in " + std::to_string(over) + " of " + std::to_string(peak_base_displacement_m.size()) +
+          " runs: peak isolator displacement up to " + io::format_number("%.4g", worst_m) + " m exceeds " + capacity};
 }
 
 std::vector<std::string> validity_warnings(const std::vector<ValidityPeaks>& runs,

@@ -42,4 +42,12 @@ std::vector<std::string> validity_warnings(const ValidityPeaks& p, const physics
 std::vector<std::string> validity_warnings(const std::vector<ValidityPeaks>& runs,
                                            const physics::DamperRating& rating = {});
 
+/// The runs' peak base (isolator) displacements, m, against the bearings'
+/// displacement capacity (the smallest a building file's bearings state):
+/// one sentence when a peak exceeds it, "peak isolator displacement X m
+/// exceeds ..." for one run, "in k of n runs: ..." with the largest peak for
+/// several; empty when the bearings state no capacity or no peak exceeds it.
+std::vector<std::string> bearing_capacity_warnings(const std::vector<double>& peak_base_displacement_m,
+                                                   const structure::BuildingParams& building);
+
 }  // namespace mrd::run

@@ -386,6 +386,95 @@ TEST_F(BuildingCli, FragilityHasAStoryDriftLimitState) {
   EXPECT_TRUE(listed);
 }
 
+/// A building whose bearings state a displacement capacity has the
+/// bearing_capacity limit state at the smallest (here the lead-rubber file's
+/// bearings at 0.12 m instead of 0.45 m, so that some runs reach it): its
+/// exceedances are the runs of runs.csv whose peak base displacement reaches
+/// it, it comes before story_drift, and the curves of the other limit states,
+/// bootstrap bands included, are those of the same building without a
+/// capacity. The thesis building (no bearings) has none.
+TEST_F(BuildingCli, FragilityHasABearingCapacityLimitStateWhereTheBearingsStateOne) {
+  std::string text = slurp(kLeadRubber);
+  const std::string from = "displacement_capacity_m = 0.45";
+  ASSERT_NE(text.find(from), std::string::npos);
+  const std::string with_capacity = std::string(text).replace(text.find(from), from.size(), "displacement_capacity_m = 0.12");
+  const std::string without_capacity = std::string(text).replace(text.find(from), from.size(), "");
+  const fs::path a = scratch_.path() / "lr-0.12.toml", b = scratch_.path() / "lr-none.toml";
+  std::ofstream(a) << with_capacity;
+  std::ofstream(b) << without_capacity;
+  const std::string common = "fragility --synthetic 4 --duration-s 8 --pga-g 0.2,0.5,1.0 --idle-years 0 "
+                             "--control passive-on --bootstrap 20 --threads 1 --drift-m 0.05 --building ";
+  const fs::path da = out_.path() / "cap", db = out_.path() / "nocap";
+  for (const auto& [building, dir] : {std::pair{a, da}, std::pair{b, db}}) {
+    const auto r = run_mrd(common + building.string() + " --out " + dir.string(), scratch_.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto runs = csv_rows(slurp(da / "runs.csv"));
+  ASSERT_EQ(runs.size(), 1u + 12u);
+  const std::size_t base_col = column(runs[0], "peak_base_displacement_m");
+  int exceeded = 0;
+  for (std::size_t i = 1; i < runs.size(); ++i) exceeded += std::stod(runs[i][base_col]) >= 0.12;
+  EXPECT_GT(exceeded, 0) << "some run should reach the capacity for the check to bite";
+  EXPECT_LT(exceeded, 12);
+  const auto curves = csv_rows(slurp(da / "fragility.csv")), plain = csv_rows(slurp(db / "fragility.csv"));
+  const std::size_t state_col = column(curves[0], "limit_state");
+  std::vector<std::string> order;
+  for (std::size_t i = 1; i < curves.size(); ++i) {
+    order.push_back(curves[i][state_col]);
+    if (curves[i][state_col] != "bearing_capacity") continue;
+    EXPECT_EQ(std::stod(curves[i][column(curves[0], "threshold")]), 0.12);
+    EXPECT_EQ(std::stoi(curves[i][column(curves[0], "exceedances")]), exceeded);
+  }
+  ASSERT_EQ(order.size(), 5u);
+  EXPECT_EQ(order[3], "bearing_capacity");
+  EXPECT_EQ(order[4], "story_drift");
+  // The other states' rows: the same bytes with and without the capacity.
+  ASSERT_EQ(plain.size(), curves.size() - 1);
+  for (std::size_t i = 1, j = 1; i < curves.size(); ++i) {
+    if (curves[i][state_col] == "bearing_capacity") continue;
+    EXPECT_EQ(curves[i], plain[j]) << curves[i][state_col];
+    ++j;
+  }
+  // The thesis building: no bearings, no such state.
+  const fs::path dt = out_.path() / "thesis";
+  const auto t = run_mrd("fragility --synthetic 2 --duration-s 4 --pga-g 0.2,0.5 --idle-years 0 --control passive-on "
+                         "--bootstrap 0 --threads 1 --out " + dt.string(),
+                         scratch_.path());
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_EQ(slurp(dt / "fragility.csv").find("bearing_capacity"), std::string::npos);
+}
+
+/// sim, sweep and study warn when a run's peak base displacement passes the
+/// bearings' displacement capacity (the lead-rubber file's bearings at 1 mm,
+/// which every run with motion passes), on stderr and in summary.json.
+TEST_F(BuildingCli, SimSweepAndStudyWarnPastTheBearingsCapacity) {
+  std::string text = slurp(kLeadRubber);
+  const std::string from = "displacement_capacity_m = 0.45";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "displacement_capacity_m = 0.001");
+  const fs::path building = scratch_.path() / "lr-1mm.toml";
+  std::ofstream(building) << text;
+  const std::string rec = short_record().string();
+  const std::vector<std::pair<std::string, std::string>> commands = {
+      {"sim", "sim --record " + rec + " --control passive-on"},
+      {"sweep", "sweep --record " + rec + " --control passive-on --idle-to 0 --threads 1"},
+      {"study", "study --no-sweep"}};
+  for (const auto& [name, command] : commands) {
+    const fs::path dir = out_.path() / name;
+    const auto r = run_mrd(command + " --building " + building.string() + " --out " + dir.string(), scratch_.path());
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    EXPECT_NE(r.err.find("exceeds the bearings' displacement capacity 0.001 m (building file)"), std::string::npos)
+        << name << ": " << r.err;
+    const nlohmann::json summary = nlohmann::json::parse(slurp(dir / "summary.json"));
+    bool in_summary = false;
+    for (const auto& w : summary.at("warnings"))
+      in_summary = in_summary || w.get<std::string>().find("displacement capacity 0.001 m") != std::string::npos;
+    EXPECT_TRUE(in_summary) << name;
+    // The study's many runs are counted (the sweep here has one run).
+    if (name == "study") EXPECT_NE(r.err.find(" runs: peak isolator displacement up to "), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(BuildingCli, FragilityRefusesABadDriftThreshold) {
   for (const char* bad : {"0", "-0.01", "nan", "inf"}) {
     const fs::path dir = out_.path() / "frag";
