@@ -28,7 +28,9 @@ Rules: RILD's k is the effective stiffness of the first damper's element (an iso
 bearings: its springs plus the bearings' secant stiffness at --design-displacement-m, default half
 the damper's rated stroke), ω_f the building's fundamental mode with that layer linear, η = 0.8
 (§6.3); |F_d| <= 2 F_rated, load-cell guard 2.5 F_rated, deadband 1 % F_rated; I_r = I_nom = the
-rated current, forcing ±min(4 I_r, 10 A), band 4 % I_r; direction thresholds 10 and 5 σ_v of the
+rated current, forcing ±min(4 I_r, the drive's command range: --drive-command-limit-a, default the
+thesis rig's 10 A), band 4 % I_r; the drive's continuous and peak currents (--drive-continuous-limit-a,
+--drive-peak-limit-a, default 15 and 30 A) are the core's limits; direction thresholds 10 and 5 σ_v of the
 velocity estimate on the stroke sensor's noise (--disp-noise-m, 16-bit over the rated stroke);
 mixing within 0.26 × the stroke and 0.4 × the rated velocity. The control core's own checks run
 before anything is written: a configuration it (or the fixed-point build) would refuse is an error.)"};
@@ -37,6 +39,7 @@ struct ConfigureOptions {
   std::string building, damper, fluid, board, out_dir;
   double design_displacement_m = 0.0;
   double disp_noise_m = 2.0e-6;
+  configure::DriveLimits drive{};
 };
 
 void add_options(CLI::App& app, ConfigureOptions& o) {
@@ -52,6 +55,30 @@ void add_options(CLI::App& app, ConfigureOptions& o) {
   app.add_option("--disp-noise-m", o.disp_noise_m, "RMS noise of the stroke sensor, m (default: the thesis LVDT's)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--drive-command-limit-a", o.drive.command_limit_a,
+                 "The current drive's command range, ±A (default: the thesis rig's, 10 V at 1 V/A)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--drive-continuous-limit-a", o.drive.continuous_limit_a,
+                 "The drive's continuous current, A (default: the thesis rig's)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--drive-peak-limit-a", o.drive.peak_limit_a,
+                 "The drive's peak current, A, also the coil's current limit (default: the thesis rig's)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+}
+
+/// The drive's three limits in the core's order: command range <= continuous <= peak.
+void check_drive(const configure::DriveLimits& d) {
+  if (!(d.command_limit_a <= d.continuous_limit_a))
+    throw io::UsageError("--drive-command-limit-a: expected at most the continuous current --drive-continuous-limit-a (" +
+                         io::format_number("%g", d.continuous_limit_a) + " A), got " +
+                         io::format_number("%g", d.command_limit_a));
+  if (!(d.continuous_limit_a <= d.peak_limit_a))
+    throw io::UsageError("--drive-continuous-limit-a: expected at most the peak current --drive-peak-limit-a (" +
+                         io::format_number("%g", d.peak_limit_a) + " A), got " +
+                         io::format_number("%g", d.continuous_limit_a));
 }
 
 std::string stem_or(const std::string& path, const char* fallback) {
@@ -59,7 +86,9 @@ std::string stem_or(const std::string& path, const char* fallback) {
 }
 
 void execute(const ConfigureOptions& o) {
+  check_drive(o.drive);
   configure::Inputs in;
+  in.drive = o.drive;
   in.building = load_building(o.building);
   in.building_name = in.building.name.empty() ? stem_or(o.building, "thesis-6dof") : in.building.name;
   const DamperAndFluid df = load_damper_and_fluid("configure", o.damper, o.fluid);

@@ -97,7 +97,17 @@ Result configure(const Inputs& in) {
   c.drive_continuous_limit_a = in.drive.continuous_limit_a;
   c.drive_peak_limit_a = in.drive.peak_limit_a;
   c.coil_current_limit_a = in.drive.peak_limit_a;
-  put("controller.command_limit_a", c.command_limit_a, "A", "the drive's command range (§3.2: ±10 A at 1 V/A)");
+  const DriveLimits thesis_drive{};
+  const auto drive_rule = [](double value, double thesis, const char* what) {
+    return std::string("the drive's ") + what +
+           (value == thesis ? " (the thesis rig's, §3.2)" : " (given; the thesis rig's: " + num(thesis) + " A)");
+  };
+  put("controller.command_limit_a", c.command_limit_a, "A",
+      drive_rule(c.command_limit_a, thesis_drive.command_limit_a, "command range, ±"));
+  put("controller.drive_continuous_limit_a", c.drive_continuous_limit_a, "A",
+      drive_rule(c.drive_continuous_limit_a, thesis_drive.continuous_limit_a, "continuous current"));
+  put("controller.drive_peak_limit_a", c.drive_peak_limit_a, "A",
+      drive_rule(c.drive_peak_limit_a, thesis_drive.peak_limit_a, "peak current (also the coil's current limit)"));
   c.rated_current_a = i_r;
   c.nominal_current_a = i_r;
   c.fallback_current_a = i_r;
@@ -152,9 +162,15 @@ Result configure(const Inputs& in) {
   if (err != fw::ConfigError::kNone) {
     const char* misfit = err == fw::ConfigError::kFixedPointRange ? fw::fixed_point_misfit<num::Fixed32Policy>(c)
                                                                    : nullptr;
+    const bool drive_named = misfit != nullptr && (std::string(misfit).rfind("command_limit_a", 0) == 0 ||
+                                                   std::string(misfit).rfind("drive_peak_limit_a", 0) == 0 ||
+                                                   std::string(misfit).rfind("coil_current_limit_a", 0) == 0);
     throw io::UsageError(std::string("configure: the control core (") + (board.fixed_point ? "fixed" : "float") +
                          " build) refuses the derived configuration: " + fw::config_error_name(err) +
-                         (misfit ? std::string(": ") + misfit : std::string()));
+                         (misfit ? std::string(": ") + misfit : std::string()) +
+                         (drive_named ? " (a drive of a smaller range: --drive-command-limit-a, "
+                                        "--drive-peak-limit-a)"
+                                      : ""));
   }
   if (d.law != physics::ForceLaw::kBingham) {
     r.notes.push_back("the damper's force law is not Eq. 4.4's: the estimator's capacity uses its current laws "

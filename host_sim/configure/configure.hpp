@@ -40,7 +40,8 @@ struct StrokeSensor {
   int bits = 16;  ///< over the span 2 × the damper's rated stroke
 };
 
-/// The drive's limits (§3.2: ±10 A command at 1 V/A; 15 A continuous, 30 A peak).
+/// The drive's limits (the thesis rig's, §3.2: ±10 A command at 1 V/A; 15 A
+/// continuous, 30 A peak; `mrd configure --drive-*` gives another drive's).
 struct DriveLimits {
   double command_limit_a = 10.0;
   double continuous_limit_a = 15.0;

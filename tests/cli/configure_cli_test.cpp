@@ -120,7 +120,39 @@ TEST_F(ConfigureCli, ACoilTheFixedBuildCannotCarryOnThisDriveIsRefusedByName) {
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.err.find("fixed build) refuses"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("command_limit_a"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--drive-command-limit-a"), std::string::npos) << r.err;  // what to do about it
   EXPECT_FALSE(fs::exists(scratch_.path() / "o" / "board.toml"));
+
+  // On a ±5 A drive it fits: s_I = 2^−2 A (the power of two nearest 0.5/2.5), and
+  // (5 A / 0.25 A)² = 400 is inside Square Q9.22's 512; forcing min(4 × 0.5 A, 5 A) = 2 A.
+  const fs::path out = scratch_.path() / "o5";
+  const auto ok = run_mrd("configure --damper " + d.string() + " --board " + b.string() +
+                              " --drive-command-limit-a 5 --drive-continuous-limit-a 8 --drive-peak-limit-a 12 --out " +
+                              out.string(),
+                          scratch_.path());
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const std::string board_out = slurp(out / "board.toml");
+  EXPECT_NE(board_out.find("command_limit_a = 5.0"), std::string::npos) << board_out;
+  EXPECT_NE(board_out.find("drive_continuous_limit_a = 8.0"), std::string::npos) << board_out;
+  EXPECT_NE(board_out.find("drive_peak_limit_a = 12.0"), std::string::npos) << board_out;
+  EXPECT_NE(board_out.find("overdrive_current_a = 2.0"), std::string::npos) << board_out;
+  EXPECT_NE(slurp(out / "configure.md").find("given; the thesis rig's: 10 A"), std::string::npos);
+}
+
+// The drive's limits in the core's order (command range <= continuous <= peak), each positive.
+TEST_F(ConfigureCli, ADrivesLimitsOutOfOrderAreRefusedByOption) {
+  const std::string board = source("boards/sim/board.toml");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--drive-command-limit-a 20", "--drive-command-limit-a: expected at most the continuous current"},
+      {"--drive-continuous-limit-a 40", "--drive-continuous-limit-a: expected at most the peak current"},
+      {"--drive-peak-limit-a 0", "--drive-peak-limit-a"}};
+  for (const auto& [option, message] : cases) {
+    const fs::path out = scratch_.path() / "bad-drive";
+    const auto r = run_mrd("configure --board " + board + " " + option + " --out " + out.string(), scratch_.path());
+    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_NE(r.err.find(message), std::string::npos) << option << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << option;
+  }
 }
 
 TEST_F(ConfigureCli, SimWithABoardRefusesWhatTheBoardDecides) {
