@@ -30,8 +30,8 @@
 #include "host_sim/risk/stochastic_motion.hpp"
 #include "host_sim/risk/study_estimate.hpp"
 #include "host_sim/risk/study_runner.hpp"
-#include "host_sim/structure/isolators.hpp"
 #include "host_sim/run/controller.hpp"
+#include "host_sim/structure/isolators.hpp"
 
 namespace mrd::cli {
 namespace fragility_command {
