@@ -71,10 +71,8 @@ run::SimSpec sim_spec(const SimOptions& o) {
     spec.damper = b->damper;
     spec.settling = b->settling;
   }
+  // The coil's resistance is spec.damper's (coil_heat); its inductance the damper file's.
   const discrepancy::CoilCircuit& circuit = d.damper.coil_circuit;
-  // One resistance for the coil's circuit and its heating: the damper file's, or the board's
-  // [damper] coil_resistance_ohm (which mrd configure took from the file), else Table 3.1's.
-  spec.hardware_coil.resistance_ohm = spec.damper.coil_heat.resistance_ohm;
   if (circuit.inductance_1a_h) {
     spec.hardware_coil.inductance_1a_h = *circuit.inductance_1a_h;
     spec.hardware_coil.inductance_2a_h = *circuit.inductance_2a_h;

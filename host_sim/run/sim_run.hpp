@@ -32,7 +32,7 @@ struct SimSpec {
   structure::BuildingParams building{};  ///< the thesis building unless a building file is given
   physics::MrDamperParams damper{};      ///< the thesis damper unless a damper file is given
   physics::SettlingParams settling{};    ///< the thesis fluid in the thesis damper unless files are given
-  plant::CoilParams hardware_coil{};     ///< the hardware plant's coil circuit (Table 3.1 unless a damper file's)
+  plant::CoilInductance hardware_coil{};  ///< the hardware plant's coil L(i) (Table 3.1 unless a damper file's)
 };
 
 struct SimRun {

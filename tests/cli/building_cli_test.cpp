@@ -471,7 +471,9 @@ TEST_F(BuildingCli, SimSweepAndStudyWarnPastTheBearingsCapacity) {
       in_summary = in_summary || w.get<std::string>().find("displacement capacity 0.001 m") != std::string::npos;
     EXPECT_TRUE(in_summary) << name;
     // The study's many runs are counted (the sweep here has one run).
-    if (name == "study") EXPECT_NE(r.err.find(" runs: peak isolator displacement up to "), std::string::npos) << r.err;
+    if (name == "study") {
+      EXPECT_NE(r.err.find(" runs: peak isolator displacement up to "), std::string::npos) << r.err;
+    }
   }
 }
 

@@ -37,8 +37,7 @@ TEST(CoilThermal, ThePlantHeatsTheDampersOwnCoil) {
     const auto rise_after_600_s = [kind](const physics::CoilHeatParams& heat) {
       PlantSpec spec;
       spec.kind = kind;
-      spec.damper.coil_heat = heat;
-      spec.hardware.coil.resistance_ohm = heat.resistance_ohm;  // as a damper file sets both
+      spec.damper.coil_heat = heat;  // the hardware plant drives and heats this one resistance
       Plant p;
       p.init(spec);
       for (int n = 0; n < 600000; ++n) {
