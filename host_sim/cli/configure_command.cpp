@@ -1,12 +1,15 @@
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "firmware/app/board_config.hpp"
 #include "firmware/platform/linux/regular_file.hpp"
 #include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/drive_option.hpp"
 #include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/configure/configure.hpp"
@@ -30,7 +33,9 @@ the damper's rated stroke), ω_f the building's fundamental mode with that layer
 (§6.3); |F_d| <= 2 F_rated, load-cell guard 2.5 F_rated, deadband 1 % F_rated; I_r = I_nom = the
 rated current, forcing ±min(4 I_r, the drive's command range: --drive-command-limit-a, default the
 thesis rig's 10 A), band 4 % I_r; the drive's continuous and peak currents (--drive-continuous-limit-a,
---drive-peak-limit-a, default 15 and 30 A) are the core's limits; direction thresholds 10 and 5 σ_v of the
+--drive-peak-limit-a, default 15 and 30 A) are the core's limits; --drive FILE gives all three from a
+drive file (README "Your drive": command_range_v / volts_per_amp, continuous_current_a,
+peak_current_a); direction thresholds 10 and 5 σ_v of the
 velocity estimate on the stroke sensor's noise (--disp-noise-m, 16-bit over the rated stroke);
 mixing within 0.26 × the stroke and 0.4 × the rated velocity. The control core's own checks run
 before anything is written: a configuration it (or the fixed-point build) would refuse is an error.)"};
@@ -40,6 +45,8 @@ struct ConfigureOptions {
   double design_displacement_m = 0.0;
   double disp_noise_m = 2.0e-6;
   configure::DriveLimits drive{};
+  std::string drive_file;
+  bool drive_limit_given = false;  ///< one of --drive-*-limit-a
 };
 
 void add_options(CLI::App& app, ConfigureOptions& o) {
@@ -55,18 +62,40 @@ void add_options(CLI::App& app, ConfigureOptions& o) {
   app.add_option("--disp-noise-m", o.disp_noise_m, "RMS noise of the stroke sensor, m (default: the thesis LVDT's)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  add_drive_option(app, o.drive_file, "the core's command range, continuous and peak currents are its");
+  const auto given = [&o](const std::string&) { o.drive_limit_given = true; };
   app.add_option("--drive-command-limit-a", o.drive.command_limit_a,
                  "The current drive's command range, ±A (default: the thesis rig's, 10 V at 1 V/A)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->each(given);
   app.add_option("--drive-continuous-limit-a", o.drive.continuous_limit_a,
                  "The drive's continuous current, A (default: the thesis rig's)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->each(given);
   app.add_option("--drive-peak-limit-a", o.drive.peak_limit_a,
                  "The drive's peak current, A, also the coil's current limit (default: the thesis rig's)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->each(given);
+}
+
+/// --drive FILE's limits: its command range (command_range_v / volts_per_amp),
+/// continuous and peak currents, in the core's order.
+configure::DriveLimits file_drive_limits(const std::string& file, const drive::DriveFile& d) {
+  const plant::PwmDriveParams& p = d.params;
+  configure::DriveLimits l;
+  l.command_limit_a = drive::command_limit_a(p);
+  l.continuous_limit_a = p.continuous_current_a;
+  l.peak_limit_a = p.peak_current_a;
+  if (!(l.command_limit_a <= l.continuous_limit_a))
+    throw io::UsageError(io::file_label(file) + ": drive.command_range_v: the command range ±" +
+                         io::format_number("%g", l.command_limit_a) + " A (command_range_v / volts_per_amp) exceeds "
+                         "continuous_current_a (" + io::format_number("%g", l.continuous_limit_a) +
+                         " A): the control core commands within the continuous current (give the limits with "
+                         "--drive-command-limit-a, --drive-continuous-limit-a, --drive-peak-limit-a instead)");
+  return l;
 }
 
 /// The drive's three limits in the core's order: command range <= continuous <= peak.
@@ -86,9 +115,19 @@ std::string stem_or(const std::string& path, const char* fallback) {
 }
 
 void execute(const ConfigureOptions& o) {
-  check_drive(o.drive);
   configure::Inputs in;
-  in.drive = o.drive;
+  std::optional<drive::DriveFile> drive_file;
+  if (!o.drive_file.empty()) {
+    if (o.drive_limit_given)
+      throw io::UsageError("--drive-command-limit-a, --drive-continuous-limit-a, --drive-peak-limit-a cannot be given "
+                           "with --drive: the drive file decides them");
+    drive_file = load_drive(o.drive_file);
+    in.drive = file_drive_limits(o.drive_file, *drive_file);
+    in.drive_source = "the drive file's, " + drive_file->name;
+  } else {
+    check_drive(o.drive);
+    in.drive = o.drive;
+  }
   in.building = load_building(o.building);
   in.building_name = in.building.name.empty() ? stem_or(o.building, "thesis-6dof") : in.building.name;
   const DamperAndFluid df = load_damper_and_fluid("configure", o.damper, o.fluid);
@@ -101,6 +140,14 @@ void execute(const ConfigureOptions& o) {
                                        io::file_label(o.board));
   } catch (const app::BoardConfigError& e) {
     throw io::UsageError(e.what());
+  }
+  if (drive_file) {
+    // The drive on this damper's coil at the board's control period, as `mrd sim --plant hardware` runs it.
+    std::vector<std::string> warnings = drive::check_drive_fit(
+        *drive_file, plant::coil_params(in.damper.coil_heat.resistance_ohm, coil_inductance(df.damper)),
+        in.damper.rating.current_a, in.board.period_s());
+    for (std::string& w : warnings) w = io::file_label(o.drive_file) + ": " + w;
+    print_warnings("configure", warnings);
   }
   in.design_displacement_m = o.design_displacement_m;
   in.sensor.noise_rms_m = o.disp_noise_m;

@@ -11,6 +11,7 @@
 #include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/drive_option.hpp"
 #include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/cli/sim_spec.hpp"
@@ -38,7 +39,7 @@ without ground motion (zero acceleration) for --duration-s.
 
 --plant thesis (default): ideal sensors and drive, the coil current follows Eq. 4.5.
 --plant hardware: the rig of Sec. 3.2: PWM drive on a 72 V bus (PI current loop, 30 A peak,
-15 A continuous by I^2t, +-10 V command at 1 V/A), coil 4.8 ohm with L 5.0 H at 1 A and 3.0 H at
+15 A continuous by I^2t, +-10 V command at 1 V/A; --drive FILE: your drive, README "Your drive"), coil 4.8 ohm with L 5.0 H at 1 A and 3.0 H at
 2 A, the field lagging the coil current by Eq. 4.5's slow branch; LVDT (+-0.2921 m, 16 bit,
 2 um RMS), load cell (+-250 kN, 16 bit, 250 N RMS) and coil-current sensor (+-15 A, 12 bit,
 5 mA RMS), noise seeded by --sensor-seed; the damper parked --offset-mm off its stroke centre
@@ -73,6 +74,7 @@ Fields of DIR/summary.json:
   sensor_seed                     --sensor-seed of the hardware plant's sensor noise (null for thesis)
   parking_offset_m                --offset-mm in m: where the hardware plant's damper was parked off
                                   its stroke centre (null for thesis: ideal sensors, damper centred)
+  drive                           the hardware plant's drive, its drive file's name (null for thesis)
   peak_coil_current_a             max |coil current| over the ticks, A
   rms_coil_current_a              RMS coil current over the ticks, A
   time_above_rated_s              time with |coil current| above the rated 2.5 A, s
@@ -105,6 +107,7 @@ void print_summary(const run::SimRun& r) {
   if (r.spec.plant == plant::PlantKind::kHardware) {
     std::printf("  sensor seed                  %10llu\n", static_cast<unsigned long long>(r.spec.sensor_seed));
     std::printf("  parking offset               %10.4f mm\n", r.spec.stroke_offset_m * 1e3);
+    std::printf("  drive                        %10s\n", r.spec.hardware_drive_name.c_str());
   }
   std::printf("  rms coil current             %10.4f A\n", c.rms_coil_current_a);
   const std::string above = "time above rated " + io::format_number("%g", r.spec.damper.rating.current_a) + " A";
@@ -139,6 +142,7 @@ void add_options(CLI::App& app, SimOptions& o) {
   add_building_option(app, o.building);
   add_damper_option(app, o.damper);
   add_fluid_option(app, o.fluid);
+  add_drive_option(app, o.drive, "the hardware plant's drive (--plant hardware)");
   add_seed_option(app, o.sensor_seed, "Seed of the hardware plant's sensor noise", "--sensor-seed");
   app.add_option("--offset-mm", o.offset_mm, "Hardware plant: damper parked this far off its stroke centre, mm")
       ->capture_default_str();

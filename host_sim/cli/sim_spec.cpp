@@ -6,6 +6,7 @@
 #include "host_sim/cli/building_option.hpp"
 #include "host_sim/cli/command.hpp"
 #include "host_sim/cli/damper_option.hpp"
+#include "host_sim/cli/drive_option.hpp"
 #include "host_sim/cli/fluid_option.hpp"
 #include "host_sim/cli/options.hpp"
 #include "host_sim/io/text.hpp"
@@ -28,6 +29,24 @@ std::optional<app::BoardConfig> sim_board(const SimOptions& o) {
 }
 
 namespace {
+
+/// The controller limits its commands to the drive it was configured for (the
+/// thesis rig's, or a board's from `mrd configure --drive`); a simulated drive
+/// with other limits is said.
+std::vector<std::string> controller_drive_mismatch(const std::optional<app::BoardConfig>& board,
+                                                   const drive::DriveFile& d) {
+  const fw::ControllerConfig c = board ? board->controller_config() : fw::ControllerConfig{};
+  const plant::PwmDriveParams& p = d.params;
+  const double command_a = drive::command_limit_a(p);
+  if (c.command_limit_a == command_a && c.drive_continuous_limit_a == p.continuous_current_a &&
+      c.drive_peak_limit_a == p.peak_current_a)
+    return {};
+  const auto g = [](double v) { return io::format_number("%g", v); };
+  return {std::string("drive: the ") + (board ? "board" : "thesis's controller") + " was configured for a drive of +-" + g(c.command_limit_a) + " A command, " +
+          g(c.drive_continuous_limit_a) + " A continuous and " + g(c.drive_peak_limit_a) +
+          " A peak; the simulated drive's are +-" + g(command_a) + ", " + g(p.continuous_current_a) + " and " +
+          g(p.peak_current_a) + " A (mrd configure --drive configures a board for it)"};
+}
 
 plant::PlantKind sim_plant_kind(const std::string& text) {
   require_choice("--plant", text, {"thesis", "hardware"});
@@ -73,16 +92,27 @@ run::SimSpec sim_spec(const SimOptions& o) {
   }
   // The coil's resistance is spec.damper's (coil_heat); its inductance the damper file's.
   const discrepancy::CoilCircuit& circuit = d.damper.coil_circuit;
-  if (circuit.inductance_1a_h) {
-    spec.hardware_coil.inductance_1a_h = *circuit.inductance_1a_h;
-    spec.hardware_coil.inductance_2a_h = *circuit.inductance_2a_h;
-    // The saturated floor (an assumption, plant/coil.hpp) stays below the coil's own L(2 A).
-    spec.hardware_coil.min_inductance_h = std::min(spec.hardware_coil.min_inductance_h, *circuit.inductance_2a_h);
-  }
+  spec.hardware_coil = coil_inductance(d.damper);
   if (spec.plant == plant::PlantKind::kHardware && !o.damper.empty() &&
       (!circuit.resistance_ohm || !circuit.inductance_1a_h))
     print_warnings("sim", {io::file_label(o.damper) + ": the hardware plant's coil is the thesis's (Table 3.1) where "
                            "the file's [coil] has no resistance_ohm or inductance_1a_h/inductance_2a_h"});
+  if (!o.drive.empty() && spec.plant != plant::PlantKind::kHardware)
+    throw io::UsageError("--drive: only --plant hardware simulates a drive (the thesis plant's coil current follows "
+                         "the command through Eq. 4.5)");
+  if (spec.plant == plant::PlantKind::kHardware) {
+    const drive::DriveFile drive = load_drive(o.drive);
+    spec.hardware_drive = drive.params;
+    spec.hardware_drive_name = drive.name;
+    std::vector<std::string> warnings = drive::check_drive_fit(
+        drive, plant::coil_params(spec.damper.coil_heat.resistance_ohm, spec.hardware_coil),
+        spec.damper.rating.current_a, spec.step_s);
+    const std::vector<std::string> mismatch = controller_drive_mismatch(board, drive);
+    warnings.insert(warnings.end(), mismatch.begin(), mismatch.end());
+    const std::string label = o.drive.empty() ? std::string("the thesis drive") : io::file_label(o.drive);
+    for (std::string& w : warnings) w = label + ": " + w;
+    print_warnings("sim", warnings);
+  }
   return spec;
 }
 

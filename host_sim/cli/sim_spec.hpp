@@ -35,6 +35,7 @@ struct SimOptions {
   std::string building;
   std::string damper;
   std::string fluid;
+  std::string drive;  ///< --drive FILE: the hardware plant's drive (empty: the thesis's)
   std::string out_dir;
 };
 

@@ -98,9 +98,10 @@ Result configure(const Inputs& in) {
   c.drive_peak_limit_a = in.drive.peak_limit_a;
   c.coil_current_limit_a = in.drive.peak_limit_a;
   const DriveLimits thesis_drive{};
-  const auto drive_rule = [](double value, double thesis, const char* what) {
+  const auto drive_rule = [&in](double value, double thesis, const char* what) {
     return std::string("the drive's ") + what +
-           (value == thesis ? " (the thesis rig's, §3.2)" : " (given; the thesis rig's: " + num(thesis) + " A)");
+           (value == thesis ? " (the thesis rig's, §3.2)"
+                            : " (" + in.drive_source + "; the thesis rig's: " + num(thesis) + " A)");
   };
   put("controller.command_limit_a", c.command_limit_a, "A",
       drive_rule(c.command_limit_a, thesis_drive.command_limit_a, "command range, ±"));

@@ -60,6 +60,9 @@ struct Inputs {
   double design_displacement_m = 0.0;
   StrokeSensor sensor{};
   DriveLimits drive{};
+  /// Where the drive's limits come from when they are not the thesis rig's:
+  /// "given" (options) or "the drive file's (NAME)".
+  std::string drive_source = "given";
 };
 
 /// One derived number.

@@ -155,6 +155,7 @@ nlohmann::json sim_summary_json(const SimRun& run) {
   const bool hardware = run.spec.plant == plant::PlantKind::kHardware;
   j["sensor_seed"] = hardware ? nlohmann::json(run.spec.sensor_seed) : nlohmann::json(nullptr);
   j["parking_offset_m"] = hardware ? nlohmann::json(run.spec.stroke_offset_m) : nlohmann::json(nullptr);
+  j["drive"] = hardware ? nlohmann::json(run.spec.hardware_drive_name) : nlohmann::json(nullptr);
   j["peak_coil_current_a"] = c.peak_coil_current_a;
   j["rms_coil_current_a"] = c.rms_coil_current_a;
   j["time_above_rated_s"] = c.time_above_rated_s;

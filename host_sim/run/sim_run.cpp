@@ -30,6 +30,7 @@ SimRun run_sim(const SimSpec& spec, Controller& controller) {
   loop.damper = spec.damper;
   loop.settling = spec.settling;
   loop.hardware.coil = spec.hardware_coil;
+  loop.hardware.drive = spec.hardware_drive;
   loop.hardware.sensors.seed = spec.sensor_seed;
   loop.hardware.stroke_offset_m = spec.stroke_offset_m;
   run.summary = run_closed_loop(loop, run.motion.accel_m_s2, controller, spec.keep_record ? &run.record : nullptr);

@@ -108,6 +108,7 @@ def sim(
     damper: Union[None, str, Damper] = None,
     fluid: Union[None, str, Fluid] = None,
     controller: Union[None, Callable[[Sensors], float], Any] = None,
+    drive: Optional[str] = None,
 ) -> SimResult:
     """Run one closed loop as ``mrd sim`` does; each argument is its option.
 
@@ -139,6 +140,8 @@ def sim(
             core's float, the drive enabled. It runs in
             the same plant as the core; the summary's "control" field still
             names ``control``.
+        drive: drive file of the hardware plant (``plant="hardware"``; README
+            "Your drive"); None: the thesis's PWM drive.
 
     Returns:
         SimResult with ``summary`` (summary.json's dict) and ``timeseries``.
@@ -163,6 +166,7 @@ def sim(
             as_file(building, "building"),
             as_file(damper, "damper"),
             as_file(fluid, "fluid"),
+            "" if drive is None else str(drive),
             controller,
         )
     except UsageError as e:

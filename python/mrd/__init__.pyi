@@ -138,6 +138,7 @@ def sim(
     damper: Union[None, str, Damper] = ...,
     fluid: Union[None, str, Fluid] = ...,
     controller: Union[None, Callable[[Sensors], _Command], ControllerObject] = ...,
+    drive: Optional[str] = ...,
 ) -> SimResult: ...
 
 PEAK_FIELDS: Tuple[str, ...]

@@ -49,7 +49,8 @@ RawResult sim(const std::string& record, double pga_g, const std::optional<std::
               const std::optional<std::string>& numeric, const std::string& board, double idle_years,
               const std::optional<double>& duration_s, const std::optional<double>& step_s, std::uint64_t seed,
               const std::string& plant, std::uint64_t sensor_seed, double offset_mm, const std::string& building,
-              const std::string& damper, const std::string& fluid, const py::object& controller) {
+              const std::string& damper, const std::string& fluid, const std::string& drive,
+              const py::object& controller) {
   cli::SimOptions o;
   o.record = record;
   o.pga_g = pga_g;
@@ -78,6 +79,7 @@ RawResult sim(const std::string& record, double pga_g, const std::optional<std::
   o.building = building;
   o.damper = damper;
   o.fluid = fluid;
+  o.drive = drive;
   run::SimSpec spec = cli::sim_spec(o);
   spec.keep_record = true;  // the time series is the result's
   std::unique_ptr<run::Controller> c;
@@ -139,7 +141,7 @@ PYBIND11_MODULE(_mrd, m) {
   m.def("_sim", &sim, py::arg("record"), py::arg("pga_g"), py::arg("control"), py::arg("numeric"), py::arg("board"),
         py::arg("idle_years"), py::arg("duration_s"), py::arg("step_s"), py::arg("seed"), py::arg("plant"),
         py::arg("sensor_seed"), py::arg("offset_mm"), py::arg("building"), py::arg("damper"), py::arg("fluid"),
-        py::arg("controller"), "One closed-loop run (see mrd.sim).");
+        py::arg("drive"), py::arg("controller"), "One closed-loop run (see mrd.sim).");
   add_batch(m);
   add_objects(m);
 }

@@ -1,0 +1,21 @@
+#pragma once
+/// `--drive FILE`: the current drive that feeds the coil (a drive file,
+/// host_sim/drive/drive_file.hpp; README "Your drive"). Without it, the
+/// thesis's drive (drives/thesis-pwm.toml).
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "host_sim/drive/drive_file.hpp"
+
+namespace mrd::cli {
+
+/// Registers --drive FILE on `app`; `what` says what the command does with it.
+void add_drive_option(CLI::App& app, std::string& drive_file, const std::string& what);
+
+/// The drive `drive_file` describes (io::UsageError with file:line:field for
+/// a bad file); the thesis drive for an empty name.
+drive::DriveFile load_drive(const std::string& drive_file);
+
+}  // namespace mrd::cli
