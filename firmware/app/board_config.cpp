@@ -407,7 +407,20 @@ void read_damper(const toml::table& root, const std::string& origin, BoardConfig
       {"fluid_volume_m3", &g.fluid_volume_m3, 1e-9, 100.0, "m³"},
   };
   for (const NumberKey& n : numbers) t.number(n.key, *n.out, n.lo, n.hi, n.unit);
+  // The coil's inductance through its two points (physics::coil_inductance): absent, the thesis coil's.
+  double l1_h = d.coil_inductance.inductance_1a_h, l2_h = d.coil_inductance.inductance_2a_h;
+  const bool l1 = t.number("coil_inductance_1a_h", l1_h, 1e-6, 1e3, "H");
+  const bool l2 = t.number("coil_inductance_2a_h", l2_h, 1e-6, 1e3, "H");
   t.no_unknown_keys();
+  if (l1 != l2) {
+    const char* missing = l1 ? "coil_inductance_2a_h" : "coil_inductance_1a_h";
+    fail(origin, t.where(l1 ? "coil_inductance_1a_h" : "coil_inductance_2a_h"), std::string("damper.") + missing,
+         "missing key: L(i) is set by the two points coil_inductance_1a_h and coil_inductance_2a_h");
+  }
+  if (l2_h > l1_h)
+    fail(origin, t.where("coil_inductance_2a_h"), "damper.coil_inductance_2a_h",
+         "expected at most coil_inductance_1a_h: the iron saturates, the inductance does not grow with the current");
+  if (l1) d.coil_inductance = physics::coil_inductance(l1_h, l2_h);
   if (std::fabs(d.coil.weight_slow + d.coil.weight_fast - 1.0) > 1e-9)
     fail(origin, t.where("weight_slow"), "damper.weight_slow", "the coil's two weights must sum to 1");
   if (!(2.0 * g.shaft_radius_m < g.inner_diameter_m))
@@ -789,6 +802,10 @@ std::string board_toml(const BoardConfig& c, const std::string& header) {
     w.num("coil_resistance_ohm", d.coil_heat.resistance_ohm);
     w.num("coil_thermal_resistance_k_w", d.coil_heat.thermal_resistance_k_w);
     w.num("coil_thermal_time_constant_s", d.coil_heat.time_constant_s);
+  }
+  if (d.coil_inductance != physics::CoilInductance{}) {
+    w.num("coil_inductance_1a_h", d.coil_inductance.inductance_1a_h);
+    w.num("coil_inductance_2a_h", d.coil_inductance.inductance_2a_h);
   }
   w.num("rated_force_n", d.rating.force_n);
   w.num("stroke_m", d.rating.stroke_m);

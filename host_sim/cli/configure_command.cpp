@@ -144,7 +144,7 @@ void execute(const ConfigureOptions& o) {
   if (drive_file) {
     // The drive on this damper's coil at the board's control period, as `mrd sim --plant hardware` runs it.
     std::vector<std::string> warnings = drive::check_drive_fit(
-        *drive_file, plant::coil_params(in.damper.coil_heat.resistance_ohm, coil_inductance(df.damper)),
+        *drive_file, plant::coil_params(in.damper.coil_heat.resistance_ohm, in.damper.coil_inductance),
         in.damper.rating.current_a, in.board.period_s());
     for (std::string& w : warnings) w = io::file_label(o.drive_file) + ": " + w;
     print_warnings("configure", warnings);

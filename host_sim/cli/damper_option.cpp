@@ -1,6 +1,5 @@
 #include "host_sim/cli/damper_option.hpp"
 
-#include <algorithm>
 #include <cstdio>
 
 #include "host_sim/io/text.hpp"
@@ -21,17 +20,6 @@ damper::DamperFile load_damper(const char* command, const std::string& damper_fi
   for (const std::string& w : d.warnings)
     std::fprintf(stderr, "mrd %s: warning: %s: %s\n", command, label.c_str(), w.c_str());
   return d;
-}
-
-plant::CoilInductance coil_inductance(const damper::DamperFile& d) {
-  plant::CoilInductance l;
-  const discrepancy::CoilCircuit& circuit = d.coil_circuit;
-  if (circuit.inductance_1a_h) {
-    l.inductance_1a_h = *circuit.inductance_1a_h;
-    l.inductance_2a_h = *circuit.inductance_2a_h;
-    l.min_inductance_h = std::min(l.min_inductance_h, *circuit.inductance_2a_h);
-  }
-  return l;
 }
 
 }  // namespace mrd::cli

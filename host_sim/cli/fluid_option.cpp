@@ -49,7 +49,8 @@ bool same(const physics::MrDamperParams& a, const physics::MrDamperParams& b) {
          p.volume_unit_m3 == q.volume_unit_m3 && a.law == b.law &&
          a.bouc_wen.yield_disp_m == b.bouc_wen.yield_disp_m && a.bouc_wen.stiffness_n_m == b.bouc_wen.stiffness_n_m &&
          a.shape == b.shape && r.current_a == t.current_a && r.force_n == t.force_n && r.stroke_m == t.stroke_m &&
-         r.velocity_m_s == t.velocity_m_s && a.coil_heat == b.coil_heat;
+         r.velocity_m_s == t.velocity_m_s && a.coil_heat == b.coil_heat &&
+         a.coil_inductance == b.coil_inductance;
 }
 
 bool same(const physics::SettlingParams& a, const physics::SettlingParams& b) {

@@ -90,9 +90,7 @@ run::SimSpec sim_spec(const SimOptions& o) {
     spec.damper = b->damper;
     spec.settling = b->settling;
   }
-  // The coil's resistance is spec.damper's (coil_heat); its inductance the damper file's.
   const discrepancy::CoilCircuit& circuit = d.damper.coil_circuit;
-  spec.hardware_coil = coil_inductance(d.damper);
   if (spec.plant == plant::PlantKind::kHardware && !o.damper.empty() &&
       (!circuit.resistance_ohm || !circuit.inductance_1a_h))
     print_warnings("sim", {io::file_label(o.damper) + ": the hardware plant's coil is the thesis's (Table 3.1) where "
@@ -105,7 +103,7 @@ run::SimSpec sim_spec(const SimOptions& o) {
     spec.hardware_drive = drive.params;
     spec.hardware_drive_name = drive.name;
     std::vector<std::string> warnings = drive::check_drive_fit(
-        drive, plant::coil_params(spec.damper.coil_heat.resistance_ohm, spec.hardware_coil),
+        drive, plant::coil_params(spec.damper.coil_heat.resistance_ohm, spec.damper.coil_inductance),
         spec.damper.rating.current_a, spec.step_s);
     const std::vector<std::string> mismatch = controller_drive_mismatch(board, drive);
     warnings.insert(warnings.end(), mismatch.begin(), mismatch.end());

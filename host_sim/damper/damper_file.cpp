@@ -186,6 +186,9 @@ DamperFile parse_damper_toml(const std::string& text, const std::string& origin)
   d.geometry = f.geometry ? *f.geometry : thesis_geometry();
   d.coil_circuit = f.coil_circuit;
   d.params.coil_heat = coil_heat_of(f.coil_circuit, d.params.rating);
+  if (f.coil_circuit.inductance_1a_h)
+    d.params.coil_inductance =
+        physics::coil_inductance(*f.coil_circuit.inductance_1a_h, *f.coil_circuit.inductance_2a_h);
   d.warnings = warnings_of(f, d);
   return d;
 }

@@ -23,6 +23,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mrd/physics/coil_heat.hpp"
+
 namespace mrd::plant {
 
 struct CoilParams {
@@ -32,18 +34,9 @@ struct CoilParams {
   double min_inductance_h = 0.5;       ///< saturated coil, H (assumption)
 };
 
-/// The coil's inductance L(i) alone: what the hardware plant adds to the
-/// damper's coil, whose resistance is the damper's
-/// (physics::MrDamperParams::coil_heat), so that the coil is driven and
-/// heated through one resistance.
-struct CoilInductance {
-  double inductance_1a_h = 5.0;   ///< L at 1 A, H (Table 3.1)
-  double inductance_2a_h = 3.0;   ///< L at 2 A, H (Table 3.1)
-  double min_inductance_h = 0.5;  ///< saturated coil, H (assumption)
-};
-
-/// The circuit of a coil of `resistance_ohm` with inductance `l`.
-inline CoilParams coil_params(double resistance_ohm, const CoilInductance& l) noexcept {
+/// The circuit of a coil of `resistance_ohm` with inductance `l` (the
+/// damper's: physics::MrDamperParams::coil_heat and ::coil_inductance).
+inline CoilParams coil_params(double resistance_ohm, const physics::CoilInductance& l) noexcept {
   return {resistance_ohm, l.inductance_1a_h, l.inductance_2a_h, l.min_inductance_h};
 }
 

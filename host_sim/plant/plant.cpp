@@ -59,7 +59,7 @@ void Plant::init(const PlantSpec& spec) {
   thermal_.init(spec.damper.coil_heat, spec.step_s);
   figures_ = CoilFigureCounter{spec.damper.rating.current_a};
   if (hardware) {
-    drive_.init(spec.hardware.drive, coil_params(spec.damper.coil_heat.resistance_ohm, spec.hardware.coil));
+    drive_.init(spec.hardware.drive, coil_params(spec.damper.coil_heat.resistance_ohm, spec.damper.coil_inductance));
     sensors_.init(spec.hardware.sensors);
   }
   accel_.assign(static_cast<std::size_t>(b.dofs()), 0.0);

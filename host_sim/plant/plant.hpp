@@ -81,7 +81,6 @@ const char* plant_kind_name(PlantKind k) noexcept;
 
 /// The rig's drive, coil and sensors (used by PlantKind::kHardware only).
 struct HardwarePlantSpec {
-  CoilInductance coil{};  ///< the coil's L(i); its resistance is the damper's (coil_heat.resistance_ohm)
   PwmDriveParams drive{};
   HardwareSensorSpec sensors{};
   double stroke_offset_m = 0.0;  ///< where the damper is parked, off the stroke's centre, m

@@ -29,7 +29,6 @@ SimRun run_sim(const SimSpec& spec, Controller& controller) {
   loop.building = spec.building;
   loop.damper = spec.damper;
   loop.settling = spec.settling;
-  loop.hardware.coil = spec.hardware_coil;
   loop.hardware.drive = spec.hardware_drive;
   loop.hardware.sensors.seed = spec.sensor_seed;
   loop.hardware.stroke_offset_m = spec.stroke_offset_m;

@@ -32,7 +32,6 @@ struct SimSpec {
   structure::BuildingParams building{};  ///< the thesis building unless a building file is given
   physics::MrDamperParams damper{};      ///< the thesis damper unless a damper file is given
   physics::SettlingParams settling{};    ///< the thesis fluid in the thesis damper unless files are given
-  plant::CoilInductance hardware_coil{};  ///< the hardware plant's coil L(i) (Table 3.1 unless a damper file's)
   plant::PwmDriveParams hardware_drive{};  ///< the hardware plant's drive (§3.2 unless a drive file's)
   std::string hardware_drive_name = "thesis-pwm";  ///< its name (the drive file's [drive] name)
 };

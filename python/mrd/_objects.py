@@ -166,7 +166,9 @@ class Damper(_TomlObject):
 
     ``info``: name, rated_current_a, rated_force_n, rated_stroke_m,
     rated_velocity_m_s, coil_resistance_ohm, coil_thermal_resistance_k_w,
-    coil_thermal_time_constant_s (the coil's heating), warnings (what the
+    coil_thermal_time_constant_s (the coil's heating), coil_inductance_1a_h,
+    coil_inductance_2a_h (its L(i), which the hardware plant's drive works
+    against), warnings (what the
     closed loop leaves out or assumes).
     """
 

@@ -51,6 +51,8 @@ py::dict damper_info(const damper::DamperFile& f) {
   d["coil_resistance_ohm"] = f.params.coil_heat.resistance_ohm;
   d["coil_thermal_resistance_k_w"] = f.params.coil_heat.thermal_resistance_k_w;
   d["coil_thermal_time_constant_s"] = f.params.coil_heat.time_constant_s;
+  d["coil_inductance_1a_h"] = f.params.coil_inductance.inductance_1a_h;
+  d["coil_inductance_2a_h"] = f.params.coil_inductance.inductance_2a_h;
   d["warnings"] = f.warnings;
   return d;
 }

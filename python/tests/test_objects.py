@@ -49,6 +49,7 @@ def test_damper_and_fluid_from_dicts_run_as_their_files(elcentro, source_dir):
     # Table 3.1's coil, with the heating the thesis coil is assumed to have (2 K/W, 20 min).
     assert (damper.info["coil_resistance_ohm"], damper.info["coil_thermal_resistance_k_w"],
             damper.info["coil_thermal_time_constant_s"]) == (4.8, 2.0, 1200.0)
+    assert (damper.info["coil_inductance_1a_h"], damper.info["coil_inductance_2a_h"]) == (5.0, 3.0)
     a = mrd.sim(record=elcentro, duration_s=3.0, idle_years=1.0, damper=damper, fluid=fluid)
     b = mrd.sim(record=elcentro, duration_s=3.0, idle_years=1.0, damper=str(damper_file), fluid=str(fluid_file))
     assert a.peaks == b.peaks

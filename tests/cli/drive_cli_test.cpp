@@ -85,6 +85,25 @@ TEST_F(DriveCli, ASixVoltDriveChargesTheCoilAsAnRLCircuitInMrdSim) {
   const auto j = nlohmann::json::parse(slurp(dir / "summary.json"));
   EXPECT_EQ(j.at("drive"), "six-volt");
   EXPECT_NEAR(j.at("peak_coil_current_a").get<double>(), 1.25 * (1.0 - std::exp(-2.4 * 0.999)), 2e-5);
+
+  // The same damper through a board configured for it: the board carries the coil's inductance, and
+  // its passive-on current is the damper's rated 2.5 A, so the same charge.
+  const fs::path cfg = out_.path() / "cfg";
+  const auto c = run_mrd("configure --board " + kSimBoard.string() + " --damper " + damper.string() + " --drive " +
+                             drive.string() + " --out " + cfg.string(),
+                         scratch_.path());
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const std::string board = slurp(cfg / "board.toml");
+  EXPECT_NE(board.find("coil_inductance_1a_h = 2.0\n"), std::string::npos) << board;
+  EXPECT_NE(board.find("coil_inductance_2a_h = 2.0\n"), std::string::npos) << board;
+  const fs::path on_board = out_.path() / "on-board";
+  const auto b = run_mrd("sim --board " + (cfg / "board.toml").string() +
+                             " --plant hardware --record none --duration-s 1 --control passive-on --drive " +
+                             drive.string() + " --out " + on_board.string(),
+                         scratch_.path());
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NEAR(nlohmann::json::parse(slurp(on_board / "summary.json")).at("peak_coil_current_a").get<double>(),
+              1.25 * (1.0 - std::exp(-2.4 * 0.999)), 2e-5);
 }
 
 TEST_F(DriveCli, BadDrivesAndCombinationsAreRefusedBeforeAnythingIsWritten) {

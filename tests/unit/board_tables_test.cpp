@@ -204,6 +204,27 @@ TEST(BoardTables, TheCoilsHeatingReadsBack) {
             0u);
 }
 
+// A coil of 1 H at 1 A and 0.3 H at 2 A: its floor is its own L(2 A), below
+// the 0.5 H assumed for a coil that states none (physics::coil_inductance).
+TEST(BoardTables, TheCoilsInductanceReadsBack) {
+  BoardConfig c = parse_tables("");
+  EXPECT_EQ(c.damper.coil_inductance, physics::CoilInductance{});
+  EXPECT_EQ(board_toml(c).find("coil_inductance"), std::string::npos);
+  c.damper.coil_inductance = physics::coil_inductance(1.0, 0.3);
+  const BoardConfig r = parse_board_config(board_toml(c), "w.toml");
+  EXPECT_EQ(r.damper.coil_inductance, (physics::CoilInductance{1.0, 0.3, 0.3}));
+  EXPECT_EQ(board_toml(r), board_toml(c));
+  EXPECT_EQ(tables_error_of("[damper]\ncoil_inductance_1a_h = 2.0\n")
+                .rfind("b.toml:10: damper.coil_inductance_2a_h: missing key", 0),
+            0u);
+  EXPECT_EQ(tables_error_of("[damper]\ncoil_inductance_1a_h = 2.0\ncoil_inductance_2a_h = 3.0\n")
+                .rfind("b.toml:11: damper.coil_inductance_2a_h: expected at most coil_inductance_1a_h", 0),
+            0u);
+  EXPECT_EQ(tables_error_of("[damper]\ncoil_inductance_1a_h = 0.0\ncoil_inductance_2a_h = 0.0\n")
+                .rfind("b.toml:10: damper.coil_inductance_1a_h: expected", 0),
+            0u);
+}
+
 }  // namespace
 }  // namespace mrd::app
 

@@ -33,6 +33,31 @@ struct CoilHeatParams {
   friend bool operator==(const CoilHeatParams&, const CoilHeatParams&) = default;
 };
 
+/// The coil's differential inductance L(i) through two points, as the
+/// hardware plant's R–L(i) coil reads it (host_sim/plant/coil.hpp: L_0
+/// exp(−|i|/I_s) through L(1 A) and L(2 A), held at a saturated floor):
+/// Table 3.1's 5.0 H at 1 A and 3.0 H at 2 A for the thesis coil. The floor
+/// is an assumption (the thesis says nothing of the saturated coil): 0.5 H,
+/// or the coil's own L(2 A) where that is lower (coil_inductance()).
+struct CoilInductance {
+  double inductance_1a_h = 5.0;   ///< L at 1 A, H (Table 3.1)
+  double inductance_2a_h = 3.0;   ///< L at 2 A, H (Table 3.1)
+  double min_inductance_h = 0.5;  ///< saturated coil, H (assumption)
+
+  friend bool operator==(const CoilInductance&, const CoilInductance&) = default;
+};
+
+/// The saturated floor of a coil whose own L(2 A) is not known to be above it, H.
+inline constexpr double kSaturatedCoilInductance_h = 0.5;
+
+/// A coil of L(1 A) = `inductance_1a_h` and L(2 A) = `inductance_2a_h` (at
+/// most L(1 A): the iron saturates), its floor the smaller of 0.5 H and its
+/// own L(2 A).
+[[nodiscard]] constexpr CoilInductance coil_inductance(double inductance_1a_h, double inductance_2a_h) noexcept {
+  return {inductance_1a_h, inductance_2a_h,
+          inductance_2a_h < kSaturatedCoilInductance_h ? inductance_2a_h : kSaturatedCoilInductance_h};
+}
+
 /// R_th that makes `rated_current_a` held continuously in a coil of
 /// `resistance_ohm` settle kRatedCoilRise_k above ambient:
 /// 60 K / (I_r² R), K/W. The thesis coil: 60 / (2.5² · 4.8) = 2 K/W

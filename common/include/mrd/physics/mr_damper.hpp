@@ -130,6 +130,9 @@ struct MrDamperParams {
   /// The coil's resistance and heating (the closed loop's coil temperature,
   /// the firmware's I²t time constant); not part of the force.
   CoilHeatParams coil_heat{};
+  /// The coil's inductance L(i) (the hardware plant's drive works against it);
+  /// not part of the force either.
+  CoilInductance coil_inductance{};
 };
 
 class MrDamper {
