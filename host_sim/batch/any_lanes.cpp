@@ -148,8 +148,10 @@ void AnyLanes::rest(int l, double sq) {
   const double i0_a = model_.damper.weight_slow * 0.0 + model_.damper.weight_fast * 0.0;
   for (int d = 0; d < model_.dampers; ++d) {
     b.pr[d * kMaxLanes + l] = pr;
-    b.fc_n[d * kMaxLanes + l] = physics::coulomb_force_n(spec_.damper.bingham, i0_a, pr);
-    b.c0_ns_m[d * kMaxLanes + l] = physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, pr);
+    b.fc_n[d * kMaxLanes + l] =
+        physics::coulomb_force_n(spec_.damper.bingham, i0_a, pr, spec_.damper.shape.yield_current_exponent);
+    b.c0_ns_m[d * kMaxLanes + l] =
+        physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, pr, spec_.damper.shape.viscous_current_exponent);
   }
   b.exp_current_a[l] = std::numeric_limits<double>::quiet_NaN();
   b.ground[l] = &kNoGround;

@@ -63,26 +63,41 @@ bool lane_isa_cpu_runs(LaneIsa isa) {
 
 namespace {
 
-/// The lanes step the thesis's Bingham law (Eq. 4.4) only: another law, or
-/// one bent by a calibration's shape, would be a different closed loop from
+/// The lanes step Eq. 4.4's Bingham law, bent or not by a calibration's
+/// current and viscous exponents and spring (lanes_step); another law, a
+/// transition time or a lost motion would be a different closed loop from
 /// plant::Plant's.
-void require_bingham_law(const plant::PlantSpec& spec) {
+void require_lane_law(const plant::PlantSpec& spec) {
   if (spec.damper.law != physics::ForceLaw::kBingham) {
     throw std::invalid_argument(std::string("the batch steps the damper's bingham law only, not ") +
                                 physics::force_law_name(spec.damper.law) + " (run each closed loop on the plant)");
   }
-  if (spec.damper.shape.bends()) {
+  if (!lanes_step(spec.damper)) {
     throw std::invalid_argument(
-        "the batch steps Eq. 4.2-4.4's bingham law only, not one bent by current or viscous exponents, a spring, "
-        "a transition time or a lost motion (run each closed loop on the plant)");
+        "the batch steps Eq. 4.2-4.4's bingham law with its current and viscous exponents and spring only, not one "
+        "bent by a transition time or a lost motion (run each closed loop on the plant)");
   }
 }
 
 }  // namespace
 
+bool lanes_step(const physics::MrDamperParams& d) noexcept {
+  const physics::LawShape& sh = d.shape;
+  return d.law == physics::ForceLaw::kBingham && sh.transition_time_s == 0.0 && !sh.has_lost_motion();
+}
+
 SharedModel damper_constants(const plant::PlantSpec& spec) {
-  require_bingham_law(spec);
+  require_lane_law(spec);
   SharedModel m;
+  // As physics::MrDamper::init reads the shape: bent by m or k (the current exponents act in f_c, c_0).
+  const physics::LawShape& sh = spec.damper.shape;
+  m.yield_current_exponent = sh.yield_current_exponent;
+  m.viscous_current_exponent = sh.viscous_current_exponent;
+  m.has_viscous_exponent = sh.has_viscous_exponent();
+  m.shaped = m.has_viscous_exponent || sh.stiffness_n_m != 0.0;
+  m.viscous_exponent_minus_one = sh.viscous_exponent - 1.0;
+  m.viscous_ref_m_s = sh.viscous_ref_m_s;
+  m.stiffness_n_m = sh.stiffness_n_m;
   const physics::BinghamParams& bp = spec.damper.bingham;
   m.fc_a_n = bp.fc_a_n;
   m.fc_b_n = bp.fc_b_n;
@@ -160,11 +175,12 @@ double dot_row12(const double* row, const double* q) {
 }
 
 /// The thesis's shape: 6 DOFs on linear isolation (no bearings, so no
-/// sub-steps), one damper on element 0, stepped in modal form. Its lanes
+/// sub-steps), one damper on element 0 with an unbent law, stepped in modal form. Its lanes
 /// keep the whole state in registers (lane_kernel.hpp).
 bool thesis_shape(const plant::PlantSpec& spec) {
   const structure::BuildingParams& b = spec.building;
-  if (spec.kind != plant::PlantKind::kThesis || b.dofs() != kBlockDofs || !b.isolators.empty() ||
+  if (spec.kind != plant::PlantKind::kThesis || spec.damper.shape.bends() || b.dofs() != kBlockDofs ||
+      !b.isolators.empty() ||
       b.dampers.size() != 1 || b.dampers[0].element != 0 || b.dampers[0].count != 1 ||
       b.base != structure::BaseKind::kIsolated) {
     return false;
@@ -588,7 +604,7 @@ std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& p
                                 " lane kernel does not run here (instruction set, or the C library's exp())");
   }
   if (plant.kind != plant::PlantKind::kThesis) throw std::invalid_argument("the batch runs the thesis plant only");
-  require_bingham_law(plant);
+  require_lane_law(plant);
   const LaneKernel kernel = kernel_of(isa);
   std::vector<plant::PlantSummary> out(runs.size());
   // Passive runs step many ticks per kernel call; semi-active ones tick by

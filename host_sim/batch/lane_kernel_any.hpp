@@ -82,6 +82,33 @@ inline vd rate_of(const AnyModel& m, const AnyBlock& b, int e) {
   return tf * (fc * sgn + c0 * v);
 }
 
+/// pow(x, y) per lane by glibc's pow(): the scalar damper's own call (std::pow).
+inline vd vpow(vd x, double y) {
+  vd r;
+  for (int l = 0; l < kW; ++l) r[l] = ::pow(x[l], y);
+  return r;
+}
+
+/// MrDamper::shaped_force_n of a Bingham law bent by a viscous exponent or a
+/// spring (no transition time, no lost motion): TF(v) · (f_c sgn v + c_eff v)
+/// + k x, with c_eff = c_0 (|v|/v_r)^(m−1) (0 at rest) and x the stroke.
+inline vd shaped_damper_force(const SharedModel& d, vd v, vd stroke, vd fc, vd c0) {
+  const vd zero = splat(0.0);
+  const vd av = vabs(v);
+  vd c_eff = c0;
+  if (d.has_viscous_exponent) {
+    vd ratio = zero;
+    for (int l = 0; l < kW; ++l) ratio[l] = av[l] > 0.0 ? ::pow(av[l] / d.viscous_ref_m_s, d.viscous_exponent_minus_one) : 0.0;
+    c_eff = av > zero ? c0 * ratio : zero;
+  }
+  const vd band = splat(d.v_tf_m_s);
+  const vd sgn = v > zero ? splat(1.0) : (v < zero ? splat(-1.0) : zero);
+  const vd tf = av < band ? av / band : splat(1.0);
+  const vd fb = tf * (fc * sgn + c_eff * v);
+  const vd elastic = splat(d.stiffness_n_m) * stroke;
+  return fb + elastic;
+}
+
 /// IsolatorBank::hysteretic_force_n at the isolation layer's rate `v`.
 inline vd hysteretic_force(const AnyModel& m, const AnyBlock& b, vd v) {
   vd f = splat(0.0);
@@ -189,9 +216,16 @@ void any_sense(const AnyModel& m, AnyBlock& b) {
   const vd x0 = disp_of(m, b, 0);
   const vd stroke = sensed == 0 ? x0 : disp_of(m, b, sensed) - disp_of(m, b, sensed - 1);
   for (int d = 0; d < m.dampers; ++d) {
-    const vd v = rate_of(m, b, m.damper_element[d]);
+    const int e = m.damper_element[d];
+    const vd v = rate_of(m, b, e);
     row_put(b.rate_m_s, d, v);
-    row_put(b.force_n, d, damper_force(m.damper, v, row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
+    if (m.damper.shaped) {
+      // DiscreteBuilding::element_deformation_m: the damper's stroke.
+      const vd x = d == 0 ? stroke : (e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1));
+      row_put(b.force_n, d, shaped_damper_force(m.damper, v, x, row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
+    } else {
+      row_put(b.force_n, d, damper_force(m.damper, v, row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
+    }
   }
   store(b.ground_accel_m_s2, ag);
   store(b.stroke_m, stroke);
@@ -225,8 +259,11 @@ void any_advance(const AnyModel& m, AnyBlock& b) {
   }
   const vd i_next = vabs(splat(s.weight_slow) * y_slow + splat(s.weight_fast) * y_fast);
   if (any((vi)(i_next != load(b.exp_current_a)))) {
-    store(b.exp_fc, vexp(splat(s.neg_fc_c_per_a) * i_next));
-    store(b.exp_c0, vexp(splat(s.neg_c0_c_per_a) * i_next));
+    // physics::current_law_decay: |I| raised only when its exponent is not 1.
+    const vd i_fc = s.yield_current_exponent == 1.0 ? i_next : vpow(i_next, s.yield_current_exponent);
+    const vd i_c0 = s.viscous_current_exponent == 1.0 ? i_next : vpow(i_next, s.viscous_current_exponent);
+    store(b.exp_fc, vexp(splat(s.neg_fc_c_per_a) * i_fc));
+    store(b.exp_c0, vexp(splat(s.neg_c0_c_per_a) * i_c0));
     store(b.exp_current_a, i_next);
   }
   const vd exp_fc = load(b.exp_fc), exp_c0 = load(b.exp_c0);

@@ -213,10 +213,20 @@ TEST_F(DamperFluidCli, ACalibratedShapeActsInTheClosedLoopAndFragilitySaysItStep
                              (out_.path() / "frag").string(),
                          scratch_.path());
   ASSERT_EQ(f.exit_code, 0) << f.err;
-  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take Eq. 4.4's bingham law only, not the "
-                       "damper's bingham law shaped by its calibration"),
+  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take Eq. 4.4's bingham law (with its "
+                       "current and viscous exponents and spring) only, not the damper's bingham law with a transition "
+                       "time or a lost motion"),
             std::string::npos)
       << f.out;
+  // The current exponent alone: the lanes step it.
+  std::string exponent_only = slurp(kThesisDamper);
+  exponent_only.replace(exponent_only.find(rate), rate.size(), rate + "current_exponent = 2.0\n");
+  const auto e = run_mrd("fragility --damper " + file("exponent.toml", exponent_only).string() + " --record " + rec +
+                             " --pga-g 0.2 --idle-years 0 --control semi-active --bootstrap 0 --threads 1 --out " +
+                             (out_.path() / "frag-exponent").string(),
+                         scratch_.path());
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_EQ(e.out.find("scalar loop"), std::string::npos) << e.out;
   const auto plain = run_mrd("fragility --record " + rec + " --pga-g 0.2 --idle-years 0 --control semi-active "
                              "--bootstrap 0 --threads 1 --out " + (out_.path() / "frag0").string(),
                              scratch_.path());

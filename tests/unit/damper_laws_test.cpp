@@ -621,14 +621,16 @@ TEST(DamperLaws, BatchRefusesOtherLawsAndUsesTheRating) {
       }
     }
   }
-  // A Bingham law bent by a calibration's shape is another closed loop too.
+  // A Bingham law bent by a transition time is another closed loop too (its
+  // exponents and spring the lanes step: plant_batch_test.cpp).
   plant::PlantSpec bent;
-  bent.damper.shape.yield_current_exponent = 1.5;
+  bent.damper.shape.transition_time_s = 0.002;
   try {
     (void)batch::run_closed_loop_batch(bent, std::span<const batch::BatchRun>(&plain, 1));
     ADD_FAILURE() << "no error for a bent law";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("bent by current or viscous exponents"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not one bent by a transition time or a lost motion"), std::string::npos)
+        << e.what();
   }
   bent.damper.shape = physics::LawShape{};
   bent.damper.shape.lost_motion_m_per_n = 1e-7;

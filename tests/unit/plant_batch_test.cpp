@@ -412,6 +412,64 @@ TEST(Batch, FixedAndDoubleBuildsEqualTheirScalarLoop) {
   }
 }
 
+// A calibration's bends of the Bingham law (physics::LawShape) in the lanes:
+// current exponents (f_c and c_0 through |I|^q), a viscous exponent and a
+// spring on the damper's stroke, alone and together, on the thesis building,
+// an isolated one and a fixed-base one whose second damper sits on the second
+// story (its own stroke). Each lane equals the scalar loop bit for bit, in
+// every mode and kernel, and the shape changes the run.
+TEST(Batch, ACalibrationsShapeStepsInTheLanesAsInTheScalarLoop) {
+  mrd::physics::LawShape exponents;
+  exponents.yield_current_exponent = 0.7;
+  exponents.viscous_current_exponent = 1.4;
+  mrd::physics::LawShape viscous;
+  viscous.viscous_exponent = 0.6;
+  viscous.viscous_ref_m_s = 0.05;
+  mrd::physics::LawShape spring;
+  spring.stiffness_n_m = 2.0e5;
+  mrd::physics::LawShape all = exponents;
+  all.viscous_exponent = 0.6;
+  all.viscous_ref_m_s = 0.05;
+  all.stiffness_n_m = 2.0e5;
+  const std::pair<const char*, mrd::physics::LawShape> shapes[] = {
+      {"current exponents", exponents}, {"viscous exponent", viscous}, {"spring", spring}, {"all", all}};
+  for (const char* file : {"", "lead-rubber-7dof.toml", "fixed-base-8dof.toml"}) {
+    SCOPED_TRACE(*file ? file : "thesis building");
+    for (const auto& [name, shape] : shapes) {
+      SCOPED_TRACE(name);
+      mrd::plant::PlantSpec plant = *file ? plant_on(file) : mrd::plant::PlantSpec{};
+      plant.damper.shape = shape;
+      ASSERT_TRUE(mrd::batch::lanes_step(plant.damper));
+      Case c;
+      const ControlMode modes[] = {ControlMode::kSemiActive, ControlMode::kPassiveOn, ControlMode::kPassiveOff};
+      for (std::size_t i = 0; i < 3; ++i)
+        add_run(c, synthetic(static_cast<unsigned>(31 + i), 6.0), 6000 - 1000 * i, 1.5, 0.5 * static_cast<double>(i), modes[i]);
+      expect_batch_equals_scalar(c, plant);
+      const auto bent = mrd::batch::run_closed_loop_batch(plant, c.runs);
+      const auto plain = mrd::batch::run_closed_loop_batch(*file ? plant_on(file) : mrd::plant::PlantSpec{}, c.runs);
+      EXPECT_NE(bent[0].peak_damper_force_n, plain[0].peak_damper_force_n);
+    }
+  }
+}
+
+// A transition time or a lost motion, and the other laws, stay in the scalar loop.
+TEST(Batch, RefusesTheShapesAndLawsItDoesNotStep) {
+  const std::vector<double> a(10, 0.1);
+  const BatchRun r{a};
+  mrd::plant::PlantSpec timed;
+  timed.damper.shape.transition_time_s = 0.002;
+  mrd::plant::PlantSpec lost;
+  lost.damper.shape.lost_motion_m_per_n = 1e-7;
+  lost.damper.shape.lost_motion_share = 0.5;
+  mrd::plant::PlantSpec tanh_law;
+  tanh_law.damper.law = mrd::physics::ForceLaw::kBinghamTanh;
+  for (const mrd::plant::PlantSpec* p : {&timed, &lost, &tanh_law}) {
+    EXPECT_FALSE(mrd::batch::lanes_step(p->damper));
+    EXPECT_THROW((void)mrd::batch::run_closed_loop_batch(*p, std::span<const BatchRun>(&r, 1)), std::invalid_argument);
+  }
+  EXPECT_TRUE(mrd::batch::lanes_step(mrd::physics::MrDamperParams{}));
+}
+
 TEST(Batch, RefusesTheHardwarePlant) {
   mrd::plant::PlantSpec plant;
   plant.kind = mrd::plant::PlantKind::kHardware;
