@@ -114,14 +114,14 @@ AnyLanes::AnyLanes(const plant::PlantSpec& spec, const LaneKernel& kernel) : spe
   // The lanes' rows.
   const int states = model_.states, dofs = model_.dofs, dampers = model_.dampers;
   const int counts[] = {states, states, model_.elements, model_.groups, dampers, dampers, dampers, dampers,
-                        dampers, dampers, dofs, dofs, dofs};
+                        dampers, dampers, dampers, dofs, dofs, dofs};
   std::size_t total = 0;
   for (int c : counts) total += static_cast<std::size_t>(c);
   rows_.assign(total, Row{});
   double* at = rows_.data()->v;
   double** targets[] = {&block_.q,       &block_.next,  &block_.held,     &block_.z,      &block_.displaced_m3,
                         &block_.pr,      &block_.fc_n,  &block_.c0_ns_m,  &block_.force_n, &block_.rate_m_s,
-                        &block_.accel,   &block_.disp,  &block_.drift_m};
+                        &block_.last_rate_m_s, &block_.accel, &block_.disp, &block_.drift_m};
   for (std::size_t k = 0; k < std::size(counts); ++k) {
     *targets[k] = at;
     at += static_cast<std::ptrdiff_t>(counts[k]) * kMaxLanes;

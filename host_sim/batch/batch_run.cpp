@@ -63,27 +63,28 @@ bool lane_isa_cpu_runs(LaneIsa isa) {
 
 namespace {
 
-/// The lanes step Eq. 4.4's Bingham law, bent or not by a calibration's
-/// current and viscous exponents and spring (lanes_step); another law, a
-/// transition time or a lost motion would be a different closed loop from
-/// plant::Plant's.
+/// The lanes step the Bingham laws (Eq. 4.4's transition or a tanh one),
+/// bent or not by a calibration's current and viscous exponents, spring and
+/// transition time (lanes_step); another law or a lost motion would be a
+/// different closed loop from plant::Plant's.
 void require_lane_law(const plant::PlantSpec& spec) {
-  if (spec.damper.law != physics::ForceLaw::kBingham) {
-    throw std::invalid_argument(std::string("the batch steps the damper's bingham law only, not ") +
-                                physics::force_law_name(spec.damper.law) + " (run each closed loop on the plant)");
+  const physics::ForceLaw law = spec.damper.law;
+  if (law != physics::ForceLaw::kBingham && law != physics::ForceLaw::kBinghamTanh) {
+    throw std::invalid_argument(std::string("the batch steps the damper's bingham and bingham_tanh laws only, not ") +
+                                physics::force_law_name(law) + " (run each closed loop on the plant)");
   }
   if (!lanes_step(spec.damper)) {
     throw std::invalid_argument(
-        "the batch steps Eq. 4.2-4.4's bingham law with its current and viscous exponents and spring only, not one "
-        "bent by a transition time or a lost motion (run each closed loop on the plant)");
+        "the batch steps the bingham laws with their current and viscous exponents, spring and transition time, "
+        "not one bent by a lost motion (run each closed loop on the plant)");
   }
 }
 
 }  // namespace
 
 bool lanes_step(const physics::MrDamperParams& d) noexcept {
-  const physics::LawShape& sh = d.shape;
-  return d.law == physics::ForceLaw::kBingham && sh.transition_time_s == 0.0 && !sh.has_lost_motion();
+  return (d.law == physics::ForceLaw::kBingham || d.law == physics::ForceLaw::kBinghamTanh) &&
+         !d.shape.has_lost_motion();
 }
 
 SharedModel damper_constants(const plant::PlantSpec& spec) {
@@ -93,8 +94,10 @@ SharedModel damper_constants(const plant::PlantSpec& spec) {
   const physics::LawShape& sh = spec.damper.shape;
   m.yield_current_exponent = sh.yield_current_exponent;
   m.viscous_current_exponent = sh.viscous_current_exponent;
+  m.tanh_law = spec.damper.law == physics::ForceLaw::kBinghamTanh;
   m.has_viscous_exponent = sh.has_viscous_exponent();
-  m.shaped = m.has_viscous_exponent || sh.stiffness_n_m != 0.0;
+  m.shaped = m.has_viscous_exponent || sh.stiffness_n_m != 0.0 || sh.transition_time_s != 0.0;
+  m.transition_time_s = sh.transition_time_s;
   m.viscous_exponent_minus_one = sh.viscous_exponent - 1.0;
   m.viscous_ref_m_s = sh.viscous_ref_m_s;
   m.stiffness_n_m = sh.stiffness_n_m;
@@ -179,7 +182,8 @@ double dot_row12(const double* row, const double* q) {
 /// keep the whole state in registers (lane_kernel.hpp).
 bool thesis_shape(const plant::PlantSpec& spec) {
   const structure::BuildingParams& b = spec.building;
-  if (spec.kind != plant::PlantKind::kThesis || spec.damper.shape.bends() || b.dofs() != kBlockDofs ||
+  if (spec.kind != plant::PlantKind::kThesis || spec.damper.law != physics::ForceLaw::kBingham ||
+      spec.damper.shape.bends() || b.dofs() != kBlockDofs ||
       !b.isolators.empty() ||
       b.dampers.size() != 1 || b.dampers[0].element != 0 || b.dampers[0].count != 1 ||
       b.base != structure::BaseKind::kIsolated) {

@@ -40,10 +40,13 @@ struct SharedModel {
   // Coil heating: ΔT ← a ΔT + ((1 − a) R_th) i² R.
   double thermal_a = 0.0, thermal_gain_k_w = 0.0, resistance_ohm = 0.0;
   double rated_current_a = 0.0;  ///< for the time above the rating
-  // A calibration's bends of the law (physics::LawShape) the lanes step: the
-  // current exponents of Eq. 4.2–4.3, the viscous exponent and the spring.
+  // The law's form and a calibration's bends of it (physics::LawShape) the
+  // lanes step: Eq. 4.4's transition or a tanh one, the current exponents of
+  // Eq. 4.2–4.3, the viscous exponent, the spring and the transition time.
+  bool tanh_law = false;  ///< physics::ForceLaw::kBinghamTanh: f_c tanh(v / v_TF) + c_0 v
   double yield_current_exponent = 1.0, viscous_current_exponent = 1.0;
-  bool shaped = false;            ///< the force bent by the viscous exponent or the spring (MrDamper's bent_)
+  bool shaped = false;  ///< the force bent by the viscous exponent, the spring or the transition time (MrDamper's bent_)
+  double transition_time_s = 0.0;  ///< τ: the band v_TF + τ |v − v[n−1]| / T
   bool has_viscous_exponent = false;
   double viscous_exponent_minus_one = 0.0, viscous_ref_m_s = 0.0;
   double stiffness_n_m = 0.0;  ///< N/m, on the damper's stroke

@@ -77,6 +77,7 @@ struct AnyBlock {
   double* c0_ns_m = nullptr;       ///< c_0 at t_n
   double* force_n = nullptr;       ///< one damper's force at t_n (sense)
   double* rate_m_s = nullptr;      ///< its element's deformation rate at t_n (sense)
+  double* last_rate_m_s = nullptr; ///< the rate its last step took (a transition time's |a|; 0 at rest)
   double* accel = nullptr;         ///< dofs rows: absolute accelerations at t_{n+1}⁻ (scratch)
   double* disp = nullptr;          ///< dofs rows: displacements at t_{n+1} (scratch)
   double* drift_m = nullptr;       ///< dofs rows: element deformations at t_{n+1} (stories from first_story)

@@ -89,22 +89,39 @@ inline vd vpow(vd x, double y) {
   return r;
 }
 
-/// MrDamper::shaped_force_n of a Bingham law bent by a viscous exponent or a
-/// spring (no transition time, no lost motion): TF(v) · (f_c sgn v + c_eff v)
-/// + k x, with c_eff = c_0 (|v|/v_r)^(m−1) (0 at rest) and x the stroke.
-inline vd shaped_damper_force(const SharedModel& d, vd v, vd stroke, vd fc, vd c0) {
+/// physics::bingham_tanh_force_n: f_c tanh(v / band) + c v, glibc's tanh() per lane.
+inline vd tanh_force(vd v, vd band, vd fc, vd c) {
+  const vd ratio = v / band;
+  vd t;
+  for (int l = 0; l < kW; ++l) t[l] = ::tanh(ratio[l]);
+  return fc * t + c * v;
+}
+
+/// MrDamper::shaped_force_n of a Bingham law bent by a viscous exponent, a
+/// spring or a transition time (no lost motion): TF(v) · (f_c sgn v + c_eff v)
+/// (or the tanh law's f_c tanh(v / band) + c_eff v) + k x, with c_eff = c_0
+/// (|v|/v_r)^(m−1) (0 at rest), the band v_TF + τ |v − v[n−1]| / T and x the
+/// stroke.
+inline vd shaped_damper_force(const SharedModel& d, vd v, vd v_last, vd stroke, vd fc, vd c0) {
   const vd zero = splat(0.0);
   const vd av = vabs(v);
+  const vd band = d.transition_time_s != 0.0
+                      ? splat(d.v_tf_m_s) + splat(d.transition_time_s) * (vabs(v - v_last) / splat(d.step_s))
+                      : splat(d.v_tf_m_s);
   vd c_eff = c0;
   if (d.has_viscous_exponent) {
     vd ratio = zero;
     for (int l = 0; l < kW; ++l) ratio[l] = av[l] > 0.0 ? ::pow(av[l] / d.viscous_ref_m_s, d.viscous_exponent_minus_one) : 0.0;
     c_eff = av > zero ? c0 * ratio : zero;
   }
-  const vd band = splat(d.v_tf_m_s);
-  const vd sgn = v > zero ? splat(1.0) : (v < zero ? splat(-1.0) : zero);
-  const vd tf = av < band ? av / band : splat(1.0);
-  const vd fb = tf * (fc * sgn + c_eff * v);
+  vd fb;
+  if (d.tanh_law) {
+    fb = tanh_force(v, band, fc, c_eff);
+  } else {
+    const vd sgn = v > zero ? splat(1.0) : (v < zero ? splat(-1.0) : zero);
+    const vd tf = av < band ? av / band : splat(1.0);
+    fb = tf * (fc * sgn + c_eff * v);
+  }
   const vd elastic = splat(d.stiffness_n_m) * stroke;
   return fb + elastic;
 }
@@ -222,7 +239,10 @@ void any_sense(const AnyModel& m, AnyBlock& b) {
     if (m.damper.shaped) {
       // DiscreteBuilding::element_deformation_m: the damper's stroke.
       const vd x = d == 0 ? stroke : (e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1));
-      row_put(b.force_n, d, shaped_damper_force(m.damper, v, x, row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
+      row_put(b.force_n, d, shaped_damper_force(m.damper, v, row_at(b.last_rate_m_s, d), x, row_at(b.fc_n, d),
+                                                row_at(b.c0_ns_m, d)));
+    } else if (m.damper.tanh_law) {
+      row_put(b.force_n, d, tanh_force(v, splat(m.damper.v_tf_m_s), row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
     } else {
       row_put(b.force_n, d, damper_force(m.damper, v, row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
     }
@@ -255,6 +275,7 @@ void any_advance(const AnyModel& m, AnyBlock& b) {
     const vd moved = before + vabs(v) * splat(s.flow_area_m2) * splat(s.step_s);
     const vd displaced = v != zero ? moved : before;
     row_put(b.displaced_m3, d, displaced);
+    row_put(b.last_rate_m_s, d, v);  // MrDamper::advance: v[n−1] of the next step's transition time
     row_put(b.pr, d, b_pr + (a_pr - b_pr) * vexp(neg_c_pr * (displaced / splat(s.volume_unit_m3))));
   }
   const vd i_next = vabs(splat(s.weight_slow) * y_slow + splat(s.weight_fast) * y_fast);

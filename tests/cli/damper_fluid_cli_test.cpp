@@ -213,9 +213,9 @@ TEST_F(DamperFluidCli, ACalibratedShapeActsInTheClosedLoopAndFragilitySaysItStep
                              (out_.path() / "frag").string(),
                          scratch_.path());
   ASSERT_EQ(f.exit_code, 0) << f.err;
-  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take Eq. 4.4's bingham law (with its "
-                       "current and viscous exponents and spring) only, not the damper's bingham law with a transition "
-                       "time or a lost motion"),
+  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take the bingham laws (with their current "
+                       "and viscous exponents, spring and transition time) only, not the damper's bingham law with a "
+                       "lost motion"),
             std::string::npos)
       << f.out;
   // The current exponent alone: the lanes step it.

@@ -412,9 +412,10 @@ TEST(Batch, FixedAndDoubleBuildsEqualTheirScalarLoop) {
   }
 }
 
-// A calibration's bends of the Bingham law (physics::LawShape) in the lanes:
-// current exponents (f_c and c_0 through |I|^q), a viscous exponent and a
-// spring on the damper's stroke, alone and together, on the thesis building,
+// A calibration's bends of the Bingham laws (physics::LawShape) in the lanes:
+// current exponents (f_c and c_0 through |I|^q), a viscous exponent, a
+// spring on the damper's stroke and a transition time, alone and together,
+// with Eq. 4.4's transition and with the tanh one, on the thesis building,
 // an isolated one and a fixed-base one whose second damper sits on the second
 // story (its own stroke). Each lane equals the scalar loop bit for bit, in
 // every mode and kernel, and the shape changes the run.
@@ -427,17 +428,31 @@ TEST(Batch, ACalibrationsShapeStepsInTheLanesAsInTheScalarLoop) {
   viscous.viscous_ref_m_s = 0.05;
   mrd::physics::LawShape spring;
   spring.stiffness_n_m = 2.0e5;
+  mrd::physics::LawShape timed;
+  timed.transition_time_s = 0.002;
   mrd::physics::LawShape all = exponents;
   all.viscous_exponent = 0.6;
   all.viscous_ref_m_s = 0.05;
   all.stiffness_n_m = 2.0e5;
-  const std::pair<const char*, mrd::physics::LawShape> shapes[] = {
-      {"current exponents", exponents}, {"viscous exponent", viscous}, {"spring", spring}, {"all", all}};
+  all.transition_time_s = 0.002;
+  using mrd::physics::ForceLaw;
+  const struct {
+    const char* name;
+    ForceLaw law;
+    mrd::physics::LawShape shape;
+  } shapes[] = {{"current exponents", ForceLaw::kBingham, exponents},
+                {"viscous exponent", ForceLaw::kBingham, viscous},
+                {"spring", ForceLaw::kBingham, spring},
+                {"transition time", ForceLaw::kBingham, timed},
+                {"all", ForceLaw::kBingham, all},
+                {"tanh", ForceLaw::kBinghamTanh, {}},
+                {"tanh, all", ForceLaw::kBinghamTanh, all}};
   for (const char* file : {"", "lead-rubber-7dof.toml", "fixed-base-8dof.toml"}) {
     SCOPED_TRACE(*file ? file : "thesis building");
-    for (const auto& [name, shape] : shapes) {
+    for (const auto& [name, law, shape] : shapes) {
       SCOPED_TRACE(name);
       mrd::plant::PlantSpec plant = *file ? plant_on(file) : mrd::plant::PlantSpec{};
+      plant.damper.law = law;
       plant.damper.shape = shape;
       ASSERT_TRUE(mrd::batch::lanes_step(plant.damper));
       Case c;
@@ -452,18 +467,19 @@ TEST(Batch, ACalibrationsShapeStepsInTheLanesAsInTheScalarLoop) {
   }
 }
 
-// A transition time or a lost motion, and the other laws, stay in the scalar loop.
+// A lost motion, and the other laws, stay in the scalar loop.
 TEST(Batch, RefusesTheShapesAndLawsItDoesNotStep) {
   const std::vector<double> a(10, 0.1);
   const BatchRun r{a};
-  mrd::plant::PlantSpec timed;
-  timed.damper.shape.transition_time_s = 0.002;
   mrd::plant::PlantSpec lost;
   lost.damper.shape.lost_motion_m_per_n = 1e-7;
   lost.damper.shape.lost_motion_share = 0.5;
-  mrd::plant::PlantSpec tanh_law;
-  tanh_law.damper.law = mrd::physics::ForceLaw::kBinghamTanh;
-  for (const mrd::plant::PlantSpec* p : {&timed, &lost, &tanh_law}) {
+  mrd::plant::PlantSpec bouc_wen;
+  bouc_wen.damper.law = mrd::physics::ForceLaw::kBoucWen;
+  bouc_wen.damper.bouc_wen.yield_disp_m = 1e-3;
+  mrd::plant::PlantSpec spencer;
+  spencer.damper.law = mrd::physics::ForceLaw::kSpencer;
+  for (const mrd::plant::PlantSpec* p : {&lost, &bouc_wen, &spencer}) {
     EXPECT_FALSE(mrd::batch::lanes_step(p->damper));
     EXPECT_THROW((void)mrd::batch::run_closed_loop_batch(*p, std::span<const BatchRun>(&r, 1)), std::invalid_argument);
   }
