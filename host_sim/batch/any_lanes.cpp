@@ -24,6 +24,15 @@ std::vector<double> row_major(const structure::Matrix& m) {
   return out;
 }
 
+// The lost motion's plays, called from the kernels (LostMotionCalls): compiled
+// here, for the baseline instruction set, as the scalar damper's are.
+double play_engaged_mean(const void* plays, int index, double stroke_m, double half_width_m) {
+  return static_cast<const physics::LostMotionPlay*>(plays)[index].engaged_mean(stroke_m, half_width_m);
+}
+void play_commit(void* plays, int index, double stroke_m, double half_width_m) {
+  static_cast<physics::LostMotionPlay*>(plays)[index].commit(stroke_m, half_width_m);
+}
+
 /// DiscreteBuilding's dot_halving over one lane's column of rows.
 double dot_halving(const double* c, const double* q, int n, int l) {
   if (n == 1) return c[0] * q[l];
@@ -110,18 +119,23 @@ AnyLanes::AnyLanes(const plant::PlantSpec& spec, const LaneKernel& kernel) : spe
   }
   model_.groups = static_cast<int>(groups_.size());
   model_.group = groups_.data();
+  if (model_.damper.lost_motion) {
+    plays_.assign(static_cast<std::size_t>(model_.dampers) * kMaxLanes, physics::LostMotionPlay{});
+    for (physics::LostMotionPlay& play : plays_) play.init(spec.step_s);
+    model_.lost_motion = LostMotionCalls{plays_.data(), &play_engaged_mean, &play_commit};
+  }
 
   // The lanes' rows.
   const int states = model_.states, dofs = model_.dofs, dampers = model_.dampers;
   const int counts[] = {states, states, model_.elements, model_.groups, dampers, dampers, dampers, dampers,
-                        dampers, dampers, dampers, dofs, dofs, dofs};
+                        dampers, dampers, dampers, dampers, dofs, dofs, dofs};
   std::size_t total = 0;
   for (int c : counts) total += static_cast<std::size_t>(c);
   rows_.assign(total, Row{});
   double* at = rows_.data()->v;
   double** targets[] = {&block_.q,       &block_.next,  &block_.held,     &block_.z,      &block_.displaced_m3,
                         &block_.pr,      &block_.fc_n,  &block_.c0_ns_m,  &block_.force_n, &block_.rate_m_s,
-                        &block_.last_rate_m_s, &block_.accel, &block_.disp, &block_.drift_m};
+                        &block_.last_rate_m_s, &block_.stroke_rows_m, &block_.accel, &block_.disp, &block_.drift_m};
   for (std::size_t k = 0; k < std::size(counts); ++k) {
     *targets[k] = at;
     at += static_cast<std::ptrdiff_t>(counts[k]) * kMaxLanes;
@@ -152,7 +166,11 @@ void AnyLanes::rest(int l, double sq) {
         physics::coulomb_force_n(spec_.damper.bingham, i0_a, pr, spec_.damper.shape.yield_current_exponent);
     b.c0_ns_m[d * kMaxLanes + l] =
         physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, pr, spec_.damper.shape.viscous_current_exponent);
+    if (!plays_.empty()) plays_[static_cast<std::size_t>(d * kMaxLanes + l)].reset();
   }
+  // MrDamper::update_coefficients: |f_c(|i|, PR = 1)|.
+  b.yield_pr1_n[l] =
+      std::fabs(physics::coulomb_force_n(spec_.damper.bingham, i0_a, 1.0, spec_.damper.shape.yield_current_exponent));
   b.exp_current_a[l] = std::numeric_limits<double>::quiet_NaN();
   b.ground[l] = &kNoGround;
   b.ground_scale[l] = 1.0;

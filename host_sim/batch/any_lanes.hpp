@@ -12,6 +12,7 @@
 #include "host_sim/batch/lane_stepper.hpp"
 #include "host_sim/plant/plant.hpp"
 #include "host_sim/run/closed_loop.hpp"
+#include "mrd/physics/lost_motion_play.hpp"
 
 namespace mrd::batch {
 
@@ -53,6 +54,7 @@ class AnyLanes {
   std::vector<unsigned> damper_count_;
   std::vector<std::uint8_t> first_on_slot_;
   std::vector<AnyIsolatorGroup> groups_;
+  std::vector<physics::LostMotionPlay> plays_;  ///< a lost motion's plays, [damper · kMaxLanes + lane]
   // What block_ points into (64-byte aligned rows of kMaxLanes doubles).
   struct alignas(64) Row {
     double v[kMaxLanes];

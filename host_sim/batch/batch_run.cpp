@@ -73,18 +73,12 @@ void require_lane_law(const plant::PlantSpec& spec) {
     throw std::invalid_argument(std::string("the batch steps the damper's bingham and bingham_tanh laws only, not ") +
                                 physics::force_law_name(law) + " (run each closed loop on the plant)");
   }
-  if (!lanes_step(spec.damper)) {
-    throw std::invalid_argument(
-        "the batch steps the bingham laws with their current and viscous exponents, spring and transition time, "
-        "not one bent by a lost motion (run each closed loop on the plant)");
-  }
 }
 
 }  // namespace
 
 bool lanes_step(const physics::MrDamperParams& d) noexcept {
-  return (d.law == physics::ForceLaw::kBingham || d.law == physics::ForceLaw::kBinghamTanh) &&
-         !d.shape.has_lost_motion();
+  return d.law == physics::ForceLaw::kBingham || d.law == physics::ForceLaw::kBinghamTanh;
 }
 
 SharedModel damper_constants(const plant::PlantSpec& spec) {
@@ -101,6 +95,11 @@ SharedModel damper_constants(const plant::PlantSpec& spec) {
   m.viscous_exponent_minus_one = sh.viscous_exponent - 1.0;
   m.viscous_ref_m_s = sh.viscous_ref_m_s;
   m.stiffness_n_m = sh.stiffness_n_m;
+  m.lost_motion = sh.has_lost_motion();
+  m.shaped = m.shaped || m.lost_motion;
+  m.lost_motion_m_per_n = sh.lost_motion_m_per_n;
+  m.lost_motion_share = std::clamp(sh.lost_motion_share, 0.0, 1.0);
+  m.lost_motion_band_m_s = sh.lost_motion_band_m_s;
   const physics::BinghamParams& bp = spec.damper.bingham;
   m.fc_a_n = bp.fc_a_n;
   m.fc_b_n = bp.fc_b_n;

@@ -50,6 +50,9 @@ struct SharedModel {
   bool has_viscous_exponent = false;
   double viscous_exponent_minus_one = 0.0, viscous_ref_m_s = 0.0;
   double stiffness_n_m = 0.0;  ///< N/m, on the damper's stroke
+  bool lost_motion = false;    ///< a lost motion at reversals (LawShape::has_lost_motion)
+  double lost_motion_m_per_n = 0.0, lost_motion_share = 0.0;  ///< λ; the share r clamped to [0, 1]
+  double lost_motion_band_m_s = 0.0;                         ///< v_p (0: none)
 };
 
 /// The state of kMaxLanes runs and what the last tick measured.

@@ -31,6 +31,17 @@ struct AnyIsolatorGroup {
   double exponent = 2.0;          ///< n
 };
 
+/// The lost motion's plays (physics::LostMotionPlay), one per damper and
+/// lane at [damper · kMaxLanes + lane], stepped through functions compiled
+/// for the baseline instruction set (any_lanes.cpp), not the kernel's.
+struct LostMotionCalls {
+  void* plays = nullptr;
+  /// e[n] of play `index` at `stroke_m` with the half width `half_width_m`.
+  double (*engaged_mean)(const void* plays, int index, double stroke_m, double half_width_m) = nullptr;
+  /// Commits play `index`'s step to `stroke_m`.
+  void (*commit)(void* plays, int index, double stroke_m, double half_width_m) = nullptr;
+};
+
 /// What every lane of a batch on one building shares. Matrices are row-major
 /// (row r of an R×C matrix at [r·C, r·C + C)).
 struct AnyModel {
@@ -58,6 +69,7 @@ struct AnyModel {
   int first_story = 1;                          ///< first superstructure DOF (0 for a fixed base)
   int groups = 0;
   const AnyIsolatorGroup* group = nullptr;
+  LostMotionCalls lost_motion{};  ///< damper.lost_motion: the plays
 };
 
 /// The state of kMaxLanes runs of one building, and what the last tick
@@ -78,6 +90,7 @@ struct AnyBlock {
   double* force_n = nullptr;       ///< one damper's force at t_n (sense)
   double* rate_m_s = nullptr;      ///< its element's deformation rate at t_n (sense)
   double* last_rate_m_s = nullptr; ///< the rate its last step took (a transition time's |a|; 0 at rest)
+  double* stroke_rows_m = nullptr; ///< its element's deformation at t_n (sense; with a spring or a lost motion)
   double* accel = nullptr;         ///< dofs rows: absolute accelerations at t_{n+1}⁻ (scratch)
   double* disp = nullptr;          ///< dofs rows: displacements at t_{n+1} (scratch)
   double* drift_m = nullptr;       ///< dofs rows: element deformations at t_{n+1} (stories from first_story)
@@ -86,6 +99,7 @@ struct AnyBlock {
   alignas(64) Lanes y_slow = {}, y_fast = {};
   Lanes a_pr = {}, b_pr = {}, neg_c_pr = {};
   Lanes exp_fc = {}, exp_c0 = {}, exp_current_a = {};
+  Lanes yield_pr1_n = {};  ///< |f_c(|i|, PR = 1)| at t_n: the lost motion's play is λ times it
   Lanes base_accel_m_s2 = {}, rise_k = {};
   Lanes peak_disp_m = {}, peak_force_n = {}, peak_vel_m_s = {}, peak_current_a = {};
   Lanes peak_floor_accel_m_s2 = {}, peak_base_accel_m_s2 = {};

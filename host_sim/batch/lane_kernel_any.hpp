@@ -89,20 +89,30 @@ inline vd vpow(vd x, double y) {
   return r;
 }
 
-/// physics::bingham_tanh_force_n: f_c tanh(v / band) + c v, glibc's tanh() per lane.
-inline vd tanh_force(vd v, vd band, vd fc, vd c) {
-  const vd ratio = v / band;
+/// tanh(x) per lane by glibc's tanh(): the scalar damper's own call (std::tanh).
+inline vd vtanh(vd x) {
   vd t;
-  for (int l = 0; l < kW; ++l) t[l] = ::tanh(ratio[l]);
-  return fc * t + c * v;
+  for (int l = 0; l < kW; ++l) t[l] = ::tanh(x[l]);
+  return t;
 }
 
-/// MrDamper::shaped_force_n of a Bingham law bent by a viscous exponent, a
-/// spring or a transition time (no lost motion): TF(v) · (f_c sgn v + c_eff v)
-/// (or the tanh law's f_c tanh(v / band) + c_eff v) + k x, with c_eff = c_0
-/// (|v|/v_r)^(m−1) (0 at rest), the band v_TF + τ |v − v[n−1]| / T and x the
-/// stroke.
-inline vd shaped_damper_force(const SharedModel& d, vd v, vd v_last, vd stroke, vd fc, vd c0) {
+/// physics::bingham_tanh_force_n: f_c tanh(v / band) + c v.
+inline vd tanh_force(vd v, vd band, vd fc, vd c) { return fc * vtanh(v / band) + c * v; }
+
+/// The lost motion's play half width λ |f_c(|i|, PR = 1)| / 2 (MrDamper::play_half_width_m).
+inline vd play_half_width(const SharedModel& d, const AnyBlock& b) {
+  return splat(0.5 * d.lost_motion_m_per_n) * load(b.yield_pr1_n);
+}
+
+/// MrDamper::shaped_force_n of damper `damper`'s Bingham law bent by a
+/// viscous exponent, a spring, a transition time or a lost motion: TF(v) ·
+/// (f_c sgn v + c_eff v) (or the tanh law's f_c tanh(v / band) + c_eff v),
+/// times (1 − r) + r e with the play's engagement e (plus (1 − e) f_c
+/// tanh(v / v_p)), + k x; c_eff = c_0 (|v|/v_r)^(m−1) (0 at rest), the band
+/// v_TF + τ |v − v[n−1]| / T, x the stroke.
+inline vd shaped_damper_force(const AnyModel& m, const AnyBlock& b, int damper, vd v, vd v_last, vd stroke, vd fc,
+                              vd c0) {
+  const SharedModel& d = m.damper;
   const vd zero = splat(0.0);
   const vd av = vabs(v);
   const vd band = d.transition_time_s != 0.0
@@ -121,6 +131,15 @@ inline vd shaped_damper_force(const SharedModel& d, vd v, vd v_last, vd stroke, 
     const vd sgn = v > zero ? splat(1.0) : (v < zero ? splat(-1.0) : zero);
     const vd tf = av < band ? av / band : splat(1.0);
     fb = tf * (fc * sgn + c_eff * v);
+  }
+  if (d.lost_motion) {
+    const vd h = play_half_width(d, b);
+    const LostMotionCalls& calls = m.lost_motion;
+    vd e = splat(0.0);
+    for (int l = 0; l < kW; ++l) e[l] = calls.engaged_mean(calls.plays, damper * kMaxLanes + l, stroke[l], h[l]);
+    const vd share = splat(d.lost_motion_share);
+    fb = fb * ((splat(1.0) - share) + share * e);
+    if (d.lost_motion_band_m_s > 0.0) fb = fb + (splat(1.0) - e) * fc * vtanh(v / splat(d.lost_motion_band_m_s));
   }
   const vd elastic = splat(d.stiffness_n_m) * stroke;
   return fb + elastic;
@@ -239,7 +258,8 @@ void any_sense(const AnyModel& m, AnyBlock& b) {
     if (m.damper.shaped) {
       // DiscreteBuilding::element_deformation_m: the damper's stroke.
       const vd x = d == 0 ? stroke : (e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1));
-      row_put(b.force_n, d, shaped_damper_force(m.damper, v, row_at(b.last_rate_m_s, d), x, row_at(b.fc_n, d),
+      row_put(b.stroke_rows_m, d, x);
+      row_put(b.force_n, d, shaped_damper_force(m, b, d, v, row_at(b.last_rate_m_s, d), x, row_at(b.fc_n, d),
                                                 row_at(b.c0_ns_m, d)));
     } else if (m.damper.tanh_law) {
       row_put(b.force_n, d, tanh_force(v, splat(m.damper.v_tf_m_s), row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
@@ -268,6 +288,15 @@ void any_advance(const AnyModel& m, AnyBlock& b) {
   const vd y_fast = splat(s.a_fast) * load(b.y_fast) + splat(s.one_minus_a_fast) * u;
   store(b.y_slow, y_slow);
   store(b.y_fast, y_fast);
+  if (s.lost_motion) {
+    // MrDamper::step: the play commits this step's stroke before the coil and f_c move on.
+    const vd h = play_half_width(s, b);
+    const LostMotionCalls& calls = m.lost_motion;
+    for (int d = 0; d < m.dampers; ++d) {
+      const vd x = row_at(b.stroke_rows_m, d);
+      for (int l = 0; l < kW; ++l) calls.commit(calls.plays, d * kMaxLanes + l, x[l], h[l]);
+    }
+  }
   const vd a_pr = load(b.a_pr), b_pr = load(b.b_pr), neg_c_pr = load(b.neg_c_pr);
   for (int d = 0; d < m.dampers; ++d) {
     const vd v = row_at(b.rate_m_s, d);
@@ -288,6 +317,8 @@ void any_advance(const AnyModel& m, AnyBlock& b) {
     store(b.exp_current_a, i_next);
   }
   const vd exp_fc = load(b.exp_fc), exp_c0 = load(b.exp_c0);
+  // MrDamper::update_coefficients: |f_c(|i|, PR = 1)| for the play.
+  if (s.lost_motion) store(b.yield_pr1_n, vabs(splat(s.fc_b_n) + (splat(s.fc_a_n) - splat(s.fc_b_n)) * exp_fc));
   for (int d = 0; d < m.dampers; ++d) {
     const vd pr = row_at(b.pr, d);
     const vd bf = pr * splat(s.fc_b_n);

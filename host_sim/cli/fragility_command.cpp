@@ -360,9 +360,8 @@ bool announce_cost(const FragilityOptions& o, const risk::FragilityPlan& plan, b
         risk::format_duration(wall_s).c_str());
     if (!risk::lanes_take(plan))
       std::printf("fragility: the runs step one by one in the scalar loop: the SIMD lanes take the bingham laws (with "
-                  "their current and viscous exponents, spring and transition time) only, not the damper's %s law%s\n",
-                  physics::force_law_name(plan.base.damper.law),
-                  plan.base.damper.shape.has_lost_motion() ? " with a lost motion" : "");
+                  "a calibration's shape) only, not the damper's %s law\n",
+                  physics::force_law_name(plan.base.damper.law));
     const risk::DiskEstimate disk = risk::estimate_disk(shape);
     const auto out_fs = risk::file_system_space(o.out_dir);
     const std::uintmax_t memory = risk::estimate_memory(shape);

@@ -270,8 +270,8 @@ TEST_F(SpencerDamperCli, FragilityAndRthsRunItInTheScalarLoop) {
   const auto f = run_mrd("fragility" + common + " --idle-years 0 --bootstrap 0 --threads 1 --out " + frag.string(),
                          scratch_.path());
   ASSERT_EQ(f.exit_code, 0) << f.err;
-  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take the bingham laws (with their current "
-                       "and viscous exponents, spring and transition time) only, not the damper's spencer law\n"),
+  EXPECT_NE(f.out.find("step one by one in the scalar loop: the SIMD lanes take the bingham laws (with a "
+                       "calibration's shape) only, not the damper's spencer law\n"),
             std::string::npos)
       << f.out;
   const std::vector<double> force_kn = column(slurp(frag / "runs.csv"), "peak_damper_force_kn");

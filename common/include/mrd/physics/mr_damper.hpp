@@ -67,18 +67,11 @@
 #include "mrd/physics/coil_heat.hpp"
 #include "mrd/physics/current_dynamics.hpp"
 #include "mrd/physics/damper_laws.hpp"
+#include "mrd/physics/lost_motion_play.hpp"
 #include "mrd/physics/participant_ratio.hpp"
 #include "mrd/physics/spencer_law.hpp"
 
 namespace mrd::physics {
-
-/// Half the window the lost motion's engagement is averaged over
-/// (LawShape), s: discrepancy::kContactHalfWindow_s, which the calibration
-/// uses (damper_file.cpp holds the two equal).
-inline constexpr double kLostMotionHalfWindow_s = 0.003;
-/// The most steps either side of that window: 3 ms at 47.6 µs a step and
-/// longer; at a shorter step the window is this many steps.
-inline constexpr int kLostMotionMaxHalfSteps = 63;
 
 /// The force law of a damper file's [model] law (host_sim/damper): the
 /// thesis's Bingham law, or one `mrd calibrate` fitted.
@@ -153,10 +146,7 @@ class MrDamper {
     lost_ = p.law != ForceLaw::kSpencer && p.shape.has_lost_motion();
     bent_ = lost_ || (bingham && (p.shape.has_viscous_exponent() || p.shape.stiffness_n_m != 0.0 ||
                                   p.shape.transition_time_s != 0.0));
-    // discrepancy's windowed_mean: the samples within the half window (and a nanosecond), at least one.
-    const double half_steps = period_s > 0.0 ? (kLostMotionHalfWindow_s + 1e-9) / period_s : 1.0;
-    lm_half_ = static_cast<int>(std::clamp(half_steps, 1.0, static_cast<double>(kLostMotionMaxHalfSteps)));
-    reset_lost_motion();
+    play_.init(period_s);
     update_coefficients();
   }
 
@@ -170,7 +160,7 @@ class MrDamper {
     stroke_m_ = 0.0;
     last_velocity_m_s_ = 0.0;
     spencer_state_ = SpencerState{};
-    reset_lost_motion();
+    play_.reset();
     update_coefficients();
   }
 
@@ -272,88 +262,17 @@ class MrDamper {
   bool bent_ = false;  ///< a law shaped by m, k, τ or the lost motion (the current exponents act in f_c, c_0)
   bool lost_ = false;  ///< shape's lost motion acts
   double yield_pr1_n_ = 0.0;  ///< |f_c(|i|, PR = 1)|: the lost motion's play is λ times it
-  /// The play's committed steps, a ring of the last kLostMotionRing: strokes and driven sides, m.
-  static constexpr int kLostMotionRing = kLostMotionMaxHalfSteps + 1;
-  std::array<double, kLostMotionRing> lm_x_m_{};
-  std::array<double, kLostMotionRing> lm_rod_m_{};
-  int lm_head_ = 0;            ///< where the next committed step goes
-  long long lm_count_ = 0;     ///< steps committed since reset (capped at kLostMotionRing)
-  int lm_half_ = 3;            ///< H: steps either side averaged
-
-  /// The lost motion's play as at reset: no step yet.
-  void reset_lost_motion() noexcept {
-    lm_x_m_.fill(0.0);
-    lm_rod_m_.fill(0.0);
-    lm_head_ = 0;
-    lm_count_ = 0;
-  }
+  /// The lost motion's play (its committed strokes and driven sides).
+  LostMotionPlay play_{};
 
   /// The play's half width at the present current: λ |f_c(|i|, PR = 1)| / 2, m.
   double play_half_width_m() const noexcept { return 0.5 * p_.shape.lost_motion_m_per_n * yield_pr1_n_; }
 
-  /// discrepancy::DamperModel's hard play of half width h: the driven side after the stroke reaches x.
-  static double play_rod_m(double rod_m, double stroke_m, double h_m) noexcept {
-    if (stroke_m - rod_m > h_m) return stroke_m - h_m;
-    if (rod_m - stroke_m > h_m) return stroke_m + h_m;
-    return rod_m;
-  }
-
-  /// The committed step `back` steps before this one (1: the last), stroke and driven side.
-  std::size_t ring_at(int back) const noexcept {
-    return static_cast<std::size_t>((lm_head_ - back + 2 * kLostMotionRing) % kLostMotionRing);
-  }
-
-  /// The driven side at this step's stroke (centred on it at the first step).
-  double play_rod_now_m(double stroke_m) const noexcept {
-    return lm_count_ == 0 ? stroke_m : play_rod_m(lm_rod_m_[ring_at(1)], stroke_m, play_half_width_m());
-  }
-
-  /// e[n]: the engaged shares of the steps within ±H of this one (the
-  /// record's start cuts the window, as the calibration's), the steps after
-  /// this one extrapolated at the last increment.
-  double engaged_mean(double stroke_m) const noexcept {
-    const int H = lm_half_;
-    const double h = play_half_width_m();
-    // Steps n − H − 1 … n + H + 1 at indices 0 … 2H + 2; index H + 1 is this step.
-    std::array<double, 2 * kLostMotionMaxHalfSteps + 3> x{}, r{};
-    const int now = H + 1;
-    const int known = static_cast<int>(std::min<long long>(lm_count_, H + 1));  // committed steps in the window
-    for (int back = 1; back <= known; ++back) {
-      x[static_cast<std::size_t>(now - back)] = lm_x_m_[ring_at(back)];
-      r[static_cast<std::size_t>(now - back)] = lm_rod_m_[ring_at(back)];
-    }
-    x[static_cast<std::size_t>(now)] = stroke_m;
-    r[static_cast<std::size_t>(now)] = play_rod_now_m(stroke_m);
-    const double dx_step = lm_count_ > 0 ? stroke_m - lm_x_m_[ring_at(1)] : 0.0;
-    for (int j = 1; j <= H + 1; ++j) {
-      const auto k = static_cast<std::size_t>(now + j);
-      x[k] = stroke_m + j * dx_step;
-      r[k] = play_rod_m(r[k - 1], x[k], h);
-    }
-    // The first step there is (the record's start, or H back).
-    const int first = now - static_cast<int>(std::min<long long>(lm_count_, H));
-    double sum = 0.0;
-    for (int k = first; k <= now + H; ++k) {
-      const int a = k > now - known ? k - 1 : k;  // the record's first step has no step before it
-      const int b = k + 1;
-      const double dx = x[static_cast<std::size_t>(b)] - x[static_cast<std::size_t>(a)];
-      const double dr = r[static_cast<std::size_t>(b)] - r[static_cast<std::size_t>(a)];
-      double e = 1.0;
-      if (std::fabs(dx) > 1e-15) e = std::clamp(dr / dx, 0.0, 1.0);
-      else if (dr == 0.0 && h > 0.0) e = 0.0;
-      sum += e;
-    }
-    return sum / static_cast<double>(now + H - first + 1);
-  }
+  /// e[n] at this step's stroke (LostMotionPlay::engaged_mean).
+  double engaged_mean(double stroke_m) const noexcept { return play_.engaged_mean(stroke_m, play_half_width_m()); }
 
   /// Commits this step's stroke and driven side (after the force used them).
-  void commit_play(double stroke_m) noexcept {
-    const double rod = play_rod_now_m(stroke_m);
-    lm_x_m_[static_cast<std::size_t>(lm_head_)] = stroke_m;
-    lm_rod_m_[static_cast<std::size_t>(lm_head_)] = rod;
-    lm_head_ = (lm_head_ + 1) % kLostMotionRing;
-    if (lm_count_ < kLostMotionRing) ++lm_count_;
-  }
+  void commit_play(double stroke_m) noexcept { play_.commit(stroke_m, play_half_width_m()); }
 
   /// The law shaped by p_.shape (LawShape), in discrepancy::DamperModel's
   /// order: the law's part (Bouc–Wen's f_c z + c_0 v; a Bingham law's with
