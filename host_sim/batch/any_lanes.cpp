@@ -33,6 +33,14 @@ void play_commit(void* plays, int index, double stroke_m, double half_width_m) {
   static_cast<physics::LostMotionPlay*>(plays)[index].commit(stroke_m, half_width_m);
 }
 
+// The scalar dampers of a law the lanes do not vectorize (ScalarDamperCalls).
+double damper_force_n(const void* dampers, int index, double velocity_m_s, double stroke_m) {
+  return static_cast<const physics::MrDamper*>(dampers)[index].force_n(velocity_m_s, stroke_m);
+}
+void damper_step(void* dampers, int index, double command_a, double velocity_m_s, double stroke_m) {
+  (void)static_cast<physics::MrDamper*>(dampers)[index].step(command_a, velocity_m_s, stroke_m);
+}
+
 /// DiscreteBuilding's dot_halving over one lane's column of rows.
 double dot_halving(const double* c, const double* q, int n, int l) {
   if (n == 1) return c[0] * q[l];
@@ -124,6 +132,10 @@ AnyLanes::AnyLanes(const plant::PlantSpec& spec, const LaneKernel& kernel) : spe
     for (physics::LostMotionPlay& play : plays_) play.init(spec.step_s);
     model_.lost_motion = LostMotionCalls{plays_.data(), &play_engaged_mean, &play_commit};
   }
+  if (model_.damper.scalar_law) {
+    dampers_.assign(static_cast<std::size_t>(model_.dampers) * kMaxLanes, physics::MrDamper{});
+    model_.scalar_damper = ScalarDamperCalls{dampers_.data(), &damper_force_n, &damper_step};
+  }
 
   // The lanes' rows.
   const int states = model_.states, dofs = model_.dofs, dampers = model_.dampers;
@@ -167,6 +179,8 @@ void AnyLanes::rest(int l, double sq) {
     b.c0_ns_m[d * kMaxLanes + l] =
         physics::viscous_coeff_ns_m(spec_.damper.bingham, i0_a, pr, spec_.damper.shape.viscous_current_exponent);
     if (!plays_.empty()) plays_[static_cast<std::size_t>(d * kMaxLanes + l)].reset();
+    // Plant::init: each damper at rest with the run's SQ.
+    if (!dampers_.empty()) dampers_[static_cast<std::size_t>(d * kMaxLanes + l)].init(spec_.damper, spec_.step_s, sq);
   }
   // MrDamper::update_coefficients: |f_c(|i|, PR = 1)|.
   b.yield_pr1_n[l] =

@@ -13,6 +13,7 @@
 #include "host_sim/plant/plant.hpp"
 #include "host_sim/run/closed_loop.hpp"
 #include "mrd/physics/lost_motion_play.hpp"
+#include "mrd/physics/mr_damper.hpp"
 
 namespace mrd::batch {
 
@@ -55,6 +56,7 @@ class AnyLanes {
   std::vector<std::uint8_t> first_on_slot_;
   std::vector<AnyIsolatorGroup> groups_;
   std::vector<physics::LostMotionPlay> plays_;  ///< a lost motion's plays, [damper · kMaxLanes + lane]
+  std::vector<physics::MrDamper> dampers_;      ///< a law the lanes do not vectorize, [damper · kMaxLanes + lane]
   // What block_ points into (64-byte aligned rows of kMaxLanes doubles).
   struct alignas(64) Row {
     double v[kMaxLanes];

@@ -61,31 +61,16 @@ bool lane_isa_cpu_runs(LaneIsa isa) {
 #endif
 }
 
-namespace {
-
-/// The lanes step the Bingham laws (Eq. 4.4's transition or a tanh one),
-/// bent or not by a calibration's current and viscous exponents, spring and
-/// transition time (lanes_step); another law or a lost motion would be a
-/// different closed loop from plant::Plant's.
-void require_lane_law(const plant::PlantSpec& spec) {
-  const physics::ForceLaw law = spec.damper.law;
-  if (law != physics::ForceLaw::kBingham && law != physics::ForceLaw::kBinghamTanh) {
-    throw std::invalid_argument(std::string("the batch steps the damper's bingham and bingham_tanh laws only, not ") +
-                                physics::force_law_name(law) + " (run each closed loop on the plant)");
-  }
-}
-
-}  // namespace
-
-bool lanes_step(const physics::MrDamperParams& d) noexcept {
+bool lanes_vectorize(const physics::MrDamperParams& d) noexcept {
   return d.law == physics::ForceLaw::kBingham || d.law == physics::ForceLaw::kBinghamTanh;
 }
 
 SharedModel damper_constants(const plant::PlantSpec& spec) {
-  require_lane_law(spec);
   SharedModel m;
-  // As physics::MrDamper::init reads the shape: bent by m or k (the current exponents act in f_c, c_0).
-  const physics::LawShape& sh = spec.damper.shape;
+  m.scalar_law = !lanes_vectorize(spec.damper);
+  // As physics::MrDamper::init reads the shape: bent by m, k, τ or the lost motion (the current exponents act in
+  // f_c, c_0); a law the lanes do not vectorize is stepped whole by the scalar damper, its shape with it.
+  const physics::LawShape& sh = m.scalar_law ? physics::LawShape{} : spec.damper.shape;
   m.yield_current_exponent = sh.yield_current_exponent;
   m.viscous_current_exponent = sh.viscous_current_exponent;
   m.tanh_law = spec.damper.law == physics::ForceLaw::kBinghamTanh;
@@ -607,7 +592,7 @@ std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& p
                                 " lane kernel does not run here (instruction set, or the C library's exp())");
   }
   if (plant.kind != plant::PlantKind::kThesis) throw std::invalid_argument("the batch runs the thesis plant only");
-  require_lane_law(plant);
+
   const LaneKernel kernel = kernel_of(isa);
   std::vector<plant::PlantSummary> out(runs.size());
   // Passive runs step many ticks per kernel call; semi-active ones tick by

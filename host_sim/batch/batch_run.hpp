@@ -62,19 +62,19 @@ struct BatchOptions {
 /// </pre>
 /// (peak_story_drift_m aside when options.story_drift is false).
 /// One thread; independent calls may run on separate threads. Throws
-/// std::invalid_argument for a damper the lanes do not step (lanes_step),
-/// a hardware plant, a bad step, an invalid
+/// std::invalid_argument for a hardware plant, a bad step, an invalid
 /// building, or an ISA that is not available
 /// (lane_isa_available()); io::UsageError when the control core rejects
 /// the step.
 std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& plant, std::span<const BatchRun> runs,
                                                        const BatchOptions& options = {});
 
-/// True when the lanes step `damper`: Eq. 4.4's bingham law, bent or not by a
-/// calibration's current exponents, viscous exponent and spring
-/// (physics::LawShape); not the other laws, a transition time or a lost
-/// motion (run_closed_loop_batch refuses those).
-bool lanes_step(const physics::MrDamperParams& damper) noexcept;
+/// True when the lanes step `damper`'s force in their registers: the bingham
+/// laws (Eq. 4.4's transition and the tanh one) with any shape a calibration
+/// gives them (physics::LawShape). The other laws (Bouc–Wen, Spencer) are
+/// stepped in the lanes by the scalar damper itself (physics::MrDamper), one
+/// per damper and lane, the building still in the lanes.
+bool lanes_vectorize(const physics::MrDamperParams& damper) noexcept;
 
 /// "auto" | "generic" | "x86-64-v3" | "x86-64-v4".
 const char* lane_isa_name(LaneIsa isa) noexcept;

@@ -43,6 +43,7 @@ struct SharedModel {
   // The law's form and a calibration's bends of it (physics::LawShape) the
   // lanes step: Eq. 4.4's transition or a tanh one, the current exponents of
   // Eq. 4.2–4.3, the viscous exponent, the spring and the transition time.
+  bool scalar_law = false;  ///< a law the lanes do not vectorize: the scalar damper steps it (AnyModel::scalar_damper)
   bool tanh_law = false;  ///< physics::ForceLaw::kBinghamTanh: f_c tanh(v / v_TF) + c_0 v
   double yield_current_exponent = 1.0, viscous_current_exponent = 1.0;
   bool shaped = false;  ///< the force bent by the viscous exponent, the spring or the transition time (MrDamper's bent_)

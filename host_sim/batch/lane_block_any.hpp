@@ -42,6 +42,18 @@ struct LostMotionCalls {
   void (*commit)(void* plays, int index, double stroke_m, double half_width_m) = nullptr;
 };
 
+/// A damper law the lanes do not vectorize (batch::lanes_vectorize), stepped
+/// whole by the scalar damper (physics::MrDamper), one per damper and lane at
+/// [damper · kMaxLanes + lane], through functions compiled for the baseline
+/// instruction set (any_lanes.cpp).
+struct ScalarDamperCalls {
+  void* dampers = nullptr;
+  /// MrDamper::force_n of damper `index` at the element's rate and deformation.
+  double (*force_n)(const void* dampers, int index, double velocity_m_s, double stroke_m) = nullptr;
+  /// MrDamper::step of damper `index` with the command stage's current.
+  void (*step)(void* dampers, int index, double command_a, double velocity_m_s, double stroke_m) = nullptr;
+};
+
 /// What every lane of a batch on one building shares. Matrices are row-major
 /// (row r of an R×C matrix at [r·C, r·C + C)).
 struct AnyModel {
@@ -69,7 +81,8 @@ struct AnyModel {
   int first_story = 1;                          ///< first superstructure DOF (0 for a fixed base)
   int groups = 0;
   const AnyIsolatorGroup* group = nullptr;
-  LostMotionCalls lost_motion{};  ///< damper.lost_motion: the plays
+  LostMotionCalls lost_motion{};      ///< damper.lost_motion: the plays
+  ScalarDamperCalls scalar_damper{};  ///< damper.scalar_law: the dampers
 };
 
 /// The state of kMaxLanes runs of one building, and what the last tick

@@ -255,7 +255,14 @@ void any_sense(const AnyModel& m, AnyBlock& b) {
     const int e = m.damper_element[d];
     const vd v = rate_of(m, b, e);
     row_put(b.rate_m_s, d, v);
-    if (m.damper.shaped) {
+    if (m.damper.scalar_law) {
+      const vd x = d == 0 ? stroke : (e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1));
+      row_put(b.stroke_rows_m, d, x);
+      const ScalarDamperCalls& calls = m.scalar_damper;
+      vd f = splat(0.0);
+      for (int l = 0; l < kW; ++l) f[l] = calls.force_n(calls.dampers, d * kMaxLanes + l, v[l], x[l]);
+      row_put(b.force_n, d, f);
+    } else if (m.damper.shaped) {
       // DiscreteBuilding::element_deformation_m: the damper's stroke.
       const vd x = d == 0 ? stroke : (e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1));
       row_put(b.stroke_rows_m, d, x);
@@ -288,6 +295,14 @@ void any_advance(const AnyModel& m, AnyBlock& b) {
   const vd y_fast = splat(s.a_fast) * load(b.y_fast) + splat(s.one_minus_a_fast) * u;
   store(b.y_slow, y_slow);
   store(b.y_fast, y_fast);
+  if (s.scalar_law) {
+    // Plant::advance: MrDamper::step of each damper at the rate and stroke sense() used.
+    const ScalarDamperCalls& calls = m.scalar_damper;
+    for (int d = 0; d < m.dampers; ++d) {
+      const vd v = row_at(b.rate_m_s, d), x = row_at(b.stroke_rows_m, d);
+      for (int l = 0; l < kW; ++l) calls.step(calls.dampers, d * kMaxLanes + l, u[l], v[l], x[l]);
+    }
+  }
   if (s.lost_motion) {
     // MrDamper::step: the play commits this step's stroke before the coil and f_c move on.
     const vd h = play_half_width(s, b);

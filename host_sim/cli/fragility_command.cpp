@@ -358,10 +358,7 @@ bool announce_cost(const FragilityOptions& o, const risk::FragilityPlan& plan, b
         shape.steps(), plan.base.step_s, slowest, workers,
         synthetic ? (", after making the records in about " + risk::format_duration(generation_s)).c_str() : "",
         risk::format_duration(wall_s).c_str());
-    if (!risk::lanes_take(plan))
-      std::printf("fragility: the runs step one by one in the scalar loop: the SIMD lanes take the bingham laws (with "
-                  "a calibration's shape) only, not the damper's %s law\n",
-                  physics::force_law_name(plan.base.damper.law));
+    if (!risk::lanes_take(plan)) std::printf("fragility: the runs step one by one in the scalar loop\n");
     const risk::DiskEstimate disk = risk::estimate_disk(shape);
     const auto out_fs = risk::file_system_space(o.out_dir);
     const std::uintmax_t memory = risk::estimate_memory(shape);

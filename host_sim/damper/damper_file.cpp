@@ -202,7 +202,7 @@ void require_law_for(const DamperFile& d, const std::string& command) {
   for (const char* ok : {"sim", "sine", "sweep", "study", "settle", "fragility", "rths"})
     if (command == ok) return;
   throw io::UsageError(d.origin + ":" + std::to_string(std::max(d.law_line, 1)) + ": model.law: " +
-                       "\"spencer\" runs in the scalar closed loop (mrd sim, sine, sweep, study, settle, fragility, "
+                       "\"spencer\" is simulated in the closed loop (mrd sim, sine, sweep, study, settle, fragility, "
                        "rths); mrd " + command + " models the damper by its Bingham laws (its estimator or board)");
 }
 

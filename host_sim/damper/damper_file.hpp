@@ -83,8 +83,8 @@ struct DamperFile {
 [[nodiscard]] DamperFile read_damper_file(const std::filesystem::path& path);
 
 /// Refuses a damper whose law `command` cannot simulate: the spencer law
-/// runs in the scalar closed loop (sim, sine, sweep, study, fragility, whose
-/// SIMD lanes then step nothing, and rths) and settle uses only the
+/// is simulated in the closed loop (sim, sine, sweep, study, fragility, whose
+/// SIMD lanes step it by the scalar damper, and rths) and settle uses only the
 /// cylinder; configure and schedule model the damper by its Bingham laws
 /// (the control core's estimator, the board file). io::UsageError
 /// "origin:LINE: model.law: ...".

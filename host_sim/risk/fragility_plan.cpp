@@ -186,7 +186,7 @@ void simulate_runs_one_by_one(const FragilityPlan& plan, std::span<const std::si
 }
 
 bool lanes_take(const FragilityPlan& plan) noexcept {
-  return plan.base.kind == plant::PlantKind::kThesis && batch::lanes_step(plan.base.damper);
+  return plan.base.kind == plant::PlantKind::kThesis;
 }
 
 void simulate_runs(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out) {

@@ -72,7 +72,8 @@ void simulate_runs(const FragilityPlan& plan, std::span<const std::size_t> runs,
 void simulate_runs_one_by_one(const FragilityPlan& plan, std::span<const std::size_t> runs, std::span<RunMetrics> out);
 
 /// True when the SIMD lanes step the plan's plant: the thesis (ideal) plant
-/// kind with Eq. 4.4's damper law, on any building.
+/// kind, on any building, with any damper law (batch::lanes_vectorize says
+/// which laws the lanes vectorize; the scalar damper steps the others in them).
 bool lanes_take(const FragilityPlan& plan) noexcept;
 
 }  // namespace mrd::risk

@@ -300,7 +300,7 @@ TEST(DamperFile, SpencerMapsItsModelAndIsRefusedWhereBinghamLawsModelIt) {
       ADD_FAILURE() << refused << " took the spencer law";
     } catch (const io::UsageError& e) {
       const std::string m = e.what();
-      EXPECT_EQ(m.rfind("sp.toml:" + std::to_string(law_line) + ": model.law: \"spencer\" runs in the scalar", 0), 0u)
+      EXPECT_EQ(m.rfind("sp.toml:" + std::to_string(law_line) + ": model.law: \"spencer\" is simulated in the closed loop", 0), 0u)
           << m;
       EXPECT_NE(m.find(refused), std::string::npos) << m;
     }
