@@ -579,6 +579,56 @@ void check_toml_input(const std::string& text, const std::string& origin) {
   }
 }
 
+/// [drive]: the current drive, every key given; the controller's command
+/// range, continuous and peak currents within the drive's.
+void read_drive(const toml::table& root, const std::string& origin, BoardConfig& c,
+                const std::map<std::string, int>& controller_lines) {
+  Table t(root, "drive", origin, false);
+  if (!t.present()) return;
+  BoardDrive d;
+  if (!t.string("name", d.name) || d.name.empty()) fail(origin, t.where("name"), "drive.name", "expected a name");
+  const NumberKey numbers[] = {
+      {"bus_v", &d.bus_v, 1.0, 1000.0, "V"},
+      {"command_range_v", &d.command_range_v, 0.1, 100.0, "V"},
+      {"volts_per_amp", &d.volts_per_amp, 1e-3, 1e3, "V/A"},
+      {"continuous_current_a", &d.continuous_current_a, 1e-3, 1e3, "A"},
+      {"peak_current_a", &d.peak_current_a, 1e-3, 1e3, "A"},
+      {"peak_time_s", &d.peak_time_s, 0.0, 3600.0, "s"},
+      {"loop_bandwidth_rad_s", &d.loop_bandwidth_rad_s, 1.0, 1e6, "rad/s"},
+      {"loop_period_s", &d.loop_period_s, 1e-7, 1e-2, "s"},
+  };
+  for (const NumberKey& n : numbers)
+    if (!t.number(n.key, *n.out, n.lo, n.hi, n.unit))
+      fail(origin, t.where(n.key), std::string("drive.") + n.key, "missing key");
+  t.no_unknown_keys();
+  if (d.peak_current_a < d.continuous_current_a)
+    fail(origin, t.where("peak_current_a"), "drive.peak_current_a",
+         "expected at least continuous_current_a: a drive's peak is what it gives above its continuous rating");
+  // The controller commands within the drive it drives.
+  const fw::ControllerConfig& k = c.controller;
+  const struct {
+    const char* key;
+    double controller, drive;
+    const char* drive_key;
+    const char* what;
+  } limits[] = {{"command_limit_a", k.command_limit_a, d.command_limit_a(), "command_range_v",
+                 "command range (command_range_v / volts_per_amp)"},
+                {"drive_continuous_limit_a", k.drive_continuous_limit_a, d.continuous_current_a, "continuous_current_a",
+                 "continuous current"},
+                {"drive_peak_limit_a", k.drive_peak_limit_a, d.peak_current_a, "peak_current_a", "peak current"}};
+  for (const auto& l : limits) {
+    if (l.controller <= l.drive) continue;
+    // The controller's key where the file gives it, else the drive's (the controller's default is exceeded).
+    const auto at = controller_lines.find(l.key);
+    const int line = at != controller_lines.end() ? at->second : static_cast<int>(t.where(l.drive_key).begin.line);
+    std::ostringstream msg;
+    msg << origin << ":" << line << ": controller." << l.key << ": " << l.controller << " A exceeds the [drive]'s "
+        << l.what << " of " << l.drive << " A";
+    throw BoardConfigError(msg.str());
+  }
+  c.drive = d;
+}
+
 }  // namespace
 
 BoardConfig parse_board_config(const std::string& text, const std::string& origin, StatePathCheck check_state_path) {
@@ -592,9 +642,10 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
   for (const auto& [k, v] : root) {
     const std::string key(k.str());
     if (key != "board" && key != "control" && key != "can" && key != "gpio" && key != "realtime" && key != "state" &&
-        key != "mixing" && key != "controller" && key != "damper" && key != "fluid")
+        key != "mixing" && key != "controller" && key != "damper" && key != "fluid" && key != "drive")
       fail(origin, v.source(), key,
-           "unknown table (expected board, control, can, gpio, realtime, state, mixing, controller, damper, fluid)");
+           "unknown table (expected board, control, can, gpio, realtime, state, mixing, controller, damper, fluid, "
+           "drive)");
   }
   BoardConfig c;
   read_board(root, origin, c);
@@ -609,6 +660,7 @@ BoardConfig parse_board_config(const std::string& text, const std::string& origi
   check_controller(origin, c, controller_lines);
   read_damper(root, origin, c);
   read_fluid(root, origin, c);
+  read_drive(root, origin, c, controller_lines);
   return c;
 }
 
@@ -834,6 +886,18 @@ std::string board_toml(const BoardConfig& c, const std::string& header) {
   w.num("a_rise", d.pr.a_rise);
   w.num("b_rise", d.pr.b_rise);
   w.num("c_rise", d.pr.c_rise);
+  if (const std::optional<BoardDrive>& dr = c.drive) {
+    w.table("drive");
+    w.str("name", dr->name);
+    w.num("bus_v", dr->bus_v);
+    w.num("command_range_v", dr->command_range_v);
+    w.num("volts_per_amp", dr->volts_per_amp);
+    w.num("continuous_current_a", dr->continuous_current_a);
+    w.num("peak_current_a", dr->peak_current_a);
+    w.num("peak_time_s", dr->peak_time_s);
+    w.num("loop_bandwidth_rad_s", dr->loop_bandwidth_rad_s);
+    w.num("loop_period_s", dr->loop_period_s);
+  }
   return w.text();
 }
 

@@ -6,8 +6,9 @@
 /// ([mixing]), and the configuration `mrd configure` derives for one
 /// building, damper and fluid: the control core's constants ([controller],
 /// fw::ControllerConfig's fields by name), the damper ([damper]) and the
-/// fluid ([fluid]). Without those three tables a board runs the thesis's
-/// controller, damper and fluid. Read once at start-up; every error names
+/// fluid ([fluid]), and the current drive it commands ([drive], optional;
+/// the controller's limits are checked against it). Without those tables a
+/// board runs the thesis's controller, damper and fluid. Read once at start-up; every error names
 /// the file, the line and the field, and a [controller] the control core
 /// would refuse (fw::validate_config, for the board's numeric build) is
 /// refused here, naming the keys it concerns.
@@ -18,6 +19,7 @@
 #include <string>
 
 #include <map>
+#include <optional>
 
 #include "firmware/app/control_task.hpp"
 #include "firmware/app/mixing_task.hpp"
@@ -41,6 +43,25 @@ struct GpioLine {
   std::string name;         ///< non-empty when given as a name
   bool active_low = false;  ///< electrical level 0 means "active"
   bool configured() const noexcept { return offset >= 0 || !name.empty(); }
+};
+
+/// The current drive the board commands ([drive], optional): what `mrd
+/// configure --drive` read from a drive file (host_sim/drive), so that the
+/// board's controller is checked against it at boot and `mrd sim --board
+/// --plant hardware` simulates it. The firmware commands through CAN and does
+/// not use these numbers otherwise.
+struct BoardDrive {
+  std::string name;
+  double bus_v = 72.0;                  ///< DC bus, V
+  double command_range_v = 10.0;        ///< the command input's range, ±V
+  double volts_per_amp = 1.0;           ///< command scale, V/A
+  double continuous_current_a = 15.0;   ///< A
+  double peak_current_a = 30.0;         ///< A
+  double peak_time_s = 2.0;             ///< time at the peak its I²t budget allows, s
+  double loop_bandwidth_rad_s = 200.0;  ///< ω_c of its PI current loop
+  double loop_period_s = 1.0e-4;        ///< its current loop's period, s
+  /// The command range in amperes: command_range_v / volts_per_amp.
+  double command_limit_a() const noexcept { return command_range_v / volts_per_amp; }
 };
 
 struct BoardConfig {
@@ -80,6 +101,8 @@ struct BoardConfig {
   std::string fluid_name = "thesis-model-fluid";
   physics::MrDamperParams damper{};
   physics::SettlingParams settling{};  ///< fluid (Table 5.3) and damper geometry (Table 3.1, 5.4)
+  // [drive]: the current drive (absent: not stated; the controller's limits are [controller]'s).
+  std::optional<BoardDrive> drive;
 
   double period_s() const noexcept { return static_cast<double>(period_us) * 1e-6; }
   ControlTaskConfig task_config() const noexcept;

@@ -83,14 +83,14 @@ void add_options(CLI::App& app, ConfigureOptions& o) {
 
 /// --drive FILE's limits: its command range (command_range_v / volts_per_amp),
 /// continuous and peak currents, in the core's order.
-configure::DriveLimits file_drive_limits(const std::string& file, const drive::DriveFile& d) {
+configure::DriveLimits file_drive_limits(const std::string& label, const drive::DriveFile& d) {
   const plant::PwmDriveParams& p = d.params;
   configure::DriveLimits l;
   l.command_limit_a = drive::command_limit_a(p);
   l.continuous_limit_a = p.continuous_current_a;
   l.peak_limit_a = p.peak_current_a;
   if (!(l.command_limit_a <= l.continuous_limit_a))
-    throw io::UsageError(io::file_label(file) + ": drive.command_range_v: the command range ±" +
+    throw io::UsageError(label + ": drive.command_range_v: the command range ±" +
                          io::format_number("%g", l.command_limit_a) + " A (command_range_v / volts_per_amp) exceeds "
                          "continuous_current_a (" + io::format_number("%g", l.continuous_limit_a) +
                          " A): the control core commands within the continuous current (give the limits with "
@@ -116,14 +116,32 @@ std::string stem_or(const std::string& path, const char* fallback) {
 
 void execute(const ConfigureOptions& o) {
   configure::Inputs in;
+  try {
+    in.board = app::parse_board_config(io::read_regular_file(o.board, app::kMaxBoardFileBytes),
+                                       io::file_label(o.board));
+  } catch (const app::BoardConfigError& e) {
+    throw io::UsageError(e.what());
+  }
+  // The drive: --drive FILE, else the board's own [drive], else the three limits (the thesis rig's by default).
   std::optional<drive::DriveFile> drive_file;
+  std::string drive_label;
   if (!o.drive_file.empty()) {
-    if (o.drive_limit_given)
-      throw io::UsageError("--drive-command-limit-a, --drive-continuous-limit-a, --drive-peak-limit-a cannot be given "
-                           "with --drive: the drive file decides them");
     drive_file = load_drive(o.drive_file);
-    in.drive = file_drive_limits(o.drive_file, *drive_file);
+    drive_label = io::file_label(o.drive_file);
+  } else if (in.board.drive) {
+    drive_label = io::file_label(o.board) + " [drive]";
+    drive_file = drive_of_board(*in.board.drive, drive_label);
+  }
+  if (drive_file) {
+    if (o.drive_limit_given)
+      throw io::UsageError(std::string("--drive-command-limit-a, --drive-continuous-limit-a, --drive-peak-limit-a "
+                                       "cannot be given with ") +
+                           (o.drive_file.empty() ? "a board file that has a [drive] table: it decides them (--drive "
+                                                   "FILE replaces it)"
+                                                 : "--drive: the drive file decides them"));
+    in.drive = file_drive_limits(drive_label, *drive_file);
     in.drive_source = "the drive file's, " + drive_file->name;
+    in.board.drive = board_drive(*drive_file);
   } else {
     check_drive(o.drive);
     in.drive = o.drive;
@@ -135,18 +153,12 @@ void execute(const ConfigureOptions& o) {
   in.damper_name = df.damper.name;
   in.settling = df.settling;
   in.fluid_name = stem_or(o.fluid, "thesis-model-fluid");
-  try {
-    in.board = app::parse_board_config(io::read_regular_file(o.board, app::kMaxBoardFileBytes),
-                                       io::file_label(o.board));
-  } catch (const app::BoardConfigError& e) {
-    throw io::UsageError(e.what());
-  }
   if (drive_file) {
     // The drive on this damper's coil at the board's control period, as `mrd sim --plant hardware` runs it.
     std::vector<std::string> warnings = drive::check_drive_fit(
         *drive_file, plant::coil_params(in.damper.coil_heat.resistance_ohm, in.damper.coil_inductance),
         in.damper.rating.current_a, in.board.period_s());
-    for (std::string& w : warnings) w = io::file_label(o.drive_file) + ": " + w;
+    for (std::string& w : warnings) w = drive_label + ": " + w;
     print_warnings("configure", warnings);
   }
   in.design_displacement_m = o.design_displacement_m;

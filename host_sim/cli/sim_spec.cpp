@@ -98,16 +98,25 @@ run::SimSpec sim_spec(const SimOptions& o) {
   if (!o.drive.empty() && spec.plant != plant::PlantKind::kHardware)
     throw io::UsageError("--drive: only --plant hardware simulates a drive (the thesis plant's coil current follows "
                          "the command through Eq. 4.5)");
+  const bool board_drive = board && board->drive.has_value();
+  if (board_drive && !o.drive.empty())
+    throw io::UsageError("--drive cannot be given with --board " + io::file_label(o.board) +
+                         ": its [drive] table decides it");
   if (spec.plant == plant::PlantKind::kHardware) {
-    const drive::DriveFile drive = load_drive(o.drive);
+    const drive::DriveFile drive =
+        board_drive ? drive_of_board(*board->drive, io::file_label(o.board)) : load_drive(o.drive);
     spec.hardware_drive = drive.params;
     spec.hardware_drive_name = drive.name;
     std::vector<std::string> warnings = drive::check_drive_fit(
         drive, plant::coil_params(spec.damper.coil_heat.resistance_ohm, spec.damper.coil_inductance),
         spec.damper.rating.current_a, spec.step_s);
-    const std::vector<std::string> mismatch = controller_drive_mismatch(board, drive);
-    warnings.insert(warnings.end(), mismatch.begin(), mismatch.end());
-    const std::string label = o.drive.empty() ? std::string("the thesis drive") : io::file_label(o.drive);
+    if (!board_drive) {  // a board's own [drive] holds its controller within it (board_config.cpp)
+      const std::vector<std::string> mismatch = controller_drive_mismatch(board, drive);
+      warnings.insert(warnings.end(), mismatch.begin(), mismatch.end());
+    }
+    const std::string label = board_drive   ? io::file_label(o.board) + " [drive]"
+                              : o.drive.empty() ? std::string("the thesis drive")
+                                                : io::file_label(o.drive);
     for (std::string& w : warnings) w = label + ": " + w;
     print_warnings("sim", warnings);
   }

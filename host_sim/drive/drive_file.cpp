@@ -59,8 +59,8 @@ std::vector<std::string> check_drive_fit(const DriveFile& d, const plant::CoilPa
   const double gain = coil.inductance_1a_h * p.loop_bandwidth_rad_s * loop_period_s / coil.min_inductance_h;
   if (gain > kMaxLoopStepGain) {
     const std::string where = d.origin.empty() ? std::string("the thesis drive") : d.origin;
-    throw io::UsageError(where + ":" + std::to_string(d.loop_bandwidth_line) +
-                         ": drive.loop_bandwidth_rad_s: expected at most " +
+    const std::string line = d.loop_bandwidth_line > 0 ? ":" + std::to_string(d.loop_bandwidth_line) : "";
+    throw io::UsageError(where + line + ": drive.loop_bandwidth_rad_s: expected at most " +
                          g(kMaxLoopStepGain * coil.min_inductance_h / (coil.inductance_1a_h * loop_period_s)) +
                          " rad/s with this coil: K_p = L(1 A) w_c = " + g(coil.inductance_1a_h * p.loop_bandwidth_rad_s) +
                          " V/A moves the current by K_p T / L = " + g(gain) + " of its error per loop period T = " +

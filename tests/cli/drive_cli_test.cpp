@@ -86,8 +86,8 @@ TEST_F(DriveCli, ASixVoltDriveChargesTheCoilAsAnRLCircuitInMrdSim) {
   EXPECT_EQ(j.at("drive"), "six-volt");
   EXPECT_NEAR(j.at("peak_coil_current_a").get<double>(), 1.25 * (1.0 - std::exp(-2.4 * 0.999)), 2e-5);
 
-  // The same damper through a board configured for it: the board carries the coil's inductance, and
-  // its passive-on current is the damper's rated 2.5 A, so the same charge.
+  // The same damper and drive through a board configured for them: the board carries the coil's inductance
+  // and the drive ([drive]), and its passive-on current is the damper's rated 2.5 A, so the same charge.
   const fs::path cfg = out_.path() / "cfg";
   const auto c = run_mrd("configure --board " + kSimBoard.string() + " --damper " + damper.string() + " --drive " +
                              drive.string() + " --out " + cfg.string(),
@@ -97,13 +97,22 @@ TEST_F(DriveCli, ASixVoltDriveChargesTheCoilAsAnRLCircuitInMrdSim) {
   EXPECT_NE(board.find("coil_inductance_1a_h = 2.0\n"), std::string::npos) << board;
   EXPECT_NE(board.find("coil_inductance_2a_h = 2.0\n"), std::string::npos) << board;
   const fs::path on_board = out_.path() / "on-board";
+  EXPECT_NE(board.find("[drive]\nname = \"six-volt\"\nbus_v = 6.0\n"), std::string::npos) << board;
   const auto b = run_mrd("sim --board " + (cfg / "board.toml").string() +
-                             " --plant hardware --record none --duration-s 1 --control passive-on --drive " +
-                             drive.string() + " --out " + on_board.string(),
+                             " --plant hardware --record none --duration-s 1 --control passive-on --out " +
+                             on_board.string(),
                          scratch_.path());
   ASSERT_EQ(b.exit_code, 0) << b.err;
-  EXPECT_NEAR(nlohmann::json::parse(slurp(on_board / "summary.json")).at("peak_coil_current_a").get<double>(),
-              1.25 * (1.0 - std::exp(-2.4 * 0.999)), 2e-5);
+  const auto on = nlohmann::json::parse(slurp(on_board / "summary.json"));
+  EXPECT_EQ(on.at("drive"), "six-volt");
+  EXPECT_NEAR(on.at("peak_coil_current_a").get<double>(), 1.25 * (1.0 - std::exp(-2.4 * 0.999)), 2e-5);
+  EXPECT_NE(b.err.find("board.toml [drive]: drive: the 6 V bus drives at most 1.25 A"), std::string::npos) << b.err;
+  // The board's [drive] decides the drive: --drive beside it is refused.
+  const auto twice = run_mrd("sim --board " + (cfg / "board.toml").string() + " --plant hardware --record none "
+                                 "--duration-s 1 --drive " + drive.string(),
+                             scratch_.path());
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("--drive cannot be given with --board"), std::string::npos) << twice.err;
 }
 
 TEST_F(DriveCli, BadDrivesAndCombinationsAreRefusedBeforeAnythingIsWritten) {
@@ -151,6 +160,18 @@ TEST_F(DriveCli, ConfigurePutsTheDrivesLimitsIntoTheBoard) {
   // Forcing: min(4 × 2.5 A, the 2.5 A command range).
   EXPECT_NE(board.find("overdrive_current_a = 2.5\n"), std::string::npos) << board;
   EXPECT_NE(slurp(out / "configure.md").find("the drive file's, small; the thesis rig's: 10 A"), std::string::npos);
+  // Configured again from that board, without --drive: its [drive] gives the limits.
+  const fs::path again = out_.path() / "again";
+  const auto a = run_mrd("configure --board " + (out / "board.toml").string() + " --out " + again.string(),
+                         scratch_.path());
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(slurp(again / "board.toml").find("command_limit_a = 2.5\n"), std::string::npos);
+  const auto options = run_mrd("configure --board " + (out / "board.toml").string() +
+                                   " --drive-peak-limit-a 12 --out " + (out_.path() / "options").string(),
+                               scratch_.path());
+  EXPECT_EQ(options.exit_code, 2);
+  EXPECT_NE(options.err.find("cannot be given with a board file that has a [drive] table"), std::string::npos)
+      << options.err;
 
   // The board configured for the thesis drive, or the thesis's controller, simulated on this one: said; the
   // board configured for it: not.
@@ -165,11 +186,14 @@ TEST_F(DriveCli, ConfigurePutsTheDrivesLimitsIntoTheBoard) {
               std::string::npos)
         << s.err;
   }
+  // The board configured for it carries it ([drive]): simulated without --drive, nothing said.
+  const fs::path fit_dir = out_.path() / "fit";
   const auto fit = run_mrd("sim --board " + (out / "board.toml").string() +
-                               " --plant hardware --record none --duration-s 1 --drive " + drive.string(),
+                               " --plant hardware --record none --duration-s 1 --out " + fit_dir.string(),
                            scratch_.path());
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
   EXPECT_EQ(fit.err.find("configured for"), std::string::npos) << fit.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(fit_dir / "summary.json")).at("drive"), "small");
 
   const fs::path wide = edited(kThesisDrive, "wide.toml", {{"continuous_current_a = 15.0", "continuous_current_a = 8.0"}});
   const fs::path refused = out_.path() / "wide";

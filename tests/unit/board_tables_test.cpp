@@ -225,6 +225,55 @@ TEST(BoardTables, TheCoilsInductanceReadsBack) {
             0u);
 }
 
+// [drive]: the drive the board commands, read back exactly; every key
+// required; and the controller held within it (the default ±10 A command
+// range over a ±5 A drive is refused at the drive's key, a given
+// [controller] key at its own line).
+TEST(BoardTables, TheDriveReadsBackAndHoldsTheController) {
+  BoardConfig c = parse_tables("");
+  EXPECT_FALSE(c.drive.has_value());
+  EXPECT_EQ(board_toml(c).find("[drive]"), std::string::npos);
+  BoardDrive d;
+  d.name = "bench";
+  d.bus_v = 24.0;
+  d.command_range_v = 10.0;
+  d.volts_per_amp = 0.5;  // ±20 A
+  d.continuous_current_a = 20.0;
+  d.peak_current_a = 40.0;
+  d.peak_time_s = 1.5;
+  d.loop_bandwidth_rad_s = 300.0;
+  d.loop_period_s = 5e-5;
+  c.drive = d;
+  const BoardConfig r = parse_board_config(board_toml(c), "w.toml");
+  ASSERT_TRUE(r.drive.has_value());
+  EXPECT_EQ(r.drive->name, "bench");
+  EXPECT_EQ(r.drive->volts_per_amp, 0.5);
+  EXPECT_EQ(r.drive->loop_period_s, 5e-5);
+  EXPECT_EQ(r.drive->command_limit_a(), 20.0);
+  EXPECT_EQ(board_toml(r), board_toml(c));
+  const std::string full =
+      "[drive]\nname = \"small\"\nbus_v = 24.0\ncommand_range_v = 5.0\nvolts_per_amp = 1.0\n"
+      "continuous_current_a = 15.0\npeak_current_a = 30.0\npeak_time_s = 2.0\nloop_bandwidth_rad_s = 200.0\n"
+      "loop_period_s = 0.0001\n";
+  // The default controller commands ±10 A: more than the ±5 A drive (command_range_v on line 12).
+  EXPECT_EQ(tables_error_of(full).rfind("b.toml:12: controller.command_limit_a: 10 A exceeds the [drive]'s command "
+                                        "range (command_range_v / volts_per_amp) of 5 A",
+                                        0),
+            0u)
+      << tables_error_of(full);
+  const std::string held = "[controller]\ncommand_limit_a = 5.0\noverdrive_current_a = 5.0\n"
+                           "backdrive_current_a = -5.0\n\n" + full;
+  EXPECT_EQ(tables_error_of(held), "");
+  std::string missing = full;
+  missing.erase(missing.find("peak_time_s = 2.0\n"), 18);
+  EXPECT_EQ(tables_error_of(missing).rfind("b.toml:9: drive.peak_time_s: missing key", 0), 0u) << tables_error_of(missing);
+  std::string weak = held;
+  weak.replace(weak.find("peak_current_a = 30.0"), 21, "peak_current_a = 10.0");
+  EXPECT_NE(tables_error_of(weak).find("drive.peak_current_a: expected at least continuous_current_a"),
+            std::string::npos)
+      << tables_error_of(weak);
+}
+
 }  // namespace
 }  // namespace mrd::app
 
