@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "file_text_helpers.hpp"
 #include "host_sim/damper/damper_file.hpp"
 #include "host_sim/discrepancy/baseline_file.hpp"
 #include "host_sim/io/usage_error.hpp"
@@ -20,46 +21,18 @@
 namespace mrd::damper {
 namespace {
 
+using test::edited;
+using test::file_text;
+using test::line_of;
+
 namespace fs = std::filesystem;
 
 const fs::path kDampersDir = MRD_DAMPERS_DIR;
 
-std::string file_text(const fs::path& p) {
-  std::ifstream f(p);
-  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
 std::string thesis_text() { return file_text(kDampersDir / "thesis-200kn.toml"); }
 
 /// The error of parsing `text` (empty when it parses).
-std::string error_of(const std::string& text) {
-  try {
-    (void)parse_damper_toml(text, "d.toml");
-  } catch (const io::UsageError& e) {
-    return e.what();
-  }
-  return {};
-}
-
-/// `text` with `from` replaced by `to` (once; the test fails when absent).
-std::string edited(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
-
-/// 1-based line of the first line of `text` that starts with `start`.
-int line_of(const std::string& text, const std::string& start) {
-  int line = 1;
-  for (std::size_t pos = 0; pos < text.size(); ++line) {
-    if (text.compare(pos, start.size(), start) == 0) return line;
-    pos = text.find('\n', pos);
-    if (pos == std::string::npos) break;
-    ++pos;
-  }
-  return -1;
-}
+std::string error_of(const std::string& text) { return test::parse_error_of(&parse_damper_toml, text, "d.toml"); }
 
 /// `text` without the table `[name]` (up to the next table or the end).
 std::string without_table(std::string text, const std::string& name) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "firmware/core/controller_config.hpp"
+#include "file_text_helpers.hpp"
 #include "host_sim/drive/drive_file.hpp"
 #include "host_sim/io/usage_error.hpp"
 #include "host_sim/plant/pwm_drive.hpp"
@@ -22,41 +23,16 @@
 namespace mrd::drive {
 namespace {
 
+using test::edited;
+using test::file_text;
+using test::line_of;
+
 namespace fs = std::filesystem;
 
 const fs::path kThesisDrive = fs::path(MRD_DRIVES_DIR) / "thesis-pwm.toml";
 
-std::string file_text(const fs::path& p) {
-  std::ifstream f(p);
-  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    (void)parse_drive_toml(text, "d.toml");
-  } catch (const io::UsageError& e) {
-    return e.what();
-  }
-  return {};
-}
-
-std::string edited(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
-
-int line_of(const std::string& text, const std::string& start) {
-  int line = 1;
-  for (std::size_t pos = 0; pos < text.size(); ++line) {
-    if (text.compare(pos, start.size(), start) == 0) return line;
-    pos = text.find('\n', pos);
-    if (pos == std::string::npos) break;
-    ++pos;
-  }
-  return -1;
-}
+/// The error of parsing `text` (empty when it parses).
+std::string error_of(const std::string& text) { return test::parse_error_of(&parse_drive_toml, text, "d.toml"); }
 
 TEST(DriveFile, TheThesisFileIsTheCompiledInDriveAndSection32s) {
   const DriveFile f = read_drive_file(kThesisDrive);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "file_text_helpers.hpp"
 #include "host_sim/damper/damper_file.hpp"
 #include "host_sim/fluid/fluid_file.hpp"
 #include "host_sim/io/usage_error.hpp"
@@ -21,41 +22,16 @@
 namespace mrd::fluid {
 namespace {
 
+using test::edited;
+using test::file_text;
+using test::line_of;
+
 namespace fs = std::filesystem;
 
 const fs::path kFluidsDir = MRD_FLUIDS_DIR;
 
-std::string file_text(const fs::path& p) {
-  std::ifstream f(p);
-  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    (void)parse_fluid_toml(text, "f.toml");
-  } catch (const io::UsageError& e) {
-    return e.what();
-  }
-  return {};
-}
-
-std::string edited(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
-
-int line_of(const std::string& text, const std::string& start) {
-  int line = 1;
-  for (std::size_t pos = 0; pos < text.size(); ++line) {
-    if (text.compare(pos, start.size(), start) == 0) return line;
-    pos = text.find('\n', pos);
-    if (pos == std::string::npos) break;
-    ++pos;
-  }
-  return -1;
-}
+/// The error of parsing `text` (empty when it parses).
+std::string error_of(const std::string& text) { return test::parse_error_of(&parse_fluid_toml, text, "f.toml"); }
 
 TEST(FluidFile, TheModelFluidFileIsTheCompiledInFluid) {
   const FluidFile f = read_fluid_file(kFluidsDir / "thesis-model-fluid.toml");
