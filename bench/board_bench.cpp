@@ -66,7 +66,7 @@ void BM_SimBoardLockstepTick(benchmark::State& state) {
   app::BoardConfig b;
   b.name = "bench";
   b.mode = control::ControlMode::kSemiActive;
-  peers::InProcessBoard board(b, plant::PlantSpec{}, peers::DriveConfig{});
+  peers::InProcessBoard board(b, plant::PlantSpec{}, peers::drive_config(b));
   int k = 0;
   for (auto _ : state) board.step(0.5 * std::sin(2.0 * 3.14159 * 1e-3 * ++k));
   state.counters["sim_s_per_wall_s"] =

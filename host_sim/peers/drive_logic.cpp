@@ -76,4 +76,12 @@ protocol::DriveStatus DriveLogic::status(float measured_current_a, std::uint8_t 
   return s;
 }
 
+DriveConfig drive_config(const app::BoardConfig& board) noexcept {
+  DriveConfig c;
+  c.nodes = board.nodes;
+  c.safe_current_a = static_cast<float>(board.controller.nominal_current_a);
+  c.peak_limit_a = static_cast<float>(board.drive ? board.drive->peak_current_a : board.controller.drive_peak_limit_a);
+  return c;
+}
+
 }  // namespace mrd::peers

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 
+#include "firmware/app/board_config.hpp"
 #include "firmware/core/controller_config.hpp"
 #include "mrd/hal/can_bus.hpp"
 #include "mrd/protocol/codec.hpp"
@@ -30,6 +31,13 @@ struct DriveConfig {
   std::int64_t command_timeout_ns = 20'000'000;  ///< 20 ms (CAN_PROTOCOL.md)
   float peak_limit_a = 30.0f;                    ///< over-current fault above this measured current
 };
+
+/// The drive a board commands: its node ids, the safe current its damper's
+/// passive-on current (the board's controller.nominal_current_a: 2.5 A for
+/// the thesis's, §6.4) and the over-current fault above the drive's peak
+/// (the board's [drive] peak_current_a, else controller.drive_peak_limit_a:
+/// 30 A for the thesis rig's, §3.2).
+DriveConfig drive_config(const app::BoardConfig& board) noexcept;
 
 struct DriveOutput {
   float applied_current_a = 0.0f;  ///< set point driven into the coil over the next period

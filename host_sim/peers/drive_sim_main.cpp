@@ -33,6 +33,7 @@ struct Options {
   bool lockstep = false;
   double safe_current_a = fw::kPassiveOnCurrent_a, timeout_ms = 20.0, duration_s = 0.0, command_wait_s = 1.0,
          idle_exit_s = 3.0;
+  bool safe_current_given = false;
   double fault_at_s = -1.0, fault_for_s = 0.0;
   int sched_fifo = 0;
 
@@ -124,9 +125,11 @@ int run(const app::BoardConfig& board, const peers::DriveConfig& dc, const Optio
     posix::PosixClock clock;
     if (o.sched_fifo > 0) std::fputs(posix::apply_realtime({o.sched_fifo, true, -1}).c_str(), stdout);
     const std::int64_t period_ns = static_cast<std::int64_t>(board.period_us) * 1000;
-    std::printf("mrd-drive-sim: on %s (node %u, commands from node %u), safe current %.3f A after %.1f ms, %s\n",
-                board.can_interface.c_str(), board.nodes.drive, board.nodes.controller, o.safe_current_a,
-                o.timeout_ms, o.lockstep ? "lockstep" : "free-running");
+    std::printf("mrd-drive-sim: on %s (node %u, commands from node %u), safe current %.3f A after %.1f ms, "
+                "over-current above %.3f A, %s\n",
+                board.can_interface.c_str(), board.nodes.drive, board.nodes.controller,
+                static_cast<double>(dc.safe_current_a), o.timeout_ms, static_cast<double>(dc.peak_limit_a),
+                o.lockstep ? "lockstep" : "free-running");
     StateReport report(node);
     if (o.lockstep) {
       run_lockstep(node, bus, clock, o, period_ns, report);
@@ -149,9 +152,11 @@ int main(int argc, char** argv) {
   app.add_option("--board", o.board_file, "Board file for node ids, period and interface");
   app.add_option("--can", o.can_if, "CAN interface (default: the board's, else vcan0)");
   app.add_flag("--lockstep", o.lockstep, "Tick on the plant's SimCoilState frames (deterministic)");
-  app.add_option("--safe-current-a", o.safe_current_a, "Current applied when commands stop, A")
-      ->capture_default_str()
-      ->check(app::finite_in(0.0, 30.0, "A"));
+  app.add_option("--safe-current-a", o.safe_current_a,
+                 "Current applied when commands stop, A (default: the board's passive-on current, "
+                 "controller.nominal_current_a; 2.5 A for the thesis's)")
+      ->check(app::finite_in(0.0, 30.0, "A"))
+      ->each([&o](const std::string&) { o.safe_current_given = true; });
   app.add_option("--timeout-ms", o.timeout_ms, "Command timeout, ms")
       ->capture_default_str()
       ->check(app::positive_up_to(app::kMaxProgramTime_s * 1e3, "ms"));
@@ -184,9 +189,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "mrd-drive-sim: error: --safe-current-a must be within ±10 A, --timeout-ms > 0\n");
     return 2;
   }
-  peers::DriveConfig dc;
-  dc.nodes = board.nodes;
-  dc.safe_current_a = static_cast<float>(o.safe_current_a);
+  // The board's drive: its damper's passive-on current when commands stop, its peak's over-current fault.
+  peers::DriveConfig dc = peers::drive_config(board);
+  if (o.safe_current_given) dc.safe_current_a = static_cast<float>(o.safe_current_a);
   dc.command_timeout_ns = static_cast<std::int64_t>(o.timeout_ms * 1e6);
   return run(board, dc, o);
 }

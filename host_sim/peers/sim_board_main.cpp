@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     if (!building_file.empty()) spec.building = structure::read_building_file(building_file);
     const std::vector<double> ag =
         excitation::load_scaled_motion(record, pga_g, spec.step_s, duration_s).accel_m_s2;
-    peers::InProcessBoard b(board, spec, peers::DriveConfig{});
+    peers::InProcessBoard b(board, spec, peers::drive_config(board));
     for (double a : ag) b.step(a);
     const auto& t = b.task_status();
     std::printf("mrd-sim-board: %s, %s, building %s (%d DOFs), %zu ticks, frames rejected %u\n", board.name.c_str(),

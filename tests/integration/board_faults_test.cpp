@@ -20,11 +20,15 @@ constexpr double kSafeCurrentA = 2.5;
 /// A gentle 1 Hz ground shake so the sensors move.
 double ag(int k) { return 0.5 * std::sin(2.0 * 3.141592653589793 * 1e-3 * k); }
 
-std::unique_ptr<peers::InProcessBoard> board(control::ControlMode mode) {
+app::BoardConfig sim_board_file() {
   const std::string file = std::string(MRD_BOARDS_DIR) + "/sim/board.toml";
-  app::BoardConfig b = app::parse_board_config(io::read_regular_file(file, app::kMaxBoardFileBytes), file);
+  return app::parse_board_config(io::read_regular_file(file, app::kMaxBoardFileBytes), file);
+}
+
+std::unique_ptr<peers::InProcessBoard> board(control::ControlMode mode) {
+  app::BoardConfig b = sim_board_file();
   b.mode = mode;
-  return std::make_unique<peers::InProcessBoard>(b, plant::PlantSpec{}, peers::DriveConfig{});
+  return std::make_unique<peers::InProcessBoard>(b, plant::PlantSpec{}, peers::drive_config(b));
 }
 
 bool is(const hal::CanFrame& f, MsgId m) { return protocol::msg_of(f.id) == static_cast<std::uint8_t>(m); }
@@ -50,6 +54,33 @@ TEST(BoardFaults, CommandStreamCutGivesTheSafeCurrentWithin21Ticks) {
   const int n = ticks_until_applied(*b, kSafeCurrentA);
   EXPECT_EQ(n, 21) << "timeout 20 ms: the 21st tick without a command is the first past it";
   EXPECT_EQ(b->drive().counters().fallbacks, 1u);
+}
+
+// The drive's safe current is the board's passive-on current: a board
+// configured for a 1 A damper falls back to 1 A, not the thesis's 2.5 A; its
+// over-current fault sits at its drive's peak (the thesis rig's 30 A, §3.2,
+// or its [drive]'s).
+TEST(BoardFaults, TheSafeCurrentAndOverCurrentAreTheBoardsOwn) {
+  const peers::DriveConfig thesis = peers::drive_config(sim_board_file());
+  EXPECT_EQ(thesis.safe_current_a, 2.5f);  // §6.4's passive-on current
+  EXPECT_EQ(thesis.peak_limit_a, 30.0f);   // §3.2: 30 A peak
+  app::BoardConfig b = sim_board_file();
+  b.mode = control::ControlMode::kPassiveOff;
+  b.controller.nominal_current_a = b.controller.fallback_current_a = b.controller.rated_current_a = 1.0;
+  app::BoardDrive d;
+  d.name = "small";
+  d.peak_current_a = 12.0;
+  d.continuous_current_a = 12.0;
+  b.controller.drive_peak_limit_a = b.controller.drive_continuous_limit_a = 12.0;
+  b.drive = d;
+  const peers::DriveConfig own = peers::drive_config(b);
+  EXPECT_EQ(own.safe_current_a, 1.0f);
+  EXPECT_EQ(own.peak_limit_a, 12.0f);
+  peers::InProcessBoard board(b, plant::PlantSpec{}, own);
+  run_to_fault(board);
+  ASSERT_EQ(board.applied_current_a(), 0.0);
+  board.bus().set_tamper([](hal::CanFrame& f) { return !is(f, MsgId::kCurrentCommand); });
+  EXPECT_EQ(ticks_until_applied(board, 1.0), 21);
 }
 
 TEST(BoardFaults, CorruptedCommandsGiveTheSafeCurrentWithin21Ticks) {

@@ -51,7 +51,8 @@ plant::PlantSummary over_can(control::ControlMode mode, double idle_years, const
   plant::PlantSpec spec;
   spec.step_s = kStepS;
   spec.idle_time_s = units::years_to_s(idle_years);
-  peers::InProcessBoard board(sim_board(mode), spec, peers::DriveConfig{});
+  const app::BoardConfig b = sim_board(mode);
+  peers::InProcessBoard board(b, spec, peers::drive_config(b));
   for (double a : ag) board.step(a);
   if (task) *task = board.task_status();
   return board.summary();
