@@ -136,6 +136,7 @@ int run_damper(const Options& o, const mrd::app::BoardConfig& board) {
   rb::DamperLabConfig c;
   c.rate_hz = o.rate_hz > 0.0 ? o.rate_hz : 1e6 / static_cast<double>(board.period_us);
   c.nodes = board.nodes;
+  c.drive = mrd::peers::drive_config(board);  // the board's drive: its safe current and peak
   c.lab_node = static_cast<std::uint8_t>(o.lab_node);
   c.delay_s = std::round(o.delay_ms * 1e-3 * c.rate_hz) / c.rate_hz;
   c.lag_s = o.lag_ms * 1e-3;
