@@ -67,6 +67,10 @@ inline vd disp_of(const AnyModel& m, const AnyBlock& b, int i) {
 inline vd vel_of(const AnyModel& m, const AnyBlock& b, int i) {
   return dot_halving(m.t_rows + static_cast<std::ptrdiff_t>(m.dofs + i) * m.states, b.q, m.states);
 }
+/// DiscreteBuilding::element_deformation_m.
+inline vd deformation_of(const AnyModel& m, const AnyBlock& b, int e) {
+  return e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1);
+}
 /// DiscreteBuilding::element_rate_m_s.
 inline vd rate_of(const AnyModel& m, const AnyBlock& b, int e) {
   return e == 0 ? vel_of(m, b, 0) : vel_of(m, b, e) - vel_of(m, b, e - 1);
@@ -250,24 +254,23 @@ void any_sense(const AnyModel& m, AnyBlock& b) {
 
   const int sensed = m.damper_element[0];
   const vd x0 = disp_of(m, b, 0);
-  const vd stroke = sensed == 0 ? x0 : disp_of(m, b, sensed) - disp_of(m, b, sensed - 1);
+  const vd stroke = sensed == 0 ? x0 : deformation_of(m, b, sensed);
   for (int d = 0; d < m.dampers; ++d) {
     const int e = m.damper_element[d];
     const vd v = rate_of(m, b, e);
     row_put(b.rate_m_s, d, v);
-    if (m.damper.scalar_law) {
-      const vd x = d == 0 ? stroke : (e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1));
+    if (m.damper.scalar_law || m.damper.shaped) {
+      // The damper's stroke: its element's deformation (the first damper's is the sensed one).
+      const vd x = d == 0 ? stroke : deformation_of(m, b, e);
       row_put(b.stroke_rows_m, d, x);
-      const ScalarDamperCalls& calls = m.scalar_damper;
       vd f = splat(0.0);
-      for (int l = 0; l < kW; ++l) f[l] = calls.force_n(calls.dampers, d * kMaxLanes + l, v[l], x[l]);
+      if (m.damper.scalar_law) {
+        const ScalarDamperCalls& calls = m.scalar_damper;
+        for (int l = 0; l < kW; ++l) f[l] = calls.force_n(calls.dampers, d * kMaxLanes + l, v[l], x[l]);
+      } else {
+        f = shaped_damper_force(m, b, d, v, row_at(b.last_rate_m_s, d), x, row_at(b.fc_n, d), row_at(b.c0_ns_m, d));
+      }
       row_put(b.force_n, d, f);
-    } else if (m.damper.shaped) {
-      // DiscreteBuilding::element_deformation_m: the damper's stroke.
-      const vd x = d == 0 ? stroke : (e == 0 ? disp_of(m, b, 0) : disp_of(m, b, e) - disp_of(m, b, e - 1));
-      row_put(b.stroke_rows_m, d, x);
-      row_put(b.force_n, d, shaped_damper_force(m, b, d, v, row_at(b.last_rate_m_s, d), x, row_at(b.fc_n, d),
-                                                row_at(b.c0_ns_m, d)));
     } else if (m.damper.tanh_law) {
       row_put(b.force_n, d, tanh_force(v, splat(m.damper.v_tf_m_s), row_at(b.fc_n, d), row_at(b.c0_ns_m, d)));
     } else {

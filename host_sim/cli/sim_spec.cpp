@@ -42,8 +42,9 @@ std::vector<std::string> controller_drive_mismatch(const std::optional<app::Boar
       c.drive_peak_limit_a == p.peak_current_a)
     return {};
   const auto g = [](double v) { return io::format_number("%g", v); };
-  return {std::string("drive: the ") + (board ? "board" : "thesis's controller") + " was configured for a drive of +-" + g(c.command_limit_a) + " A command, " +
-          g(c.drive_continuous_limit_a) + " A continuous and " + g(c.drive_peak_limit_a) +
+  return {std::string("drive: the ") + (board ? "board" : "thesis's controller") + " was configured for a drive of +-" +
+          g(c.command_limit_a) + " A command, " + g(c.drive_continuous_limit_a) + " A continuous and " +
+          g(c.drive_peak_limit_a) +
           " A peak; the simulated drive's are +-" + g(command_a) + ", " + g(p.continuous_current_a) + " and " +
           g(p.peak_current_a) + " A (mrd configure --drive configures a board for it)"};
 }
