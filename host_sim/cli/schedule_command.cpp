@@ -32,7 +32,8 @@ and a technician comes --maintenance-days later (and stays away if the request h
 --numeric double|float|fixed picks the numeric build of the estimator and scheduler the
 estimator policy runs (double, the reference, by default; float and fixed point are the builds
 for a single-precision microcontroller).
-Capacity: damper force at 2.5 A and 0.1 m/s with the present participant ratio over the same
+Capacity: damper force at its rated current (2.5 A for the thesis damper) and 0.1 m/s with the present
+participant ratio over the same
 force fully mixed (Eq. 5.10-5.12).
 --damper FILE and --fluid FILE put another damper and MR fluid into the world (README "Your damper
 and fluid"; defaults dampers/thesis-200kn.toml and fluids/thesis-model-fluid.toml, the same bytes

@@ -373,14 +373,8 @@ TEST(DamperFile, AMissingFileIsNamed) {
 // LINE the line the test's text has the key on (or its table's header for a
 // missing key), and names what was expected (the range, for a number).
 TEST(DamperFile, RefusesBadFilesNamingFileLineAndField) {
-  struct Case {
-    const char* kind;
-    std::string text;
-    std::string at;  ///< the start of the line the message names
-    std::string field, problem;
-  };
   const std::string t = thesis_text();
-  const std::vector<Case> cases = {
+  const std::vector<test::Refusal> cases = {
       {"syntax error", edited(t, "force_n = 200000.0", "force_n = = 200000.0"), "force_n = ", "", ""},
       {"unknown table", t + "\n[ratings]\ncurrent_a = 2.5\n", "[ratings]", "ratings",
        "unknown table (expected model,"},
@@ -435,15 +429,7 @@ TEST(DamperFile, RefusesBadFilesNamingFileLineAndField) {
       {"rating not a table", "rating = 3\n" + without_table(t, "rating"), "rating = 3", "rating",
        "expected a table [rating]"},
   };
-  for (const Case& c : cases) {
-    const std::string e = error_of(c.text);
-    const int line = line_of(c.text, c.at);
-    ASSERT_GT(line, 0) << c.kind;
-    EXPECT_EQ(e.rfind("d.toml:" + std::to_string(line) + ": " + (c.field.empty() ? "" : c.field + ": "), 0), 0u)
-        << c.kind << " -> " << e;
-    EXPECT_NE(e.find(c.problem), std::string::npos) << c.kind << " -> " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << c.kind << " -> " << e;
-  }
+  test::expect_refusals(cases, error_of, "d.toml");
   // A missing table is named at line 1.
   EXPECT_EQ(error_of(without_table(t, "coil")), "d.toml:1: [coil]: missing table");
 }

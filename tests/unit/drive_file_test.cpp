@@ -140,14 +140,8 @@ TEST(DriveFile, AMissingFileIsNamed) {
 }
 
 TEST(DriveFile, RefusesBadFilesNamingFileLineAndField) {
-  struct Case {
-    const char* kind;
-    std::string text;
-    std::string at;
-    std::string field, problem;
-  };
   const std::string t = file_text(kThesisDrive);
-  const std::vector<Case> cases = {
+  const std::vector<test::Refusal> cases = {
       {"syntax error", edited(t, "bus_v = 72.0", "bus_v = 72.0.0"), "bus_v", "", ""},
       {"unknown table", t + "\n[drives]\nname = \"x\"\n", "[drives]", "drives", "unknown table (expected drive)"},
       {"unknown key", edited(t, "bus_v = 72.0", "bus_v = 72.0\nsupply_v = 72.0"), "supply_v", "drive.supply_v",
@@ -167,15 +161,7 @@ TEST(DriveFile, RefusesBadFilesNamingFileLineAndField) {
       {"bandwidth 0", edited(t, "loop_bandwidth_rad_s = 200.0", "loop_bandwidth_rad_s = 0.0"), "loop_bandwidth_rad_s",
        "drive.loop_bandwidth_rad_s", "expected a bandwidth in [1, 1e+06] rad/s, got 0.0"},
   };
-  for (const Case& c : cases) {
-    const std::string e = error_of(c.text);
-    const int line = line_of(c.text, c.at);
-    ASSERT_GT(line, 0) << c.kind;
-    EXPECT_EQ(e.rfind("d.toml:" + std::to_string(line) + ": " + (c.field.empty() ? "" : c.field + ": "), 0), 0u)
-        << c.kind << " -> " << e;
-    EXPECT_NE(e.find(c.problem), std::string::npos) << c.kind << " -> " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << c.kind << " -> " << e;
-  }
+  test::expect_refusals(cases, error_of, "d.toml");
   EXPECT_EQ(error_of(""), "d.toml:1: [drive]: missing table");
 }
 

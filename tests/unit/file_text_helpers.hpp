@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "host_sim/io/usage_error.hpp"
 
@@ -50,6 +51,29 @@ std::string parse_error_of(Parse parse, const std::string& text, const std::stri
     return e.what();
   }
   return {};
+}
+
+/// One bad file and what its refusal must say.
+struct Refusal {
+  const char* kind;
+  std::string text;
+  std::string at;  ///< the start of the line the message names
+  std::string field, problem;
+};
+
+/// Each case's error (`error_of`) is one line "ORIGIN:LINE: field: ..." with
+/// LINE the line its text has `at` on, and contains `problem`.
+template <class ErrorOf>
+void expect_refusals(const std::vector<Refusal>& cases, ErrorOf error_of, const std::string& origin) {
+  for (const Refusal& c : cases) {
+    const std::string e = error_of(c.text);
+    const int line = line_of(c.text, c.at);
+    ASSERT_GT(line, 0) << c.kind;
+    EXPECT_EQ(e.rfind(origin + ":" + std::to_string(line) + ": " + (c.field.empty() ? "" : c.field + ": "), 0), 0u)
+        << c.kind << " -> " << e;
+    EXPECT_NE(e.find(c.problem), std::string::npos) << c.kind << " -> " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << c.kind << " -> " << e;
+  }
 }
 
 }  // namespace mrd::test

@@ -136,14 +136,8 @@ TEST(FluidFile, AMissingFileIsNamed) {
 }
 
 TEST(FluidFile, RefusesBadFilesNamingFileLineAndField) {
-  struct Case {
-    const char* kind;
-    std::string text;
-    std::string at;
-    std::string field, problem;
-  };
   const std::string t = file_text(kFluidsDir / "illustrative-20-year.toml");
-  const std::vector<Case> cases = {
+  const std::vector<test::Refusal> cases = {
       {"syntax error", edited(t, "solid_fraction = 0.4", "solid_fraction = 0.4.0"), "solid_fraction", "", ""},
       {"unknown table", t + "\n[fluids]\nname = \"x\"\n", "[fluids]", "fluids",
        "unknown table (expected fluid or participant_ratio)"},
@@ -177,15 +171,7 @@ TEST(FluidFile, RefusesBadFilesNamingFileLineAndField) {
       {"participant ratio key unknown", edited(t, "c_rise = 3.65", "c_rise = 3.65\nflow_area_m2 = 0.01"),
        "flow_area_m2", "participant_ratio.flow_area_m2", "unknown key"},
   };
-  for (const Case& c : cases) {
-    const std::string e = error_of(c.text);
-    const int line = line_of(c.text, c.at);
-    ASSERT_GT(line, 0) << c.kind;
-    EXPECT_EQ(e.rfind("f.toml:" + std::to_string(line) + ": " + (c.field.empty() ? "" : c.field + ": "), 0), 0u)
-        << c.kind << " -> " << e;
-    EXPECT_NE(e.find(c.problem), std::string::npos) << c.kind << " -> " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << c.kind << " -> " << e;
-  }
+  test::expect_refusals(cases, error_of, "f.toml");
   // A missing table is named at line 1.
   const std::string no_pr = t.substr(0, t.find("\n[participant_ratio]"));
   EXPECT_EQ(error_of(no_pr), "f.toml:1: [participant_ratio]: missing table");
