@@ -53,9 +53,11 @@ without them. The warnings' limits are the damper's [rating]; the hardware plant
 damper file's resistance_ohm, inductance_1a_h and inductance_2a_h when it has them (else Table
 3.1's). The controller is the thesis's (fw::ControllerConfig) unless --board FILE gives a board
 file: then the run is that board's configuration, as mrd-firmware runs it (its [controller] at its
-[control] period, mode and numeric build, its [damper] and [fluid], the controller's inputs and
-command quantized as the board's CAN frames carry them; `mrd configure` writes such a file); --control still picks the mode when given, and --step-s, --numeric, --damper and --fluid
-are refused with it (the board file decides them).
+[control] period, mode and numeric build, its [damper] (with its coil) and [fluid], its [drive] when
+it has one, the controller's inputs and command quantized as the board's CAN frames carry them;
+`mrd configure` writes such a file); --control still picks the mode when given, and --step-s,
+--numeric, --damper and --fluid (and --drive beside a [drive]) are refused with it (the board
+file decides them).
 
 Fields of DIR/summary.json:
   peak_base_displacement_m        max |base (DOF 0) displacement relative to the ground|, m
