@@ -322,7 +322,8 @@ void any_advance(const AnyModel& m, AnyBlock& b) {
     const vd moved = before + vabs(v) * splat(s.flow_area_m2) * splat(s.step_s);
     const vd displaced = v != zero ? moved : before;
     row_put(b.displaced_m3, d, displaced);
-    row_put(b.last_rate_m_s, d, v);  // MrDamper::advance: v[n−1] of the next step's transition time
+    // MrDamper::advance: v[n−1] of the next step's transition time (read only with one).
+    if (s.transition_time_s != 0.0) row_put(b.last_rate_m_s, d, v);
     row_put(b.pr, d, b_pr + (a_pr - b_pr) * vexp(neg_c_pr * (displaced / splat(s.volume_unit_m3))));
   }
   const vd i_next = vabs(splat(s.weight_slow) * y_slow + splat(s.weight_fast) * y_fast);
