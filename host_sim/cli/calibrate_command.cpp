@@ -33,28 +33,36 @@ in |I|; A = 300, n = 2, beta = gamma, x0 = 0 held):
   spencer       Spencer et al. (1997)'s modified Bouc-Wen model, F = c1 y' + k1 (x - x0),
                 y' = (alpha z + c0 x' + k0 (x - y)) / (c0 + c1), z' of Bouc-Wen on x' - y'
 --law auto fits them all (--law bingham both Bingham transitions; --transition linear or
-tanh only one); spencer takes no extra and auto chooses it only on --check records; its fit
-weighs each record alike (a record's squared residuals over its number of samples) and has no
-force-channel lag (force_delay_s 0: c1 and z's pre-yield are the force's lag at reversals).
+tanh only one); spencer takes no extra and auto chooses it only on --check records or by
+cross-validation (below); its fit weighs each record alike (a record's squared residuals over
+its number of samples) and has no force-channel lag (force_delay_s 0: c1 and z's pre-yield are
+the force's lag at reversals).
 Each other form is then fitted again with each extra in turn, on top of those kept before:
   transition time (bingham only): TF's band widens to v_tf_m_s + transition_time_s |a|, so the
     force builds over a time after a reversal, not over a velocity      transition_time_s
   lost motion: a share of the force builds only after the piston has moved m_per_n * Y(I)
     past a reversal (a plateau after each reversal, longer at higher current)   m_per_n, share
-and then, with --check records only (bingham):
+and then, with --check records or cross-validation only (bingham):
   current exponent: value(I) = limit + (at_zero - limit) exp(-rate_per_a |I|^q), q fitted per
     law (q > 1: a force that rises slowly at low current, an S-shaped law)   current_exponent
   viscous exponent: C v becomes C v_r (|v| / v_r)^m sgn v (Herschel-Bulkley; v_r the records'
     median peak velocity, held)                          viscous_exponent, viscous_ref_m_s
   stiffness: a spring k x beside the law (the accumulator's gas charge)     stiffness_n_m
 An extra is kept when it lowers the BIC by 10 or more, its parameters are off their bounds and
-it also lowers the RMS gap of the --check records (without --check it is reported, never
-kept; --no-transition-time, --no-lost-motion: not fitted). The form chosen: of the laws each
-with the extras it kept, the lowest RMS gap on the --check records; without --check, the
-lowest BIC. So the check records' gaps are those of a validation set; --test records are
+it also lowers the RMS gap of the --check records (--no-transition-time, --no-lost-motion: not
+fitted). The form chosen: of the laws each with the extras it kept, the lowest RMS gap on the
+--check records. So the check records' gaps are those of a validation set; --test records are
 judged only after everything is chosen (an untouched test set). A note says when every
 check record repeats the amplitude and frequency of a fitted one (within 1.25x): such a
 check judges the current laws, not other motions.
+Without --check, the --measured records' own motions judge (cross-validation): the records are
+grouped by motion (half range and dominant frequency within 1.25x of a group's first record),
+and each candidate is fitted again to the records of the other motions, from its fit to all,
+with its gap taken on the motion left out, for each motion in turn; the RMS of those gaps
+stands for the check records' above, and the chosen form keeps its fit to all the records
+(summary.json cross_validation: the records of each motion). It takes about as many fits again
+as there are motions. With one motion, or --no-cross-validation, no extra is kept (each is
+fitted and reported) and the form is the one of lowest BIC.
 --floors fits the chosen form again to each record alone (its current laws constants at the
 record's current), from the calibrated baseline: that record's floor, the gap no one model of
 the form gets below on it. A gap above its floor is what the form loses by being one model for
@@ -100,6 +108,7 @@ struct CalibrateCliOptions {
   bool no_viscous_exponent = false;
   bool no_stiffness = false;
   bool floors = false;
+  bool no_cross_validation = false;
   std::string transition = "auto";
   std::string lost_motion_form = "both";
 };
@@ -129,6 +138,8 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_flag("--no-current-exponent", o.no_current_exponent, "Do not try the current laws' exponent (bingham)");
   app.add_flag("--no-viscous-exponent", o.no_viscous_exponent, "Do not try the viscous force's exponent (bingham)");
   app.add_flag("--no-stiffness", o.no_stiffness, "Do not try a spring beside the law (bingham)");
+  app.add_flag("--no-cross-validation", o.no_cross_validation,
+               "Without --check, keep no extra and choose the form by BIC instead of leaving out each motion in turn");
   app.add_flag("--floors", o.floors,
                "Also fit the chosen form to each record alone: its floor on the record, beside the gap (one fit per "
                "record)");
@@ -142,6 +153,7 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   opt.current_exponent = !o.no_current_exponent;
   opt.viscous_exponent = !o.no_viscous_exponent;
   opt.stiffness = !o.no_stiffness;
+  opt.cross_validate = !o.no_cross_validation;
   if (o.transition == "linear") {
     opt.transition = discrepancy::TransitionShape::linear;
   } else if (o.transition == "tanh") {

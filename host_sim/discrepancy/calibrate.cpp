@@ -992,6 +992,27 @@ bool check_repeats_fitted_motions(std::span<const MeasuredData> records, std::sp
 
 }  // namespace
 
+std::vector<std::vector<std::size_t>> motion_groups(std::span<const MeasuredData> records,
+                                                    double smoothing_half_window_s) {
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<ValidityRange> first;  // each group's first record's motion
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const ValidityRange m = validity_range(records.subspan(i, 1), smoothing_half_window_s);
+    const auto same = [&](const ValidityRange& f) {
+      return coverage_notes(f, m.amplitude_max_m, m.frequency_max_hz, 0.0).empty() &&
+             coverage_notes(m, f.amplitude_max_m, f.frequency_max_hz, 0.0).empty();
+    };
+    std::size_t g = 0;
+    while (g < first.size() && !same(first[g])) ++g;
+    if (g == first.size()) {
+      first.push_back(m);
+      groups.emplace_back();
+    }
+    groups[g].push_back(i);
+  }
+  return groups;
+}
+
 CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options,
                             std::span<const MeasuredData> check) {
   if (records.empty()) throw io::UsageError("calibrate: expected at least one measured record");
@@ -1064,24 +1085,70 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   // on top of what was kept before. An extra is kept only when it earns its
   // parameters: a BIC lower by kBicMargin, parameters a fit can tell from
   // none (off their search bounds), a plausible size, and a lower RMS gap on
-  // check records it was not fitted to. Without check records it is
-  // reported, not kept: on the fitted records alone any extra freedom wins
-  // against a model-form error (a smooth tanh transition took the lost
-  // motion at ΔBIC 10^4).
+  // check records it was not fitted to (or, without them, on each of the
+  // records' motions left out in turn). With neither it is reported, not
+  // kept: on the fitted records alone any extra freedom wins against a
+  // model-form error (a smooth tanh transition took the lost motion at
+  // ΔBIC 10^4).
   //
   // The form is chosen only after its extras (below): a plain form can
   // stand in for an extra of another (the tanh turn-over of Eq. 4.4 records
   // with a lost motion wins against plain Eq. 4.4, ΔBIC 95), and the extras
   // fitted on that wrong shape would then be lost.
   const double amp_min = *std::min_element(p.half_range_m.begin(), p.half_range_m.end());
-  // RMS gap of fit i on the check records, computed once per fit.
+  // Without check records, the records' own motions judge in turn: each
+  // motion left out, the candidate fitted again to the others from its fit
+  // to all (fit_law's start_at), and the gaps of the left-out records pooled
+  // over the motions. The same question as check records ask (does it hold
+  // on a motion it was not fitted to?), on every motion the user measured.
+  struct Fold {
+    std::vector<MeasuredData> train_records;  ///< kept alive: `train` refers to their samples
+    Prepared train;
+    std::vector<MeasuredData> held;
+  };
+  std::vector<Fold> folds;
+  if (check.empty() && options.cross_validate && records.size() >= 2) {
+    std::vector<std::vector<std::size_t>> groups = motion_groups(records, options.smoothing_half_window_s);
+    if (groups.size() >= 2) {
+      folds.resize(groups.size());
+      for (std::size_t k = 0; k < groups.size(); ++k) {
+        Fold& f = folds[k];
+        for (std::size_t i = 0; i < records.size(); ++i) {
+          if (std::find(groups[k].begin(), groups[k].end(), i) != groups[k].end())
+            f.held.push_back(records[i]);
+          else
+            f.train_records.push_back(records[i]);
+        }
+        f.train = prepare(f.train_records, options);
+      }
+      res.cross_validation_groups = std::move(groups);
+      res.notes.push_back("no --check records: the extras and the form judged by leaving out each of the records' " +
+                          std::to_string(folds.size()) +
+                          " motions in turn (fitted to the others, the gap taken on it)");
+    }
+  }
+  const bool judged = !check.empty() || !folds.empty();
+  // RMS gap of fit i on the check records (or over the left-out motions),
+  // computed once per fit.
   std::map<std::size_t, double> check_gaps;
   const auto check_gap = [&](std::size_t i) {
     const auto [at, fresh] = check_gaps.try_emplace(i, 0.0);
-    if (fresh)
+    if (!fresh) return at->second;
+    if (folds.empty()) {
       at->second = rms_over_records(baseline_gaps(res.fits[i].baseline, check, options.smoothing_half_window_s));
+      return at->second;
+    }
+    const Baseline& b = res.fits[i].baseline;
+    std::vector<double> gaps;
+    for (const Fold& f : folds) {
+      const LawFit g = fit_law(f.train, b.law, b.tanh_transition, options, nullptr, extras_of(b), &b);
+      const std::vector<double> held = baseline_gaps(g.baseline, f.held, options.smoothing_half_window_s);
+      gaps.insert(gaps.end(), held.begin(), held.end());
+    }
+    at->second = rms_over_records(gaps);
     return at->second;
   };
+  const std::string judge = folds.empty() ? "the check records" : "the left-out motions";
   // Tries `add` on top of fit `cur`; returns the index of the fit kept.
   const auto try_extra = [&](std::size_t cur, Extras add, const std::string& implausible) -> std::size_t {
     std::vector<Slot> slots;  // the new extra's parameters
@@ -1125,14 +1192,14 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
                           io::format_number("%.0f", kBicMargin) + ")");
       return cur;
     }
-    if (check.empty()) {
+    if (!judged) {
       res.notes.push_back(name + ": not kept, lower BIC on the fitted records (delta " + delta +
-                          ") but no --check records to show that it generalizes");
+                          ") but no --check records or second motion to show that it generalizes");
       return cur;
     }
     const double with = check_gap(res.fits.size() - 1);
     const double without = check_gap(cur);
-    const std::string numbers = "RMS gap on the check records " + io::format_number("%.4f", with) + " against " +
+    const std::string numbers = "RMS gap on " + judge + " " + io::format_number("%.4f", with) + " against " +
                                 io::format_number("%.4f", without) + " without";
     if (with < without) {
       res.notes.push_back(name + ": kept, it generalizes (BIC delta " + delta + "; " + numbers + ")");
@@ -1168,7 +1235,7 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     }
     // The law's shape (baseline.hpp): only with check records, the only ones
     // that can keep it (each is a fit of its own on every record).
-    if (res.fits[cur].baseline.law == BaseLaw::bingham && !check.empty()) {
+    if (res.fits[cur].baseline.law == BaseLaw::bingham && judged) {
       if (options.current_exponent && p.currents_a.size() >= 3)
         cur = try_extra(cur, {.current_exponent = true}, "a current exponent on its search bound");
       if (options.viscous_exponent)
@@ -1179,30 +1246,31 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   }
   const bool bingham_fitted = std::any_of(res.fits.begin(), res.fits.end(),
                                           [](const LawFit& f) { return f.baseline.law == BaseLaw::bingham; });
-  if (check.empty() && bingham_fitted && (options.current_exponent || options.viscous_exponent || options.stiffness))
+  if (!judged && bingham_fitted && (options.current_exponent || options.viscous_exponent || options.stiffness))
     res.notes.push_back(
-        "the Bingham law's current exponent, viscous exponent and stiffness: not fitted (no --check records to show "
-        "that they generalize)");
-  // Without check records no extra is kept and the plain forms are
-  // chosen by BIC. With them, each form with its kept extras is judged on
-  // them too: the BIC of the fitted records alone prefers whichever form's
+        "the Bingham law's current exponent, viscous exponent and stiffness: not fitted (no --check records or second "
+        "motion to show that they generalize)");
+  // Without check records or a second motion no extra is kept and the
+  // plain forms are chosen by BIC. With them, each form with its kept
+  // extras is judged on them too: the BIC of the fitted records alone prefers whichever form's
   // extra absorbs the most of a model-form error (on the laboratory damper,
   // Bouc–Wen with a lost motion by ΔBIC 197, at an RMS gap on held-out
   // records of 0.204 against 0.153).
   score();
   const auto better = [&](std::size_t a, std::size_t b) {
-    return check.empty() ? res.fits[a].bic < res.fits[b].bic : check_gap(a) < check_gap(b);
+    return !judged ? res.fits[a].bic < res.fits[b].bic : check_gap(a) < check_gap(b);
   };
   // Spencer's model, with its eleven parameters, is chosen by `auto` only on
   // check records: on the fitted records alone its freedom wins by BIC
   // against the others' model-form error whether or not it generalizes
   // (as for the extras above).
-  const bool spencer_choosable = options.law.has_value() || !check.empty();
+  const bool spencer_choosable = options.law.has_value() || judged;
   std::vector<std::size_t> candidates;
   for (const std::size_t i : finals)
     if (spencer_choosable || res.fits[i].baseline.law != BaseLaw::spencer) candidates.push_back(i);
   if (candidates.size() < finals.size())
-    res.notes.push_back("spencer: fitted and reported, not chosen: no --check records to show that it generalizes");
+    res.notes.push_back(
+        "spencer: fitted and reported, not chosen: no --check records or second motion to show that it generalizes");
   res.chosen = candidates.front();
   for (const std::size_t i : candidates)
     if (better(i, res.chosen)) res.chosen = i;
@@ -1214,10 +1282,10 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     } else {
       std::string& why = res.choice_reason;
       why = (given.empty() ? "" : given + "; ") + baseline_form_name(c.baseline);
-      if (check.empty()) {
+      if (!judged) {
         why += ": the form of lowest BIC";
       } else {
-        why += ": of the forms each with the extras that generalized, the lowest RMS gap on the check records (" +
+        why += ": of the forms each with the extras that generalized, the lowest RMS gap on " + judge + " (" +
                io::format_number("%.4f", check_gap(res.chosen));
         for (const std::size_t i : candidates)
           if (i != res.chosen)

@@ -127,6 +127,12 @@ struct CalibrateOptions {
   /// Also fit the chosen Bingham law's current laws with their exponents q
   /// (CurrentLaw, baseline.hpp), before the two above; three currents or more.
   bool current_exponent = true;
+  /// Without check records, judge the extras and the form by leaving out
+  /// one motion at a time (motion_groups): each candidate fitted again to
+  /// the records of the other motions, from its fit to all of them, and its
+  /// gap taken on the motion left out. Needs two motions or more; with one,
+  /// or false, the extras are reported and not kept, as before.
+  bool cross_validate = true;
   std::size_t samples_per_record = 4000;
   double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s;
   std::string name = "calibrated";  ///< Baseline::name of the result
@@ -151,6 +157,9 @@ struct CalibrationResult {
   std::vector<std::size_t> record_samples;     ///< samples per record in the fit
   std::vector<double> currents_a;              ///< distinct commanded currents found
   std::vector<std::string> notes;              ///< what was held and why
+  /// Without check records, the motions that judged by leaving each out in
+  /// turn (indices into the records; empty: not cross-validated).
+  std::vector<std::vector<std::size_t>> cross_validation_groups;
   [[nodiscard]] const LawFit& best() const { return fits.at(chosen); }
 };
 
@@ -160,10 +169,20 @@ struct CalibrationResult {
 ///
 /// `check` records (the same damper, not fitted) judge whether an extra
 /// (transition time, lost motion) generalizes: it is kept only if it also
-/// lowers the RMS over them of the per-record gaps; without check records it
-/// is fitted and reported but never kept.
+/// lowers the RMS over them of the per-record gaps. Without check records,
+/// the records' motions judge in turn (CalibrateOptions::cross_validate):
+/// the RMS gap of the records of each motion under the candidate fitted to
+/// the others; with one motion an extra is fitted and reported but never kept.
 [[nodiscard]] CalibrationResult calibrate(std::span<const MeasuredData> records, const CalibrateOptions& options = {},
                                           std::span<const MeasuredData> check = {});
+
+/// The records grouped by motion: two records share a group when each's
+/// half range and dominant frequency are within kCoverageFactor of the
+/// group's first record's (baseline_check.hpp). Indices into `records`,
+/// groups in order of their first record.
+[[nodiscard]] std::vector<std::vector<std::size_t>> motion_groups(std::span<const MeasuredData> records,
+                                                                  double smoothing_half_window_s =
+                                                                      kDefaultSmoothingHalfWindow_s);
 
 /// normalized_rms_gap of `baseline` on each record at full rate, over the
 /// samples where the actuator moves (moving_span, damper_model.hpp).

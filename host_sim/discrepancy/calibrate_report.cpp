@@ -183,11 +183,21 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
   const json held = per_record(h);
   const json test_json = per_record(test);
   const ValidityRange& v = r.best().baseline.range;
+  json motions = nullptr;  // the records of each motion left out in turn, or null
+  if (!r.cross_validation_groups.empty()) {
+    motions = json::array();
+    for (const auto& g : r.cross_validation_groups) {
+      json names = json::array();
+      for (const std::size_t i : g) names.push_back(r.sources.at(i));
+      motions.push_back(std::move(names));
+    }
+  }
   return {{"chosen_law", baseline_form_name(r.best().baseline)},
           {"choice_reason", r.choice_reason},
           {"records", r.sources},
           {"currents_a", r.currents_a},
           {"notes", r.notes},
+          {"cross_validation", motions},
           {"warnings", warnings},
           {"fits", fits},
           {"held_out", held},

@@ -65,8 +65,9 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   EXPECT_NEAR(f.baseline.v_tf_m_s, 0.005, 0.0005);
   const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
   // The law given with either transition, then each with a transition time
-  // and with the lost motion in the form asked for: no --check records, so
-  // none is kept.
+  // and with the lost motion in the form asked for: no --check records and
+  // one motion (5 mm at 1 Hz) to leave out, so none is kept.
+  EXPECT_TRUE(j["cross_validation"].is_null()) << j["cross_validation"].dump();
   EXPECT_EQ(j["chosen_law"], "bingham_tanh");
   ASSERT_EQ(j["fits"].size(), 6u);
   EXPECT_EQ(j["fits"][0]["law"], "bingham");
@@ -174,6 +175,30 @@ TEST_F(CalibrateCli, TestRecordsAreJudgedButChooseNothing) {
   EXPECT_NE(r1.out.find("floor:"), std::string::npos) << r1.out;
   EXPECT_EQ(r0.out.find("floor:"), std::string::npos) << r0.out;
   EXPECT_NE(slurp(out_.path() / "report.md").find("the chosen form fitted to the record alone"), std::string::npos);
+}
+
+// Without --check, two motions (5 mm at 1 Hz, 2 mm at 3 Hz) judge each
+// other: summary.json names the records of each, the notes say so; with
+// --no-cross-validation the extras are only reported, as with one motion.
+TEST_F(CalibrateCli, TwoMotionsJudgeEachOtherWithoutCheckRecords) {
+  const auto a = record("a.csv", 0.0), b = record("b.csv", 1.0);
+  const auto c = record("c.csv", 0.0, 0.002, 3.0), d = record("d.csv", 1.0, 0.002, 3.0);
+  const std::string common = "calibrate --measured " + a.string() + " " + c.string() + " " + b.string() + " " +
+                             d.string() + " --law bingham --transition tanh --no-lost-motion --no-plots";
+  const auto r = run_mrd(common + " --out " + out_.path().string(), scratch_.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));
+  using nlohmann::json;
+  const json want = json::array({json::array({a.string(), b.string()}), json::array({c.string(), d.string()})});
+  EXPECT_EQ(j["cross_validation"], want) << j["cross_validation"].dump();
+  EXPECT_NE(r.out.find("leaving out each of the records' 2 motions"), std::string::npos) << r.out;
+  EXPECT_NE(j["choice_reason"].get<std::string>().find("left-out motions"), std::string::npos) << j["choice_reason"];
+  TempDir plain;
+  const auto n = run_mrd(common + " --no-cross-validation --out " + plain.path().string(), scratch_.path());
+  ASSERT_EQ(n.exit_code, 0) << n.err;
+  const auto k = nlohmann::json::parse(slurp(plain.path() / "summary.json"));
+  EXPECT_TRUE(k["cross_validation"].is_null());
+  EXPECT_NE(k["choice_reason"].get<std::string>().find("lowest BIC"), std::string::npos) << k["choice_reason"];
 }
 
 TEST_F(CalibrateCli, MissingMeasuredIsAUsageError) {

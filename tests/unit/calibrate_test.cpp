@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "host_sim/discrepancy/baseline_file.hpp"
@@ -147,6 +148,9 @@ TEST(Calibrate, RecoversABinghamDamperWithinItsUncertainty) {
   EXPECT_FALSE(r.best().baseline.has_tanh_transition()) << r.choice_reason;
   EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
   EXPECT_FALSE(r.best().baseline.has_transition_time()) << r.choice_reason;
+  // No check records: the two motions (5 mm / 1 Hz, 2 mm / 3 Hz) judged in
+  // turn, and they keep nothing the damper does not have.
+  EXPECT_EQ(r.cross_validation_groups.size(), 2u);
   EXPECT_EQ(r.currents_a.size(), 5u);
   expect_recovered(truth, r.best());
   // 3 % white noise: the normalized gap is about 0.03 on every record.
@@ -188,6 +192,45 @@ TEST(Calibrate, GapsLeaveOutTheStandstillBeforeAndAfter) {
   EXPECT_GT(normalized_rms_gap(d.force_n, f), 0.1);
 }
 
+// motion_groups: a record joins a group when its half range and dominant
+// frequency are within 1.25× of the group's first record's, both ways. 5 mm
+// at 1 Hz and 5.5 mm at 1.1 Hz (ratios 1.1) are one motion at two currents;
+// 6.5 mm at 1 Hz (1.3×) and 5 mm at 1.3 Hz are not; 2 mm at 3 Hz is another.
+TEST(Calibrate, MotionGroupsGatherTheRecordsOfOneStrokeAndFrequency) {
+  const Baseline truth = small_damper(BaseLaw::bingham);
+  std::vector<MeasuredData> recs;
+  unsigned seed = 7;
+  for (const auto& [amp_m, freq_hz, i] : std::vector<std::tuple<double, double, double>>{
+           {0.005, 1.0, 0.0}, {0.002, 3.0, 0.5}, {0.0055, 1.1, 1.0}, {0.0065, 1.0, 0.5}, {0.002, 3.0, 1.0},
+           {0.005, 1.3, 0.0}})
+    recs.push_back(synth_record(truth, amp_m, freq_hz, i, 3.0, 0.03, seed++));
+  const std::vector<std::vector<std::size_t>> g = motion_groups(recs);
+  const std::vector<std::vector<std::size_t>> want{{0, 2}, {1, 4}, {3}, {5}};
+  EXPECT_EQ(g, want);
+}
+
+// One motion at five currents: nothing to leave out, so an extra the
+// records show (the lost motion of RecoversALostMotionAndKeepsIt) is fitted
+// and reported, not kept, as without cross-validation.
+TEST(Calibrate, OneMotionKeepsNoExtraWithoutCheckRecords) {
+  Baseline truth = small_damper(BaseLaw::bingham);
+  truth.lost_motion_m_per_n = 2e-7;
+  truth.lost_motion_share = 0.5;
+  std::vector<MeasuredData> recs;
+  unsigned seed = 40;
+  for (const double i : {0.0, 0.25, 0.5, 0.75, 1.0})
+    recs.push_back(synth_record(truth, 0.005, 1.0, i, 3.0, 0.03, seed++));
+  CalibrateOptions opt = test_options();
+  opt.law = BaseLaw::bingham;
+  opt.transition = TransitionShape::linear;
+  opt.lost_motion_form = LostMotionForm::share;
+  const CalibrationResult r = calibrate(recs, opt);
+  EXPECT_TRUE(r.cross_validation_groups.empty());
+  ASSERT_EQ(r.fits.size(), 3u);
+  EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
+  EXPECT_NE(r.choice_reason.find("lowest BIC"), std::string::npos) << r.choice_reason;
+}
+
 TEST(Calibrate, RecoversABoucWenDamperAndAutoPrefersIt) {
   const Baseline truth = small_damper(BaseLaw::bouc_wen);
   const std::vector<MeasuredData> recs = synth_set(truth);
@@ -221,13 +264,24 @@ TEST(Calibrate, RecoversALostMotionAndKeepsIt) {
   std::vector<MeasuredData> check;
   unsigned seed = 100;
   for (const double i : {0.0, 0.5, 1.0}) check.push_back(synth_record(truth, 0.0035, 2.0, i, 3.0, 0.03, seed++));
-  // Without them the lost motion is fitted but not kept (whatever the
-  // transition: Eq. 4.4's only here).
+  // Without them (Eq. 4.4's transition only here) the records' two motions
+  // judge in turn: each fitted to the other, the lost motion holds on the
+  // one left out, at the noise's gap (3 %), and is kept.
   CalibrateOptions linear = opt;
   linear.transition = TransitionShape::linear;
   const CalibrationResult alone = calibrate(recs, linear);
   ASSERT_EQ(alone.fits.size(), 3u);
-  EXPECT_FALSE(alone.best().baseline.has_lost_motion()) << alone.choice_reason;
+  ASSERT_EQ(alone.cross_validation_groups.size(), 2u);
+  EXPECT_TRUE(alone.best().baseline.has_lost_motion()) << alone.choice_reason;
+  const std::size_t at = alone.choice_reason.find("left-out motions (");
+  ASSERT_NE(at, std::string::npos) << alone.choice_reason;
+  EXPECT_NEAR(std::stod(alone.choice_reason.substr(at + 18)), 0.03, 0.006) << alone.choice_reason;
+  // Neither check records nor cross-validation: fitted, not kept.
+  linear.cross_validate = false;
+  const CalibrationResult unjudged = calibrate(recs, linear);
+  ASSERT_EQ(unjudged.fits.size(), 3u);
+  EXPECT_TRUE(unjudged.cross_validation_groups.empty());
+  EXPECT_FALSE(unjudged.best().baseline.has_lost_motion()) << unjudged.choice_reason;
   // With both transitions: the plain tanh form has the lower BIC here (its
   // smooth turn-over stands in for part of the plateau), so the transition
   // must be chosen after the extras, not before them.
