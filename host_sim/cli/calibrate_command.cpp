@@ -33,10 +33,10 @@ in |I|; A = 300, n = 2, beta = gamma, x0 = 0 held):
   spencer       Spencer et al. (1997)'s modified Bouc-Wen model, F = c1 y' + k1 (x - x0),
                 y' = (alpha z + c0 x' + k0 (x - y)) / (c0 + c1), z' of Bouc-Wen on x' - y'
 --law auto fits them all (--law bingham both Bingham transitions; --transition linear or
-tanh only one); spencer takes no extra and auto chooses it only on --check records or by
-cross-validation (below); its fit weighs each record alike (a record's squared residuals over
-its number of samples) and has no force-channel lag (force_delay_s 0: c1 and z's pre-yield are
-the force's lag at reversals).
+tanh only one); spencer takes no extra and auto chooses it only on --check records (not by the
+cross-validation below: a fit through its ODE per motion left out); its fit weighs each record
+alike (a record's squared residuals over its number of samples) and has no force-channel lag
+(force_delay_s 0: c1 and z's pre-yield are the force's lag at reversals).
 Each other form is then fitted again with each extra in turn, on top of those kept before:
   transition time (bingham only): TF's band widens to v_tf_m_s + transition_time_s |a|, so the
     force builds over a time after a reversal, not over a velocity      transition_time_s
