@@ -1233,8 +1233,9 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
       }
       cur = kept;
     }
-    // The law's shape (baseline.hpp): only with check records, the only ones
-    // that can keep it (each is a fit of its own on every record).
+    // The law's shape (baseline.hpp): only with check records or motions to
+    // leave out, the only ones that can keep it (each is a fit of its own on
+    // every record).
     if (res.fits[cur].baseline.law == BaseLaw::bingham && judged) {
       if (options.current_exponent && p.currents_a.size() >= 3)
         cur = try_extra(cur, {.current_exponent = true}, "a current exponent on its search bound");
@@ -1272,9 +1273,10 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   for (const std::size_t i : finals)
     if (spencer_choosable || res.fits[i].baseline.law != BaseLaw::spencer) candidates.push_back(i);
   if (candidates.size() < finals.size())
-    res.notes.push_back(
-        "spencer: fitted and reported, not chosen: no --check records to show that it generalizes (auto does not "
-        "cross-validate it: a fit through its ODE per motion left out)");
+    res.notes.push_back(std::string("spencer: fitted and reported, not chosen: no --check records to show that it "
+                                    "generalizes") +
+                        (folds.empty() ? "" : " (auto does not cross-validate it: a fit through its ODE per motion "
+                                              "left out)"));
   res.chosen = candidates.front();
   if (candidates.size() > 1)
     for (const std::size_t i : candidates)
