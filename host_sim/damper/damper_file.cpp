@@ -203,7 +203,8 @@ void require_law_for(const DamperFile& d, const std::string& command) {
     if (command == ok) return;
   throw io::UsageError(d.origin + ":" + std::to_string(std::max(d.law_line, 1)) + ": model.law: " +
                        "\"spencer\" is simulated in the closed loop (mrd sim, sine, sweep, study, settle, fragility, "
-                       "rths); mrd " + command + " models the damper by its Bingham laws (its estimator or board)");
+                       "rths); mrd " + command + " models the damper by its Bingham laws (its estimator or board): a Bingham "
+                       "calibration of the same records serves it (mrd calibrate --law bingham)");
 }
 
 physics::SettlingParams with_geometry(physics::SettlingParams settling, const discrepancy::DamperGeometry& g) {
