@@ -60,9 +60,11 @@ grouped by motion (half range and dominant frequency within 1.25x of a group's f
 and each candidate is fitted again to the records of the other motions, from its fit to all,
 with its gap taken on the motion left out, for each motion in turn; the RMS of those gaps
 stands for the check records' above, and the chosen form keeps its fit to all the records
-(summary.json cross_validation: the records of each motion). It takes about as many fits again
-as there are motions. With one motion, or --no-cross-validation, no extra is kept (each is
-fitted and reported) and the form is the one of lowest BIC.
+(summary.json cross_validation: the records left out together). It takes about as many fits again
+as there are motions; beyond 5 motions they are dealt in order of stroke to 5 folds, each left
+out in turn. With one motion, or --no-cross-validation, no extra is kept (each is fitted and
+reported) and the form is the one of lowest BIC. From 3 motions on (or with --check) the
+expected gap also covers each record's gap where it was left out (or the check records').
 --floors fits the chosen form again to each record alone (its current laws constants at the
 record's current), from the calibrated baseline: that record's floor, the gap no one model of
 the form gets below on it. A gap above its floor is what the form loses by being one model for
@@ -87,8 +89,9 @@ twice is refused. Records whose values are probably in another unit (a displacem
 above 1 m, a velocity above 10 m/s, a current above 20 A) or of another damper (peak forces more
 than 10 times beyond what their currents and velocities allow one damper) are warned about.
 Files: damper.toml; summary.json (chosen_law, choice_reason, records, currents_a, notes, warnings, fits:
-law, parameters {value, sigma, fitted, at_bound}, record_gaps, expected_gap, samples,
-rss_normalized, n_eff, bic; held_out: gap per law of the --check records; test: the same for
+law, parameters {value, sigma, fitted, at_bound}, record_gaps, held_out_gaps (on the --check
+records, or each record of a motion left out and fitted to the others; [] where not judged),
+expected_gap (the largest of both) with expected_gap_basis, samples, rss_normalized, n_eff, bic; held_out: gap per law of the --check records; test: the same for
 the --test records, and test_gap_rms: the chosen form's RMS gap over them; floors: measured,
 check and test lists with --floors, else null; validity);
 report.md; loops_<n>.png per --measured record (force-velocity and force-displacement; the

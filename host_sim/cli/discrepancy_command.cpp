@@ -65,8 +65,9 @@ Fields of DIR/summary.json:
   velocity, coil_current   measured, or derived (velocity) / commanded (coil current)
   findings           sentences behind the verdict (numbers, where, what it looks like, rejections)
   warnings           values of the record probably in another unit (see above)
-  baseline           name, expected_gap, mismatch, mismatch_reasons, force_ratio (least-squares
-                     measured/baseline) with min_force_ratio and max_force_ratio, record ranges,
+  baseline           name, expected_gap, expected_gap_basis, mismatch, mismatch_reasons,
+                     force_ratio (least-squares measured/baseline) with min_force_ratio and
+                     max_force_ratio, record ranges,
                      outside_coverage (an amplitude or frequency beyond those calibrated on, or a
                      current that changes where the baseline's coil was not identified)
   effects            the explanation, in the order added ([] unless explained)

@@ -8,6 +8,25 @@
 
 namespace mrd::discrepancy {
 
+const char* gap_basis_name(GapBasis basis) noexcept {
+  switch (basis) {
+    case GapBasis::calibration_records: return "calibration_records";
+    case GapBasis::check_records: return "check_records";
+    case GapBasis::left_out_motions: return "left_out_motions";
+  }
+  return "calibration_records";
+}
+
+const char* gap_basis_phrase(GapBasis basis) noexcept {
+  switch (basis) {
+    case GapBasis::calibration_records: return "the records it was calibrated on";
+    case GapBasis::check_records: return "the records it was calibrated on and the check records";
+    case GapBasis::left_out_motions:
+      return "the records it was calibrated on and each of their motions left out of a fit to the others";
+  }
+  return "the records it was calibrated on";
+}
+
 const char* base_law_name(BaseLaw law) noexcept {
   switch (law) {
     case BaseLaw::bouc_wen: return "bouc_wen";

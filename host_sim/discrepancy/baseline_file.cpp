@@ -120,6 +120,16 @@ bool transition_named(Table& t, const std::string& origin, const std::string& fi
   fail(origin, t.where("transition"), field, "expected \"linear\" or \"tanh\", got \"" + s + "\"");
 }
 
+/// The `expected_gap_basis` key of table `t` (absent in files written before
+/// it: the calibration records).
+GapBasis gap_basis_named(Table& t, const std::string& origin) {
+  const std::string s = t.string("expected_gap_basis");
+  for (const GapBasis b : {GapBasis::calibration_records, GapBasis::check_records, GapBasis::left_out_motions})
+    if (s == gap_basis_name(b)) return b;
+  fail(origin, t.where("expected_gap_basis"), t.field("expected_gap_basis"),
+       "expected \"calibration_records\", \"check_records\" or \"left_out_motions\", got \"" + s + "\"");
+}
+
 /// The standard error `key` of a quantity of range `r`: 0 when absent (a
 /// value written by hand, not fitted).
 double sigma_of(Table& t, const char* key, const PhysicalRange& r) {
@@ -371,7 +381,9 @@ std::string baseline_toml(const BaselineFile& f) {
   t += "amplitude_max_m = " + num(v.amplitude_max_m) + "\n";
   t += "frequency_min_hz = " + num(v.frequency_min_hz) + "\n";
   t += "frequency_max_hz = " + num(v.frequency_max_hz) + "\n";
-  t += "expected_gap = " + num(b.expected_gap) + "  # largest normalized RMS gap of the calibration records\n";
+  t += "expected_gap = " + num(b.expected_gap) + "  # largest normalized RMS gap on the records below\n";
+  t += std::string("expected_gap_basis = \"") + gap_basis_name(b.expected_gap_basis) + "\"  # " +
+       gap_basis_phrase(b.expected_gap_basis) + "\n";
   if (f.rating) {
     t += "\n[rating]  # what the damper is rated for (a closed loop's limits)\n";
     t += "current_a = " + num(f.rating->current_a) + "\n";
@@ -524,6 +536,7 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
     r.frequency_min_hz = v.in("frequency_min_hz", kRecordFrequencyRange);
     r.frequency_max_hz = v.in("frequency_max_hz", kRecordFrequencyRange);
     b.expected_gap = v.in("expected_gap", kGapRange);
+    if (v.has("expected_gap_basis")) b.expected_gap_basis = gap_basis_named(v, origin);
     const auto order = [&](double lo, double hi, const char* key, const char* what) {
       if (lo > hi) fail(origin, v.where(key), v.field(key), std::string("expected at least ") + what + " (" + num(lo) + ")");
     };

@@ -30,7 +30,8 @@
 ///                    thermal_resistance_k_w (with resistance_ohm), thermal_time_constant_s
 ///                    (optional: the coil's heating, mrd/physics/coil_heat.hpp)
 ///   [participant_ratio]  Table 5.6 coefficients, flow_area_m2, volume_unit_m3, identified
-///   [validity]       current_min_a … frequency_max_hz, expected_gap
+///   [validity]       current_min_a … frequency_max_hz, expected_gap, expected_gap_basis (optional:
+///                    "calibration_records" when absent)
 ///   [rating]         current_a, force_n, stroke_m (± from the centre), velocity_m_s (optional:
 ///                    what a closed loop holds the damper to; host_sim/damper derives it from
 ///                    [validity] when absent)

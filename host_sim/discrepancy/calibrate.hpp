@@ -87,6 +87,11 @@ struct LawFit {
   CurrentLawFitted yield_fitted, viscous_fitted;
   std::vector<ParamEstimate> params;  ///< every parameter of the law, fitted or held
   std::vector<double> record_gaps;    ///< normalized_rms_gap per record, full rate, over its moving_span
+  /// The same on records this form was not fitted to, where the calibration
+  /// judged it: each check record, or each record of a motion left out
+  /// (the form fitted again to the other motions); empty where not judged.
+  std::vector<double> held_out_gaps;
+  std::vector<std::string> held_out_sources;  ///< the record of each held_out_gaps entry
   std::size_t samples = 0;            ///< residuals in the joint fit
   double rss = 0.0;                   ///< Σ of the normalized residuals squared (dimensionless)
   double n_eff = 0.0;                 ///< Σ over records of effective_sample_count(residual)
@@ -163,9 +168,16 @@ struct CalibrationResult {
   [[nodiscard]] const LawFit& best() const { return fits.at(chosen); }
 };
 
+/// Motions left out in turn (cross-validation) from which their gaps count
+/// in the expected gap: with fewer, each fold is fitted to too little of what
+/// the calibration fits (calibrate()).
+inline constexpr std::size_t kExpectedGapMinMotions = 3;
+
 /// Fits the baseline to `records` jointly. The chosen fit's baseline carries
 /// the validity range of the records and expected_gap = its largest
-/// per-record gap. Throws io::UsageError when there is no record.
+/// per-record gap, on the records it was fitted to and on the check records
+/// or, from kExpectedGapMinMotions motions on, each motion left out
+/// (LawFit::held_out_gaps; Baseline::expected_gap_basis). Throws io::UsageError when there is no record.
 ///
 /// `check` records (the same damper, not fitted) judge whether an extra
 /// (transition time, lost motion) generalizes: it is kept only if it also
@@ -183,6 +195,20 @@ struct CalibrationResult {
 [[nodiscard]] std::vector<std::vector<std::size_t>> motion_groups(std::span<const MeasuredData> records,
                                                                   double smoothing_half_window_s =
                                                                       kDefaultSmoothingHalfWindow_s);
+
+/// At most this many folds in cross-validation: each fold is a fit per
+/// candidate form, so a campaign of many motions leaves out several at once.
+inline constexpr std::size_t kMaxCrossValidationFolds = 5;
+
+/// The records left out together in cross-validation: each motion
+/// (motion_groups) its own fold up to kMaxCrossValidationFolds motions;
+/// beyond, the motions in order of half range (then dominant frequency)
+/// dealt to the folds in turn, so that each fold leaves out motions spread
+/// over the strokes rather than one end of them.
+/// Indices into `records`, ascending within a fold; the folds in order of
+/// their first record.
+[[nodiscard]] std::vector<std::vector<std::size_t>> cross_validation_folds(
+    std::span<const MeasuredData> records, double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
 
 /// normalized_rms_gap of `baseline` on each record at full rate, over the
 /// samples where the actuator moves (moving_span, damper_model.hpp).

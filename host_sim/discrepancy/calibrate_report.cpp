@@ -25,10 +25,15 @@ json fit_json(const LawFit& f, const CalibrationResult& r) {
     params[p.name] = {{"value", p.value}, {"sigma", p.sigma}, {"fitted", p.fitted}, {"at_bound", p.at_bound}};
   json gaps = json::array();
   for (std::size_t i = 0; i < r.sources.size(); ++i) gaps.push_back({{"file", r.sources[i]}, {"gap", f.record_gaps[i]}});
+  json held = json::array();
+  for (std::size_t i = 0; i < f.held_out_gaps.size(); ++i)
+    held.push_back({{"file", f.held_out_sources[i]}, {"gap", f.held_out_gaps[i]}});
   return {{"law", baseline_form_name(f.baseline)},
           {"parameters", params},
           {"record_gaps", gaps},
+          {"held_out_gaps", held},
           {"expected_gap", f.baseline.expected_gap},
+          {"expected_gap_basis", gap_basis_name(f.baseline.expected_gap_basis)},
           {"samples", f.samples},
           {"rss_normalized", f.rss},
           {"n_eff", f.n_eff},
@@ -61,7 +66,12 @@ void plot_record(const std::filesystem::path& png, const MeasuredData& data, con
     if (!plain && i != r.chosen) continue;
     const DamperModel m(in, b);
     m.simulate(EffectSet{}, {}, ws, force);
-    const std::string label = baseline_form_name(b) + (i == r.chosen ? " (chosen)" : "");
+    // A form with many extras is named in report.md; in the key, its law
+    // and how many extras (a long name runs out of the key's box).
+    std::string name = baseline_form_name(b);
+    const auto extras = std::count(name.begin(), name.end(), '+');
+    if (name.size() > 40) name = name.substr(0, name.find('+')) + " + " + std::to_string(extras) + " extras";
+    const std::string label = name + (i == r.chosen ? " (chosen)" : "");
     fv.series.push_back({label, v_mm_s, thin(force, ls, 1e-3)});
     fx.series.push_back({label, x_mm, thin(force, ls, 1e-3)});
   }
@@ -140,7 +150,8 @@ std::string markdown(const CalibrationResult& r, const HeldOut& h, const HeldOut
   md += "\n## Validity range\n\ncurrent " + g4(v.current_min_a) + "-" + g4(v.current_max_a) + " A, |v| up to " +
         g4(v.velocity_max_m_s) + " m/s, |F| up to " + g4(v.force_peak_n) + " N, half range " + g4(v.amplitude_min_m) +
         "-" + g4(v.amplitude_max_m) + " m, frequency " + g4(v.frequency_min_hz) + "-" + g4(v.frequency_max_hz) +
-        " Hz; expected gap " + pct(r.best().baseline.expected_gap) + ".\n";
+        " Hz; expected gap " + pct(r.best().baseline.expected_gap) + " (the largest on " +
+        gap_basis_phrase(r.best().baseline.expected_gap_basis) + ").\n";
   if (plots) {
     md += "\n## Loops\n\n";
     for (std::size_t i = 0; i < r.sources.size(); ++i)
@@ -216,7 +227,8 @@ json calibration_json(const CalibrationResult& r, const HeldOut& h, const HeldOu
             {"amplitude_max_m", v.amplitude_max_m},
             {"frequency_min_hz", v.frequency_min_hz},
             {"frequency_max_hz", v.frequency_max_hz},
-            {"expected_gap", r.best().baseline.expected_gap}}}};
+            {"expected_gap", r.best().baseline.expected_gap},
+            {"expected_gap_basis", gap_basis_name(r.best().baseline.expected_gap_basis)}}}};
 }
 
 std::vector<std::string> write_calibration_outputs(const std::filesystem::path& dir,

@@ -211,7 +211,9 @@ std::string markdown(const MeasuredData& data, const DiscrepancyResult& r) {
         (r.velocity_derived ? "derived from the displacement" : "measured") + "; coil current " +
         (data.current_a.empty() ? "from the command (Eq. 4.5)" : "measured (Eq. 4.5's slow branch on it)") +
         ".\n\n";
-  md += "Baseline: " + r.baseline_name + " (expected gap " + pct(r.expected_gap) + ").\n\n";
+  md += "Baseline: " + r.baseline_name + " (expected gap " + pct(r.expected_gap) +
+        (r.expected_gap > 0.0 ? std::string(", the largest on ") + gap_basis_phrase(r.expected_gap_basis) : "") +
+        ").\n\n";
   md += "**Verdict: " + std::string(verdict_name(r.verdict)) + "**\n\n";
   for (const auto& f : r.findings) md += "- " + f + "\n";
   md += "\n**Effects named:** " + (r.effects.empty() ? std::string("none") : EffectSet{r.effects}.label()) + "\n\n";
@@ -305,6 +307,7 @@ json summary_json(const MeasuredData& data, const DiscrepancyResult& r, const Di
   j["warnings"] = r.warnings;
   j["baseline"] = json{{"name", r.baseline_name},
                        {"expected_gap", r.expected_gap},
+                       {"expected_gap_basis", gap_basis_name(r.expected_gap_basis)},
                        {"mismatch", r.baseline_check.mismatch},
                        {"mismatch_reasons", r.baseline_check.reasons},
                        {"force_ratio", r.baseline_check.force_ratio},

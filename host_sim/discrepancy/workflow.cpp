@@ -864,11 +864,14 @@ void decide_verdict(DiscrepancyResult& res, const DamperModel& model, const Sele
       describe_residual(res, sb, false);
       describe_rejections(res);
     } else {
-      const std::string why = res.gap_validation_before <= tolerance
-                                  ? std::string("within 1.25 times its expected gap")
-                                  : "without a shape (" + percent(std::max(sb.structured_share, 0.0)) +
-                                        " structured, below " + percent(kStructuredShare) + "): noise";
-      res.findings.push_back("No effect earned its parameters, and the baseline's held-out residual is " + why + ".");
+      const bool within = res.gap_validation_before <= tolerance;
+      const std::string why = within ? "within 1.25 times its expected gap, " + percent(res.expected_gap) +
+                                           " (the largest gap on " + gap_basis_phrase(res.expected_gap_basis) +
+                                           "): the baseline's known model-form error, not a discrepancy of this record"
+                                     : "without a shape (" + percent(std::max(sb.structured_share, 0.0)) +
+                                           " structured, below " + percent(kStructuredShare) + "): noise";
+      res.findings.push_back("No effect earned its parameters, and the baseline's held-out residual, " +
+                             percent(res.gap_validation_before) + ", is " + why + ".");
     }
     return;
   }
@@ -914,7 +917,8 @@ void decide_verdict(DiscrepancyResult& res, const DamperModel& model, const Sele
                          percent(kLeftOverRemoved) + "): it is not the explanation.");
   if (!forms.empty()) res.findings.push_back(forms);
   // A calibrated baseline leaves a gap on the very records it was fitted to
-  // (its model-form error, res.expected_gap, the largest of them). A record
+  // and more on motions it was not (its model-form error, res.expected_gap,
+  // the largest of them, Baseline::expected_gap_basis). A record
   // whose gap is within it has no discrepancy to explain, whatever shape the
   // residual has: that shape is the baseline's own, found on its calibration
   // records too. Only a gap beyond it is unexplained.
@@ -927,8 +931,9 @@ void decide_verdict(DiscrepancyResult& res, const DamperModel& model, const Sele
     res.findings.push_back(
         "The baseline's gap on this record, " + percent(res.gap_before) + " (held-out samples " +
         percent(res.gap_validation_before) + "), is within 1.25 times its expected gap, " + percent(res.expected_gap) +
-        " (the largest gap on the records it was calibrated on): the residual is the baseline's known model-form "
-        "error, not a discrepancy of this record. A baseline of another form may leave less (mrd calibrate --law).");
+        " (the largest gap on " + gap_basis_phrase(res.expected_gap_basis) +
+        "): the residual is the baseline's known model-form error, not a discrepancy of this record. A baseline of "
+        "another form may leave less (mrd calibrate --law).");
     describe_residual(res, sb, false);
     return;
   }
@@ -945,6 +950,7 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   res.velocity_derived = model.input().velocity_derived;
   res.baseline_name = opt.baseline.name;
   res.expected_gap = opt.baseline.expected_gap;
+  res.expected_gap_basis = opt.baseline.expected_gap_basis;
   const SampleSplit split = split_samples(data.time_s, moving_span(model.input().vel_m_s));
   const FitData fd = make_fit_data(model, data.force_n, split.train, opt.fit_samples);
   const FitData held = make_fit_data(model, data.force_n, split.held_out, 0);

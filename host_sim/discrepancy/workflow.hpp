@@ -171,6 +171,7 @@ struct DiscrepancyResult {
   BaselineCheck baseline_check;
   std::string baseline_name;
   double expected_gap = 0.0;       ///< the baseline's own
+  GapBasis expected_gap_basis = GapBasis::calibration_records;  ///< the records it was taken on
   // Normalized RMS force gaps at full rate: on the samples the fits saw, and held out.
   double gap_before = 0.0;
   double gap_after = 0.0;

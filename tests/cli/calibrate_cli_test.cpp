@@ -3,6 +3,7 @@
 // it; missing or bad input (exit 2, one line).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -193,12 +194,31 @@ TEST_F(CalibrateCli, TwoMotionsJudgeEachOtherWithoutCheckRecords) {
   EXPECT_EQ(j["cross_validation"], want) << j["cross_validation"].dump();
   EXPECT_NE(r.out.find("leaving out each of the records' 2 motions"), std::string::npos) << r.out;
   EXPECT_NE(j["choice_reason"].get<std::string>().find("left-out motions"), std::string::npos) << j["choice_reason"];
+  // Each record's gap when its motion was left out is reported; with two
+  // motions (each fold one motion's fit) the expected gap is the fitted
+  // records' largest.
+  EXPECT_EQ(j["validity"]["expected_gap_basis"], "calibration_records");
+  const auto chosen = std::find_if(j["fits"].begin(), j["fits"].end(),
+                                   [&](const json& f) { return f["law"] == j["chosen_law"]; });
+  ASSERT_NE(chosen, j["fits"].end()) << j.dump();
+  const json& held = (*chosen)["held_out_gaps"];
+  ASSERT_EQ(held.size(), 4u) << held.dump();
+  double largest = 0.0;
+  for (const json& g : (*chosen)["record_gaps"]) largest = std::max(largest, g["gap"].get<double>());
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(held[i]["file"], want[i / 2][i % 2]) << held.dump();
+    EXPECT_GT(held[i]["gap"].get<double>(), 0.0) << held.dump();
+  }
+  EXPECT_EQ(j["validity"]["expected_gap"].get<double>(), largest);
+  EXPECT_NE(slurp(out_.path() / "damper.toml").find("expected_gap_basis = \"calibration_records\""),
+            std::string::npos);
   TempDir plain;
   const auto n = run_mrd(common + " --no-cross-validation --out " + plain.path().string(), scratch_.path());
   ASSERT_EQ(n.exit_code, 0) << n.err;
   const auto k = nlohmann::json::parse(slurp(plain.path() / "summary.json"));
   EXPECT_TRUE(k["cross_validation"].is_null());
   EXPECT_NE(k["choice_reason"].get<std::string>().find("lowest BIC"), std::string::npos) << k["choice_reason"];
+  EXPECT_EQ(k["validity"]["expected_gap_basis"], "calibration_records");
 }
 
 TEST_F(CalibrateCli, MissingMeasuredIsAUsageError) {

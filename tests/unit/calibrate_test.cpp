@@ -209,6 +209,24 @@ TEST(Calibrate, MotionGroupsGatherTheRecordsOfOneStrokeAndFrequency) {
   EXPECT_EQ(g, want);
 }
 
+// Seven motions (strokes 0.5–32 mm at 1 Hz, in no order; the 8 mm one
+// twice): five folds. By hand: in order of stroke, records 6 (0.5 mm),
+// 1 (1 mm), 3 (2 mm), 5 (4 mm), 0 and 7 (8 mm), 4 (16 mm), 2 (32 mm), dealt
+// in turn to folds 0–4: {6, 4}, {1, 2}, {3}, {5}, {0, 7}; each ascending,
+// in order of its first record. Up to five motions the folds are the motions.
+TEST(Calibrate, ManyMotionsAreDealtToFiveFoldsInOrderOfStroke) {
+  const Baseline truth = small_damper(BaseLaw::bingham);
+  std::vector<MeasuredData> recs;
+  unsigned seed = 70;
+  for (const double amp_mm : {8.0, 1.0, 32.0, 2.0, 16.0, 4.0, 0.5, 8.0})
+    recs.push_back(synth_record(truth, 1e-3 * amp_mm, 1.0, 0.5, 3.0, 0.03, seed++));
+  ASSERT_EQ(motion_groups(recs).size(), 7u);
+  const std::vector<std::vector<std::size_t>> want{{0, 7}, {1, 2}, {3}, {4, 6}, {5}};
+  EXPECT_EQ(cross_validation_folds(recs), want);
+  const std::vector<MeasuredData> five(recs.begin(), recs.begin() + 5);
+  EXPECT_EQ(cross_validation_folds(five), motion_groups(five));
+}
+
 // One motion at five currents: nothing to leave out, so an extra the
 // records show (the lost motion of RecoversALostMotionAndKeepsIt) is fitted
 // and reported, not kept, as without cross-validation.
@@ -264,30 +282,55 @@ TEST(Calibrate, RecoversALostMotionAndKeepsIt) {
   std::vector<MeasuredData> check;
   unsigned seed = 100;
   for (const double i : {0.0, 0.5, 1.0}) check.push_back(synth_record(truth, 0.0035, 2.0, i, 3.0, 0.03, seed++));
-  // Without them (Eq. 4.4's transition only here) the records' two motions
-  // judge in turn: each fitted to the other, the lost motion holds on the
-  // one left out, at the noise's gap (3 %), and is kept.
+  // Without them (Eq. 4.4's transition only here) the records' motions
+  // judge in turn: each fitted to the others, the lost motion holds on the
+  // one left out, at the noise's gap (3 %), and is kept. All three motions
+  // here (the check records' too).
   CalibrateOptions linear = opt;
   linear.transition = TransitionShape::linear;
-  const CalibrationResult alone = calibrate(recs, linear);
+  std::vector<MeasuredData> all = recs;
+  all.insert(all.end(), check.begin(), check.end());
+  const CalibrationResult alone = calibrate(all, linear);
   ASSERT_EQ(alone.fits.size(), 3u);
-  ASSERT_EQ(alone.cross_validation_groups.size(), 2u);
+  ASSERT_EQ(alone.cross_validation_groups.size(), 3u);
   EXPECT_TRUE(alone.best().baseline.has_lost_motion()) << alone.choice_reason;
   for (const double g : alone.best().record_gaps) EXPECT_NEAR(g, 0.03, 0.006) << alone.choice_reason;
+  // Every record was left out once, and with three motions its gap there is
+  // part of the expected gap.
+  const LawFit& a = alone.best();
+  ASSERT_EQ(a.held_out_gaps.size(), all.size());
+  ASSERT_EQ(a.held_out_sources.size(), all.size());
+  EXPECT_EQ(a.baseline.expected_gap_basis, GapBasis::left_out_motions);
+  double largest = 0.0;
+  for (const double g : a.record_gaps) largest = std::max(largest, g);
+  for (const double g : a.held_out_gaps) largest = std::max(largest, g);
+  EXPECT_EQ(a.baseline.expected_gap, largest);
   // Each motion's fit from the fit to all resolves the 0.24 mm play within
   // its iterations at 4000 samples a record (left-out gap 0.0298); at the
   // sanitizer builds' 600 it stops at the iteration cap (0.07–0.18 a
   // record, measured), so there the choice alone is checked.
   const std::size_t at = alone.choice_reason.find("left-out motions (");
   ASSERT_NE(at, std::string::npos) << alone.choice_reason;
-  if (linear.samples_per_record >= 4000)
+  if (linear.samples_per_record >= 4000) {
     EXPECT_NEAR(std::stod(alone.choice_reason.substr(at + 18)), 0.03, 0.006) << alone.choice_reason;
+  }
+  // Two motions judge each other too (the lost motion kept), but each fold
+  // is one motion's fit: their gaps are reported, not taken as expected.
+  const CalibrationResult two = calibrate(recs, linear);
+  ASSERT_EQ(two.cross_validation_groups.size(), 2u);
+  EXPECT_TRUE(two.best().baseline.has_lost_motion()) << two.choice_reason;
+  EXPECT_EQ(two.best().held_out_gaps.size(), recs.size());
+  EXPECT_EQ(two.best().baseline.expected_gap_basis, GapBasis::calibration_records);
+  EXPECT_EQ(two.best().baseline.expected_gap,
+            *std::max_element(two.best().record_gaps.begin(), two.best().record_gaps.end()));
   // Neither check records nor cross-validation: fitted, not kept.
   linear.cross_validate = false;
   const CalibrationResult unjudged = calibrate(recs, linear);
   ASSERT_EQ(unjudged.fits.size(), 3u);
   EXPECT_TRUE(unjudged.cross_validation_groups.empty());
   EXPECT_FALSE(unjudged.best().baseline.has_lost_motion()) << unjudged.choice_reason;
+  EXPECT_TRUE(unjudged.best().held_out_gaps.empty());
+  EXPECT_EQ(unjudged.best().baseline.expected_gap_basis, GapBasis::calibration_records);
   // With both transitions: the plain tanh form has the lower BIC here (its
   // smooth turn-over stands in for part of the plateau), so the transition
   // must be chosen after the extras, not before them.
@@ -303,8 +346,14 @@ TEST(Calibrate, RecoversALostMotionAndKeepsIt) {
   expect_extra_recovered(
       r.best(), {{"lost_motion_m_per_n", truth.lost_motion_m_per_n}, {"lost_motion_share", truth.lost_motion_share}},
       0.1);
-  // 3 % white noise: with the lost motion the gap is the noise's.
+  // 3 % white noise: with the lost motion the gap is the noise's, on the
+  // records fitted and on the check records, which the expected gap covers.
   for (const double g : r.best().record_gaps) EXPECT_NEAR(g, 0.03, 0.006);
+  ASSERT_EQ(r.best().held_out_gaps.size(), check.size());
+  for (const double g : r.best().held_out_gaps) EXPECT_NEAR(g, 0.03, 0.006);
+  EXPECT_EQ(r.best().baseline.expected_gap_basis, GapBasis::check_records);
+  EXPECT_GE(r.best().baseline.expected_gap,
+            *std::max_element(r.best().held_out_gaps.begin(), r.best().held_out_gaps.end()));
 }
 
 // The viscous lost motion (baseline.hpp): inside the play the force is
@@ -444,6 +493,7 @@ BaselineFile sample_file(BaseLaw law) {
   f.baseline.name = "lab damper";
   f.baseline.range = {0.0, 1.0, 0.05, 1700.0, 0.001, 0.0125, 0.25, 5.0};
   f.baseline.expected_gap = 0.123456789;
+  if (law == BaseLaw::bingham) f.baseline.expected_gap_basis = GapBasis::left_out_motions;
   f.sigma.yield_n = {1.5, 20.0, 0.1};
   f.sigma.viscous_ns_m = {30.0, 100.0, 0.05};
   f.sigma.v_tf_m_s = law == BaseLaw::bingham ? 1e-4 : 0.0;
@@ -501,6 +551,7 @@ TEST(BaselineFile, RoundTripsExactly) {
     EXPECT_EQ(b.range.amplitude_min_m, a.range.amplitude_min_m);
     EXPECT_EQ(b.range.frequency_max_hz, a.range.frequency_max_hz);
     EXPECT_EQ(b.expected_gap, a.expected_gap);
+    EXPECT_EQ(b.expected_gap_basis, a.expected_gap_basis);
     EXPECT_EQ(g.sigma.yield_n.limit, f.sigma.yield_n.limit);
     EXPECT_EQ(g.sigma.stiffness_n_m, f.sigma.stiffness_n_m);
     EXPECT_FALSE(g.viscous_fitted.rate_per_a);
@@ -595,6 +646,9 @@ TEST(BaselineFile, RefusesBadFieldsNamingFileLineAndField) {
        "expected a velocity in [1e-06, 10] m/s, got 0"},
       {"transition = \"tanh\"", "transition = \"cubic\"", "transition = ", "bingham.transition",
        "expected \"linear\" or \"tanh\", got \"cubic\""},
+      {"expected_gap_basis = \"left_out_motions\"", "expected_gap_basis = \"a guess\"", "expected_gap_basis = ",
+       "validity.expected_gap_basis",
+       "expected \"calibration_records\", \"check_records\" or \"left_out_motions\", got \"a guess\""},
       {"transition_time_s = 0.0055", "transition_time_s = 0.5", "transition_time_s = ", "bingham.transition_time_s",
        "expected a time in [1e-06, 0.1] s, got 0.5"},
       {"transition_time_s = 0.0055", "transition_time_s = -0.001", "transition_time_s = ",
