@@ -112,6 +112,7 @@ struct CalibrateCliOptions {
   bool no_stiffness = false;
   bool floors = false;
   bool no_cross_validation = false;
+  unsigned threads = 0;
   std::string transition = "auto";
   std::string lost_motion_form = "both";
 };
@@ -146,6 +147,9 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_flag("--floors", o.floors,
                "Also fit the chosen form to each record alone: its floor on the record, beside the gap (one fit per "
                "record)");
+  add_threads_option(app, o.threads,
+                     "Threads for the fits that do not depend on each other (the laws, each motion left out, each "
+                     "record's floor; 0: all cores); the result is the same whatever the count");
 }
 
 discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
@@ -157,6 +161,7 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   opt.viscous_exponent = !o.no_viscous_exponent;
   opt.stiffness = !o.no_stiffness;
   opt.cross_validate = !o.no_cross_validation;
+  opt.threads = o.threads;
   if (o.transition == "linear") {
     opt.transition = discrepancy::TransitionShape::linear;
   } else if (o.transition == "tanh") {

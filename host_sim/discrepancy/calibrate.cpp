@@ -13,6 +13,7 @@
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/effects.hpp"
 #include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/discrepancy/parallel.hpp"
 #include "host_sim/discrepancy/physical_ranges.hpp"
 #include "host_sim/discrepancy/solver_options.hpp"
 #include "host_sim/io/text.hpp"
@@ -923,12 +924,12 @@ std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const Meas
 
 std::vector<double> record_floor_gaps(const Baseline& form, std::span<const MeasuredData> records,
                                       const CalibrateOptions& options) {
-  std::vector<double> floors;
-  for (std::size_t r = 0; r < records.size(); ++r) {
+  std::vector<double> floors(records.size());
+  parallel_for(records.size(), options.threads, [&](std::size_t r) {
     const Prepared p = prepare(records.subspan(r, 1), options);
     const LawFit f = fit_law(p, form.law, form.tanh_transition, options, nullptr, extras_of(form), &form);
-    floors.push_back(baseline_gaps(f.baseline, records.subspan(r, 1), options.smoothing_half_window_s).front());
-  }
+    floors[r] = baseline_gaps(f.baseline, records.subspan(r, 1), options.smoothing_half_window_s).front();
+  });
   return floors;
 }
 
@@ -1084,15 +1085,22 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     laws = {BaseLaw::bingham, BaseLaw::bouc_wen};
     if (options.auto_spencer) laws.push_back(BaseLaw::spencer);
   }
+  std::vector<std::pair<BaseLaw, bool>> plain;  // each law, and its transition
   for (const BaseLaw law : laws) {
     for (const bool tanh : {false, true}) {
       if (law != BaseLaw::bingham && tanh) continue;
       if (law == BaseLaw::bingham && options.transition == (tanh ? TransitionShape::linear : TransitionShape::tanh))
         continue;
-      LawFit f = fit_law(p, law, tanh, options);
-      f.record_gaps = baseline_gaps(f.baseline, records, options.smoothing_half_window_s);
-      res.fits.push_back(std::move(f));
+      plain.emplace_back(law, tanh);
     }
+  }
+  {
+    std::vector<LawFit> fitted(plain.size());
+    parallel_for(plain.size(), options.threads, [&](std::size_t j) {
+      fitted[j] = fit_law(p, plain[j].first, plain[j].second, options);
+      fitted[j].record_gaps = baseline_gaps(fitted[j].baseline, records, options.smoothing_half_window_s);
+    });
+    for (LawFit& f : fitted) res.fits.push_back(std::move(f));
   }
 
   // BIC with a common effective sample count (the smallest of the fits'), so
@@ -1177,12 +1185,15 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
       fit.held_out_gaps = baseline_gaps(fit.baseline, check, options.smoothing_half_window_s);
       for (const MeasuredData& c : check) fit.held_out_sources.push_back(c.source);
     } else {
-      for (const Fold& f : folds) {
-        const Baseline& b = fit.baseline;
-        const LawFit g = fit_law(f.train, b.law, b.tanh_transition, options, nullptr, extras_of(b), &b);
-        const std::vector<double> held = baseline_gaps(g.baseline, f.held, options.smoothing_half_window_s);
-        fit.held_out_gaps.insert(fit.held_out_gaps.end(), held.begin(), held.end());
-        for (const MeasuredData& h : f.held) fit.held_out_sources.push_back(h.source);
+      const Baseline& b = fit.baseline;
+      std::vector<std::vector<double>> held(folds.size());
+      parallel_for(folds.size(), options.threads, [&](std::size_t k) {
+        const LawFit g = fit_law(folds[k].train, b.law, b.tanh_transition, options, nullptr, extras_of(b), &b);
+        held[k] = baseline_gaps(g.baseline, folds[k].held, options.smoothing_half_window_s);
+      });
+      for (std::size_t k = 0; k < folds.size(); ++k) {
+        fit.held_out_gaps.insert(fit.held_out_gaps.end(), held[k].begin(), held[k].end());
+        for (const MeasuredData& h : folds[k].held) fit.held_out_sources.push_back(h.source);
       }
     }
     at->second = rms_over_records(fit.held_out_gaps);

@@ -108,6 +108,10 @@ enum class TransitionShape { both, linear, tanh };
 enum class LostMotionForm { both, share, viscous };
 
 struct CalibrateOptions {
+  /// Threads for the fits that do not depend on each other (the laws' plain
+  /// fits, each motion left out); 0: all cores. The result is the same
+  /// whatever the count.
+  unsigned threads = 0;
   std::optional<BaseLaw> law;  ///< nullopt: fit every law (auto), choose as CalibrationResult says
   /// Whether auto fits the spencer law too (a fit of eleven parameters
   /// through a stiff ODE, minutes on a laboratory's fifteen records).

@@ -1,12 +1,11 @@
 #include "host_sim/discrepancy/workflow.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "host_sim/discrepancy/damper_model.hpp"
 #include "host_sim/discrepancy/fit.hpp"
+#include "host_sim/discrepancy/parallel.hpp"
 #include "host_sim/io/text.hpp"
 
 namespace mrd::discrepancy {
@@ -56,26 +55,6 @@ double gap_on_fit(const FitData& d, double rss) {
   double ss = 0.0;
   for (const std::size_t k : d.index) ss += d.measured_force_n[k] * d.measured_force_n[k];
   return ss > 0.0 ? std::sqrt(rss / ss) : 0.0;
-}
-
-/// Runs `job(i)` for i in [0, count) on up to `threads` threads.
-template <typename Job>
-void parallel_for(std::size_t count, unsigned threads, Job job) {
-  const unsigned hw = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t workers = std::min<std::size_t>(hw, count);
-  if (workers <= 1) {
-    for (std::size_t i = 0; i < count; ++i) job(i);
-    return;
-  }
-  std::atomic<std::size_t> next{0};
-  std::vector<std::thread> pool;
-  pool.reserve(workers);
-  for (std::size_t w = 0; w < workers; ++w) {
-    pool.emplace_back([&] {
-      for (std::size_t i = next++; i < count; i = next++) job(i);
-    });
-  }
-  for (auto& t : pool) t.join();
 }
 
 /// A fitted trial model of one round.

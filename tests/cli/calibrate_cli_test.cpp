@@ -213,7 +213,7 @@ TEST_F(CalibrateCli, TwoMotionsJudgeEachOtherWithoutCheckRecords) {
   EXPECT_NE(slurp(out_.path() / "damper.toml").find("expected_gap_basis = \"calibration_records\""),
             std::string::npos);
   TempDir plain;
-  const auto n = run_mrd(common + " --no-cross-validation --out " + plain.path().string(), scratch_.path());
+  const auto n = run_mrd(common + " --no-cross-validation --threads 1 --out " + plain.path().string(), scratch_.path());
   ASSERT_EQ(n.exit_code, 0) << n.err;
   const auto k = nlohmann::json::parse(slurp(plain.path() / "summary.json"));
   EXPECT_TRUE(k["cross_validation"].is_null());

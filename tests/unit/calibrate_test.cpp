@@ -316,8 +316,24 @@ TEST(Calibrate, RecoversALostMotionAndKeepsIt) {
   }
   // Two motions judge each other too (the lost motion kept), but each fold
   // is one motion's fit: their gaps are reported, not taken as expected.
+  linear.threads = 2;
   const CalibrationResult two = calibrate(recs, linear);
   ASSERT_EQ(two.cross_validation_groups.size(), 2u);
+  // The laws' fits and the folds side by side: the same result to the bit
+  // as one after the other.
+  linear.threads = 1;
+  const CalibrationResult serial = calibrate(recs, linear);
+  ASSERT_EQ(serial.fits.size(), two.fits.size());
+  EXPECT_EQ(serial.chosen, two.chosen);
+  EXPECT_EQ(serial.choice_reason, two.choice_reason);
+  EXPECT_EQ(serial.notes, two.notes);
+  for (std::size_t i = 0; i < two.fits.size(); ++i) {
+    ASSERT_EQ(serial.fits[i].params.size(), two.fits[i].params.size());
+    for (std::size_t j = 0; j < two.fits[i].params.size(); ++j)
+      EXPECT_EQ(serial.fits[i].params[j].value, two.fits[i].params[j].value) << two.fits[i].params[j].name;
+    EXPECT_EQ(serial.fits[i].record_gaps, two.fits[i].record_gaps);
+    EXPECT_EQ(serial.fits[i].held_out_gaps, two.fits[i].held_out_gaps);
+  }
   EXPECT_TRUE(two.best().baseline.has_lost_motion()) << two.choice_reason;
   EXPECT_EQ(two.best().held_out_gaps.size(), recs.size());
   EXPECT_EQ(two.best().baseline.expected_gap_basis, GapBasis::calibration_records);
