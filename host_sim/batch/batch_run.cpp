@@ -62,7 +62,9 @@ bool lane_isa_cpu_runs(LaneIsa isa) {
 }
 
 bool lanes_vectorize(const physics::MrDamperParams& d) noexcept {
-  return d.law == physics::ForceLaw::kBingham || d.law == physics::ForceLaw::kBinghamTanh;
+  // A series compliance's per-step solve is the scalar damper's.
+  return (d.law == physics::ForceLaw::kBingham || d.law == physics::ForceLaw::kBinghamTanh) &&
+         d.shape.series_compliance_m_per_n == 0.0;
 }
 
 SharedModel damper_constants(const plant::PlantSpec& spec) {

@@ -71,9 +71,10 @@ std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& p
 
 /// True when the lanes step `damper`'s force in their registers: the bingham
 /// laws (Eq. 4.4's transition and the tanh one) with any shape a calibration
-/// gives them (physics::LawShape). The other laws (Bouc–Wen, Spencer) are
-/// stepped in the lanes by the scalar damper itself (physics::MrDamper), one
-/// per damper and lane, the building still in the lanes.
+/// gives them (physics::LawShape) but a series compliance. The other laws
+/// (Bouc–Wen, Spencer) and a law behind a series compliance (a solve per
+/// step) are stepped in the lanes by the scalar damper itself
+/// (physics::MrDamper), one per damper and lane, the building still in the lanes.
 bool lanes_vectorize(const physics::MrDamperParams& damper) noexcept;
 
 /// "auto" | "generic" | "x86-64-v3" | "x86-64-v4".

@@ -40,6 +40,9 @@ alike (a record's squared residuals over its number of samples) and has no force
 Each other form is then fitted again with each extra in turn, on top of those kept before:
   transition time (bingham only): TF's band widens to v_tf_m_s + transition_time_s |a|, so the
     force builds over a time after a reversal, not over a velocity      transition_time_s
+  series compliance (bingham only): the law acts on the fluid's velocity v - F'/k_s, so the
+    force turns over at a reversal as the fluid column is compressed, with a lag that grows
+    with the force (F/v over k_s)                               series_compliance_m_per_n = 1/k_s
   lost motion: a share of the force builds only after the piston has moved m_per_n * Y(I)
     past a reversal (a plateau after each reversal, longer at higher current)   m_per_n, share
 and then, with --check records or cross-validation only (bingham):
@@ -49,8 +52,8 @@ and then, with --check records or cross-validation only (bingham):
     median peak velocity, held)                          viscous_exponent, viscous_ref_m_s
   stiffness: a spring k x beside the law (the accumulator's gas charge)     stiffness_n_m
 An extra is kept when it lowers the BIC by 10 or more, its parameters are off their bounds and
-it also lowers the RMS gap of the --check records (--no-transition-time, --no-lost-motion: not
-fitted). The form chosen: of the laws each with the extras it kept, the lowest RMS gap on the
+it also lowers the RMS gap of the --check records (--no-transition-time, --no-series-compliance,
+--no-lost-motion: not fitted). The form chosen: of the laws each with the extras it kept, the lowest RMS gap on the
 --check records. So the check records' gaps are those of a validation set; --test records are
 judged only after everything is chosen (an untouched test set). A note says when every
 check record repeats the amplitude and frequency of a fitted one (within 1.25x): such a
@@ -110,6 +113,7 @@ struct CalibrateCliOptions {
   bool no_current_exponent = false;
   bool no_viscous_exponent = false;
   bool no_stiffness = false;
+  bool no_series_compliance = false;
   bool floors = false;
   bool no_cross_validation = false;
   unsigned threads = 0;
@@ -142,6 +146,8 @@ void add_options(CLI::App& app, CalibrateCliOptions& o) {
   app.add_flag("--no-current-exponent", o.no_current_exponent, "Do not try the current laws' exponent (bingham)");
   app.add_flag("--no-viscous-exponent", o.no_viscous_exponent, "Do not try the viscous force's exponent (bingham)");
   app.add_flag("--no-stiffness", o.no_stiffness, "Do not try a spring beside the law (bingham)");
+  app.add_flag("--no-series-compliance", o.no_series_compliance,
+               "Do not try a compliance in series with the law (bingham)");
   app.add_flag("--no-cross-validation", o.no_cross_validation,
                "Without --check, keep no extra and choose the form by BIC instead of leaving out each motion in turn");
   app.add_flag("--floors", o.floors,
@@ -160,6 +166,7 @@ discrepancy::CalibrateOptions calibrate_options(const CalibrateCliOptions& o) {
   opt.current_exponent = !o.no_current_exponent;
   opt.viscous_exponent = !o.no_viscous_exponent;
   opt.stiffness = !o.no_stiffness;
+  opt.series_compliance = !o.no_series_compliance;
   opt.cross_validate = !o.no_cross_validation;
   opt.threads = o.threads;
   if (o.transition == "linear") {

@@ -55,6 +55,7 @@ physics::MrDamperParams damper_params(const Baseline& b) {
   }
   if (b.has_bingham_stiffness()) p.shape.stiffness_n_m = b.stiffness_n_m;
   if (b.has_transition_time()) p.shape.transition_time_s = b.transition_time_s;
+  if (b.has_series_compliance()) p.shape.series_compliance_m_per_n = b.series_compliance_m_per_n;
   if (b.has_lost_motion()) {
     p.shape.lost_motion_m_per_n = b.lost_motion_m_per_n;
     p.shape.lost_motion_share = b.lost_motion_share;

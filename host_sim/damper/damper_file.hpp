@@ -11,7 +11,8 @@
 ///   [viscous_ns_m]  at_zero → bingham.c0_a_ns_m, limit → c0_b_ns_m, rate_per_a → c0_c_per_a
 ///   [bingham]       v_tf_m_s → bingham.v_tf_m_s; transition linear → ForceLaw::kBingham,
 ///                   tanh → ForceLaw::kBinghamTanh; transition_time_s, stiffness_n_m,
-///                   viscous_exponent and viscous_ref_m_s → MrDamperParams::shape
+///                   viscous_exponent, viscous_ref_m_s and series_compliance_m_per_n →
+///                   MrDamperParams::shape
 ///   current_exponent of [yield_n] and [viscous_ns_m] → shape's current exponents
 ///   [lost_motion]   m_per_n, share, band_m_s → shape's lost motion
 ///   [bouc_wen]      → ForceLaw::kBoucWen with yield_disp_m, stiffness_n_m

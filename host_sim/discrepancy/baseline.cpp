@@ -40,7 +40,8 @@ std::string baseline_form_name(const Baseline& b) {
   return std::string(base_law_name(b.law)) + (b.has_tanh_transition() ? "_tanh" : "") +
          (b.has_transition_time() ? "+transition_time" : "") +
          (b.has_viscous_lost_motion() ? "+viscous_lost_motion" : (b.has_lost_motion() ? "+lost_motion" : "")) +
-         (b.has_current_exponent() ? "+current_exponent" : "") + (b.has_bingham_stiffness() ? "+stiffness" : "") + (b.has_viscous_exponent() ? "+viscous_exponent" : "");
+         (b.has_current_exponent() ? "+current_exponent" : "") + (b.has_bingham_stiffness() ? "+stiffness" : "") + (b.has_viscous_exponent() ? "+viscous_exponent" : "") +
+         (b.has_series_compliance() ? "+series_compliance" : "");
 }
 
 double CurrentLaw::at(double current_a, double participant_ratio) const noexcept {

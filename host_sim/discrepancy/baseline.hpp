@@ -177,6 +177,9 @@ struct Baseline {
   /// (Herschel–Bulkley); 1 = linear (then v_r does not act)
   double viscous_exponent = 1.0;
   double viscous_ref_m_s = 0.0;      ///< v_r: the velocity at which C is the slope, m/s (0 = linear)
+  /// 1/k_s: a compliance in series with the law's force (bingham), m/N:
+  /// the law acts on the fluid's velocity v − Ḟ/k_s (0 = rigid)
+  double series_compliance_m_per_n = 0.0;
   /// Lag of the force channel behind the motion channels (anti-alias
   /// filters, conditioning, logger), s: the model force is compared at
   /// t − force_delay_s. 0 for the thesis model.
@@ -217,6 +220,10 @@ struct Baseline {
   }
   /// A spring k x beside the Bingham law (the accumulator's gas charge), stiffness_n_m.
   [[nodiscard]] bool has_bingham_stiffness() const noexcept { return law == BaseLaw::bingham && stiffness_n_m > 0.0; }
+  /// A compliance in series with the Bingham law (series_compliance_m_per_n).
+  [[nodiscard]] bool has_series_compliance() const noexcept {
+    return law == BaseLaw::bingham && series_compliance_m_per_n > 0.0;
+  }
   /// A viscous force that is not linear in v (bingham): viscous_exponent ≠ 1 at v_r > 0.
   [[nodiscard]] bool has_viscous_exponent() const noexcept {
     return law == BaseLaw::bingham && viscous_ref_m_s > 0.0 && viscous_exponent != 1.0;

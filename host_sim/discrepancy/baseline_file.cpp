@@ -317,6 +317,11 @@ std::string baseline_toml(const BaselineFile& f) {
       t += sigma_line("viscous_exponent_sigma", f.sigma.viscous_exponent, kViscousExponentRange);
       t += "viscous_ref_m_s = " + num(b.viscous_ref_m_s) + "  # v_r: C is the force per velocity there\n";
     }
+    if (b.has_series_compliance()) {
+      t += "series_compliance_m_per_n = " + num(b.series_compliance_m_per_n) +
+           "  # 1/k_s: the law acts on the fluid's velocity v - dF/dt / k_s\n";
+      t += sigma_line("series_compliance_m_per_n_sigma", f.sigma.series_compliance_m_per_n, kSeriesComplianceRange);
+    }
   } else {
     t += "\n[bouc_wen]  # F = Y z + C v + k0 x, z' = (v/x_y)(1 - |z|^2 (1/2 + 1/2 sgn(v z)))\n";
     t += "yield_disp_m = " + num(b.yield_disp_m) + "\n";
@@ -465,6 +470,11 @@ BaselineFile parse_baseline_toml(const std::string& text, const std::string& ori
         b.viscous_exponent = t.in("viscous_exponent", kViscousExponentRange);
         f.sigma.viscous_exponent = sigma_of(t, "viscous_exponent_sigma", kViscousExponentRange);
         b.viscous_ref_m_s = t.in("viscous_ref_m_s", kVelocityBandRange);
+      }
+      if (t.has("series_compliance_m_per_n")) {
+        b.series_compliance_m_per_n = t.in("series_compliance_m_per_n", kSeriesComplianceRange);
+        f.sigma.series_compliance_m_per_n =
+            sigma_of(t, "series_compliance_m_per_n_sigma", kSeriesComplianceRange);
       }
     } else {
       b.yield_disp_m = t.in("yield_disp_m", kYieldDispRange);

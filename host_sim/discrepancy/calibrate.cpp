@@ -24,7 +24,7 @@ namespace {
 
 /// The parameters a calibration can fit.
 enum Slot : std::size_t {
-  kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kBand, kCoilSlow, kCoilFast, kViscExp, kYq, kCq,
+  kYa, kYb, kYc, kCa, kCb, kCc, kVtf, kXy, kK0, kDelay, kPlay, kShare, kTau, kBand, kCoilSlow, kCoilFast, kViscExp, kYq, kCq, kSeries,
   // The spencer law (physics/spencer_law.hpp): α at the records' lowest,
   // middle and highest current (Layout::node_a), c_0 and c_1 at the lowest
   // and highest, γ at 0 A and its rate, k_1, k_0.
@@ -36,7 +36,7 @@ constexpr std::array<const char*, kSlots> kSlotName{
     "viscous_ns_m.rate_per_a", "v_tf_m_s",          "yield_disp_m",       "stiffness_n_m",
     "force_delay_s",        "lost_motion_m_per_n",  "lost_motion_share",  "transition_time_s",
     "lost_motion_band_m_s", "coil.tau_slow_s",      "coil.tau_fast_s",   "viscous_exponent",
-    "yield_n.current_exponent", "viscous_ns_m.current_exponent",
+    "yield_n.current_exponent", "viscous_ns_m.current_exponent", "series_compliance_m_per_n",
     "spencer.alpha_n_m(I_lo)", "spencer.alpha_n_m(I_mid)", "spencer.alpha_n_m(I_hi)", "spencer.c0_ns_m(I_lo)",
     "spencer.c0_ns_m(I_hi)", "spencer.c1_ns_m(I_lo)", "spencer.c1_ns_m(I_hi)", "spencer.gamma_per_m_pow_n",
     "spencer.gamma_rate_per_a", "spencer.k1_n_m", "spencer.k0_n_m"};
@@ -54,11 +54,11 @@ constexpr std::array<const char*, kSlots> kSlotName{
 /// rate as the exponential laws', k_1 as the Bouc–Wen k_0 and k_0 from
 /// 0.1 mN/m (none, in effect: the laboratory's published 0.15 N/m).
 constexpr std::array<double, kSlots> kLower{1e-3,  1e-3, 0.02, 1e-3, 1e-3, 0.02, 1e-5, 1e-7,
-                                            1e-2,  1e-5, 1e-12, 1e-3, 1e-6, 1e-5, 1e-4, 1e-4, 0.05, 0.2, 0.2,
+                                            1e-2,  1e-5, 1e-12, 1e-3, 1e-6, 1e-5, 1e-4, 1e-4, 0.05, 0.2, 0.2, 1e-11,
                                             1.0,   1.0,  1.0,  1e-3, 1e-3, 1e-3, 1e-3, 1e-2,
                                             0.02,  1e-2, 1e-4};
 constexpr std::array<double, kSlots> kUpper{1e9, 1e9, 20.0, 1e10, 1e10, 20.0, 1.0, 0.1,
-                                            1e9, 0.1, 1e-5, 1.0,  0.1,  10.0, 10.0, 10.0, 3.0, 5.0, 5.0,
+                                            1e9, 0.1, 1e-5, 1.0,  0.1,  10.0, 10.0, 10.0, 3.0, 5.0, 5.0, 1e-4,
                                             1e10, 1e10, 1e10, 1e10, 1e10, 1e10, 1e10, 1e20,
                                             20.0, 1e9, 1e9};
 
@@ -75,7 +75,7 @@ static_assert(searched_within(kYa, kYieldForceRange) && searched_within(kYb, kYi
               searched_within(kTau, kTransitionTimeRange) && searched_within(kBand, kVelocityBandRange) &&
               searched_within(kCoilSlow, kCoilTimeConstantRange) && searched_within(kCoilFast, kCoilTimeConstantRange) &&
               searched_within(kViscExp, kViscousExponentRange) && searched_within(kYq, kCurrentExponentRange) &&
-              searched_within(kCq, kCurrentExponentRange) &&
+              searched_within(kCq, kCurrentExponentRange) && searched_within(kSeries, kSeriesComplianceRange) &&
               searched_within(kSpA0, kStiffnessRange) && searched_within(kSpA1, kStiffnessRange) &&
               searched_within(kSpA2, kStiffnessRange) && searched_within(kSpC0a, kViscousRange) &&
               searched_within(kSpC0b, kViscousRange) && searched_within(kSpC1a, kViscousRange) &&
@@ -104,6 +104,7 @@ double& slot_ref(Baseline& b, Slot s) {
     case kViscExp: return b.viscous_exponent;
     case kYq: return b.yield_n.current_exponent;
     case kCq: return b.viscous_ns_m.current_exponent;
+    case kSeries: return b.series_compliance_m_per_n;
     case kSpGamma: return b.spencer.gamma_per_m_pow_n;
     case kSpGammaRate: return b.spencer.gamma_rate_per_a;
     case kSpK1: return b.spencer.k1_n_m;
@@ -511,11 +512,12 @@ struct Extras {
   bool current_exponent = false;  ///< the current laws' exponents q fitted
   bool stiffness = false;     ///< a spring beside the Bingham law (stiffness_n_m)
   bool viscous_exponent = false;  ///< the Bingham law's viscous force as a power of v
+  bool series_compliance = false;  ///< a compliance in series with the Bingham law
 };
 
 Extras extras_of(const Baseline& b) {
   return {b.has_transition_time(), b.has_lost_motion(), b.has_viscous_lost_motion(), b.has_current_exponent(),
-          b.has_bingham_stiffness(), b.has_viscous_exponent()};
+          b.has_bingham_stiffness(), b.has_viscous_exponent(), b.has_series_compliance()};
 }
 
 /// Fits `law` (with the tanh transition when `tanh` and the law is Bingham)
@@ -583,6 +585,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     if (extras.transition_time) layout.free.push_back(kTau);
     if (extras.stiffness) layout.free.push_back(kK0);
     if (extras.viscous_exponent) layout.free.push_back(kViscExp);
+    if (extras.series_compliance) layout.free.push_back(kSeries);
   } else {
     layout.free.push_back(kXy);
     layout.free.push_back(kK0);
@@ -668,6 +671,16 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     for (const double f : {0.01, 0.05}) {
       Baseline s = from->baseline;
       s.stiffness_n_m = clamp_slot(f * y_top / std::max(amp_max, 1e-6), kK0);
+      starts.push_back(s);
+    }
+  } else if (from != nullptr && extras.series_compliance && !from->baseline.has_series_compliance()) {
+    // From the fit without it: a compliance over which the yield force at
+    // the largest current deflects 5 % or 20 % of the smallest half range
+    // (the fluid's and the body's give, short against the stroke).
+    const double y_top = std::max(std::fabs(from->baseline.yield_n.at(top_current_a(p))), 1e-3);
+    for (const double f : {0.05, 0.2}) {
+      Baseline s = from->baseline;
+      s.series_compliance_m_per_n = clamp_slot(f * amp_min / y_top, kSeries);
       starts.push_back(s);
     }
   } else if (from != nullptr && extras.viscous_exponent && !from->baseline.has_viscous_exponent()) {
@@ -871,6 +884,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   fit.sigma.lost_motion_band_m_s = sigma[kBand];
   fit.sigma.transition_time_s = sigma[kTau];
   fit.sigma.viscous_exponent = sigma[kViscExp];
+  fit.sigma.series_compliance_m_per_n = sigma[kSeries];
   fit.sigma.coil_tau_slow_s = sigma[kCoilSlow];
   fit.sigma.coil_tau_fast_s = sigma[kCoilFast];
 
@@ -889,6 +903,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     if (extras.transition_time) shown.push_back(kTau);
     if (extras.stiffness) shown.push_back(kK0);
     if (extras.viscous_exponent) shown.push_back(kViscExp);
+    if (extras.series_compliance) shown.push_back(kSeries);
   } else {
     shown.push_back(kXy);
     shown.push_back(kK0);
@@ -1211,6 +1226,7 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     if (add.current_exponent) slots.push_back(kYq);
     if (add.stiffness) slots.push_back(kK0);
     if (add.viscous_exponent) slots.push_back(kViscExp);
+    if (add.series_compliance) slots.push_back(kSeries);
     const LawFit from = res.fits[cur];
     Extras extras = extras_of(from.baseline);
     extras.transition_time = extras.transition_time || add.transition_time;
@@ -1219,6 +1235,7 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     extras.current_exponent = extras.current_exponent || add.current_exponent;
     extras.stiffness = extras.stiffness || add.stiffness;
     extras.viscous_exponent = extras.viscous_exponent || add.viscous_exponent;
+    extras.series_compliance = extras.series_compliance || add.series_compliance;
     LawFit f = fit_law(p, from.baseline.law, from.baseline.tanh_transition, options, &from, extras);
     f.record_gaps = baseline_gaps(f.baseline, records, options.smoothing_half_window_s);
     res.fits.push_back(std::move(f));
@@ -1271,6 +1288,8 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     }
     if (options.transition_time && res.fits[cur].baseline.law == BaseLaw::bingham)
       cur = try_extra(cur, {.transition_time = true}, "the transition time on its search bound");
+    if (options.series_compliance && res.fits[cur].baseline.law == BaseLaw::bingham)
+      cur = try_extra(cur, {.series_compliance = true}, "the series compliance on its search bound");
     if (options.lost_motion) {
       // Each form of the force inside the play asked for, tried on the same
       // fit; of those kept, the lower gap on the check records.

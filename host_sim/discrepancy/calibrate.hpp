@@ -69,6 +69,7 @@ struct BaselineSigmas {
   double lost_motion_band_m_s = 0.0;
   double transition_time_s = 0.0;
   double viscous_exponent = 0.0;
+  double series_compliance_m_per_n = 0.0;
   double coil_tau_slow_s = 0.0;
   double coil_tau_fast_s = 0.0;
 };
@@ -133,6 +134,9 @@ struct CalibrateOptions {
   /// a viscous exponent (baseline.hpp), each kept as the lost motion above.
   bool stiffness = true;
   bool viscous_exponent = true;
+  /// Also fit the chosen Bingham law behind a compliance in series
+  /// (baseline.hpp), after the transition time, kept as the lost motion.
+  bool series_compliance = true;
   /// Also fit the chosen Bingham law's current laws with their exponents q
   /// (CurrentLaw, baseline.hpp), before the two above; three currents or more.
   bool current_exponent = true;

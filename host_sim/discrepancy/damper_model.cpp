@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "mrd/physics/damper_laws.hpp"
+#include "mrd/physics/series_compliance.hpp"
+
 namespace mrd::discrepancy {
 namespace {
 
@@ -461,6 +464,11 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
                   ws.lm_driven, ws.lm_engaged, ws.lm_factor);
   }
 
+  // A compliance in series with the Bingham law (baseline.hpp), m/N.
+  const bool series = p_.has_series_compliance() && !bouc_wen;
+  const double series_per_n = series ? p_.series_compliance_m_per_n : 0.0;
+  double fb_prev = 0.0;        // the law's force at the sample before, N
+  double fluid_vel_m_s = 0.0;  // the fluid's velocity behind the series compliance, m/s
   ws.force_n.resize(n);
   double energy_j = 0.0;
   double pr = 1.0;
@@ -519,20 +527,60 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
       fb = fy * z + cv * v;
       elastic = k_0 * xd[k];
       z = bouc_wen_step(z, v, dt, x_y);
-    } else {
+    }
+    // The baseline's lost motion and a direction asymmetry on a law force
+    // f at velocity u, with its slope df (N·s/m).
+    const auto shaped = [&](double f, double df, double u) {
+      if (lost_motion) {
+        const double e = ws.lm_factor[k];
+        f *= (1.0 - share) + share * e;
+        df *= (1.0 - share) + share * e;
+        if (play_band > 0.0) {
+          const double t = std::tanh(u / play_band);
+          f += (1.0 - e) * fy * t;
+          df += (1.0 - e) * fy * (1.0 - t * t) / play_band;
+        }
+      }
+      if (asym != 0.0) {
+        const double g = u > 0.0 ? 1.0 + asym : (u < 0.0 ? 1.0 - asym : 1.0);
+        f *= g;
+        df *= g;
+      }
+      return physics::ForceSlope{f, df};
+    };
+    if (!spencer && !bouc_wen) {
       const double band = timed ? v_tf + tau_s * in_.accel_abs_m_s2[k] : v_tf;
-      // C v_r (|v|/v_r)^m sgn v as C (|v|/v_r)^(m−1) v.
-      const double c_eff = power_viscous ? (av > 0.0 ? cv * std::pow(av / v_r, m_minus_1) : 0.0) : cv;
-      // Eq. 4.1, 4.4, 5.12, or the tanh transition (baseline.hpp).
-      fb = tanh_shape ? bingham_tanh_force_n(v, fy, c_eff, band) : bingham_force_n(v, fy, c_eff, band);
+      // The law at the fluid's velocity u (the piston's, without a series
+      // compliance), and its slope for the series compliance's solve.
+      const auto law_at = [&](double u) {
+        const double au = std::fabs(u);
+        // C v_r (|u|/v_r)^m sgn u as C (|u|/v_r)^(m−1) u; its slope m C (|u|/v_r)^(m−1).
+        const double c_eff = power_viscous ? (au > 0.0 ? cv * std::pow(au / v_r, m_minus_1) : 0.0) : cv;
+        const double m = power_viscous ? m_minus_1 + 1.0 : 1.0;
+        // Eq. 4.1, 4.4, 5.12, or the tanh transition (baseline.hpp), and its slope when solved for.
+        if (tanh_shape) {
+          // bingham_tanh_force_n; behind a series compliance with the faster tanh it solves with.
+          const double t = series ? physics::tanh_by_exp(u / band) : std::tanh(u / band);
+          const double f = fy * t + c_eff * u;
+          return shaped(f, series ? physics::bingham_tanh_slope_ns_m(fy, c_eff, m, t, band) : 0.0, u);
+        }
+        const double f = bingham_force_n(u, fy, c_eff, band);
+        const double df = series ? physics::bingham_slope_ns_m(fy, c_eff, m, u, band) : 0.0;
+        return shaped(f, df, u);
+      };
+      // Behind a series compliance: F = f(v − Ḟ/k_s), over the step from the sample before.
+      if (series && k > 0) {
+        fluid_vel_m_s += v - vd[k - 1];
+        fb = physics::series_force_n(v, fb_prev, series_per_n / step_s_[k - 1], law_at, fluid_vel_m_s);
+      } else {
+        fb = law_at(v).force_n;
+        fluid_vel_m_s = v;
+      }
+      fb_prev = fb;
       elastic = k_bingham * xd[k];
+    } else {
+      fb = shaped(fb, 0.0, v).force_n;
     }
-    if (lost_motion) {
-      const double e = ws.lm_factor[k];
-      fb *= (1.0 - share) + share * e;
-      if (play_band > 0.0) fb += (1.0 - e) * fy * std::tanh(v / play_band);
-    }
-    if (asym != 0.0) fb *= v > 0.0 ? 1.0 + asym : (v < 0.0 ? 1.0 - asym : 1.0);
     ws.force_n[k] = fb + elastic + k_gas * xd[k] + offset;
     if (idle) {
       decay *= std::exp(-pr_c.c_pr * av * q_per_m * dt);

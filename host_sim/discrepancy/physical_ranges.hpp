@@ -71,6 +71,8 @@ inline constexpr PhysicalRange kStiffnessRange{0.0, kMaxMeasuredForce_n / 0.01, 
 inline constexpr PhysicalRange kPlayRange{1e-18, 1.0, "m/N", "a play per newton"};
 /// The share of the force a lost motion holds up: at most all of it; a
 /// millionth of the force is below any load cell's resolution of its range.
+/// A compliance in series with the law, m/N: from rigid (0) to 1 mm per newton.
+inline constexpr PhysicalRange kSeriesComplianceRange{0.0, 1e-3, "m/N", "a compliance"};
 inline constexpr PhysicalRange kShareRange{1e-6, 1.0, "", "a share"};
 /// The force channel's lag: 0 (none) to 100 ms, longer than any anti-alias
 /// filter or logger of a damper test (the time_delay effect's bound).

@@ -102,6 +102,8 @@ void hash_damper_and_fluid(Fnv1a& h, const physics::MrDamperParams& d, const phy
                      sh.lost_motion_band_m_s}) {
       h.number(x);
     }
+    // The series compliance only when it acts (a plan with the shapes before it hashes as before it).
+    if (sh.series_compliance_m_per_n != 0.0) h.number(sh.series_compliance_m_per_n);
   }
   const physics::DamperRating& r = d.rating;
   for (double x : {r.current_a, r.force_n, r.stroke_m, r.velocity_m_s}) h.number(x);

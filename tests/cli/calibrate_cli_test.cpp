@@ -47,7 +47,8 @@ TEST_F(CalibrateCli, WritesAReadableBaselineThatDiscrepancyUses) {
   const auto b = record("b.csv", 0.5);
   const auto c = record("c.csv", 1.0);
   const auto r = run_mrd("calibrate --measured " + a.string() + " " + b.string() + " " + c.string() +
-                             " --law bingham --lost-motion-form viscous --no-plots --out " + out_.path().string(),
+                             " --law bingham --lost-motion-form viscous --no-series-compliance --no-plots --out " +
+                             out_.path().string(),
                          scratch_.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* name : {"a.csv", "b.csv", "c.csv", "chosen: law given: bingham"})

@@ -101,11 +101,13 @@ BaselineFile shape_file() {
   f.baseline.viscous_exponent = 0.7;
   f.baseline.viscous_ref_m_s = 0.05;
   f.baseline.stiffness_n_m = 900.0;
+  f.baseline.series_compliance_m_per_n = 3.4e-7;
   f.baseline.range = {0.0, 1.0, 0.09, 1700.0, 0.0016, 0.025, 0.25, 5.0};
   f.sigma.yield_n = {1.0, 20.0, 0.01, 0.05};
   f.sigma.viscous_ns_m = {10.0, 100.0, 0.02, 0.04};
   f.sigma.viscous_exponent = 0.02;
   f.sigma.stiffness_n_m = 60.0;
+  f.sigma.series_compliance_m_per_n = 2e-8;
   f.source_records = {"a.csv"};
   return f;
 }
@@ -124,10 +126,19 @@ TEST(BaselineShape, DamperTomlRoundTripsTheShapeAndRefusesHalfOfIt) {
   EXPECT_EQ(g.sigma.viscous_exponent, f.sigma.viscous_exponent);
   EXPECT_EQ(b.stiffness_n_m, a.stiffness_n_m);
   EXPECT_EQ(g.sigma.stiffness_n_m, f.sigma.stiffness_n_m);
-  EXPECT_EQ(baseline_form_name(b), "bingham_tanh+current_exponent+stiffness+viscous_exponent");
+  EXPECT_EQ(b.series_compliance_m_per_n, a.series_compliance_m_per_n);
+  EXPECT_EQ(g.sigma.series_compliance_m_per_n, f.sigma.series_compliance_m_per_n);
+  EXPECT_EQ(baseline_form_name(b), "bingham_tanh+current_exponent+stiffness+viscous_exponent+series_compliance");
+  // A negative compliance: refused, naming the field and what was expected.
+  std::string negative = text;
+  negative.insert(negative.find("series_compliance_m_per_n = ") + 28, "-");
+  EXPECT_NE(shape_error_of(negative).find("bingham.series_compliance_m_per_n"), std::string::npos)
+      << shape_error_of(negative);
+  EXPECT_NE(shape_error_of(negative).find("expected a compliance in [0, 0.001]"), std::string::npos)
+      << shape_error_of(negative);
   // A plain law writes none of the keys.
   const std::string plain = baseline_toml(BaselineFile{});
-  for (const char* key : {"current_exponent", "viscous_exponent", "viscous_ref_m_s", "stiffness_n_m"})
+  for (const char* key : {"current_exponent", "viscous_exponent", "viscous_ref_m_s", "stiffness_n_m", "series_compliance"})
     EXPECT_EQ(plain.find(key), std::string::npos) << key;
   // The exponent without its reference velocity: refused, naming the file,
   // the line of the key and the field.
@@ -194,6 +205,7 @@ TEST(BaselineShape, CalibrationRecoversTheShapeAndKeepsItOnCheckRecords) {
   opt.transition_time = false;
   opt.lost_motion = false;
   opt.stiffness = false;
+  opt.series_compliance = false;
   opt.samples_per_record = 1000;
   const CalibrationResult r = calibrate(recs, opt, check);
   // tanh; with the current exponent; with that and the viscous exponent.

@@ -77,6 +77,8 @@ CalibrateOptions test_options() {
   // The law's shape terms (current and viscous exponents, spring) have their
   // own test (baseline_shape_test.cpp); these records have none.
   opt.current_exponent = opt.viscous_exponent = opt.stiffness = false;
+  // The series compliance too (series_compliance_test.cpp), but where a test asks for it.
+  opt.series_compliance = false;
   return opt;
 }
 
@@ -140,11 +142,13 @@ TEST(Calibrate, RecoversABinghamDamperWithinItsUncertainty) {
   CalibrateOptions opt = test_options();
   opt.law = BaseLaw::bingham;
   opt.lost_motion_form = LostMotionForm::share;  // the viscous form: RecoversAViscousLostMotion...
+  opt.series_compliance = true;
   const CalibrationResult r = calibrate(recs, opt);
-  // The law with either transition, then each with a transition time and
-  // with a lost motion, which this damper does not have: neither may be
-  // kept, and Eq. 4.4's transition must win over the tanh one.
-  ASSERT_EQ(r.fits.size(), 6u);
+  // The law with either transition, then each with a transition time, with
+  // a series compliance and with a lost motion, which this damper does not
+  // have: none may be kept, and Eq. 4.4's transition must win over the tanh one.
+  ASSERT_EQ(r.fits.size(), 8u);
+  EXPECT_FALSE(r.best().baseline.has_series_compliance()) << r.choice_reason;
   EXPECT_FALSE(r.best().baseline.has_tanh_transition()) << r.choice_reason;
   EXPECT_FALSE(r.best().baseline.has_lost_motion()) << r.choice_reason;
   EXPECT_FALSE(r.best().baseline.has_transition_time()) << r.choice_reason;

@@ -223,7 +223,7 @@ TEST(DamperFile, CalibratedShapeReachesTheClosedLoop) {
   text = edited(text, "rate_per_a = 0.5\n", "rate_per_a = 0.5\ncurrent_exponent = 0.7\n");
   text = edited(text, "transition = \"tanh\"\n",
                 "transition = \"tanh\"\ntransition_time_s = 0.004\nstiffness_n_m = 12000.0\n"
-                "viscous_exponent = 0.6\nviscous_ref_m_s = 0.02\n");
+                "viscous_exponent = 0.6\nviscous_ref_m_s = 0.02\nseries_compliance_m_per_n = 3.5e-07\n");
   text += "\n[lost_motion]\nm_per_n = 2e-07\nshare = 1.0\nband_m_s = 0.015\n";
   const DamperFile d = parse_damper_toml(text, "shaped.toml");
   const physics::LawShape& sh = d.params.shape;
@@ -236,6 +236,7 @@ TEST(DamperFile, CalibratedShapeReachesTheClosedLoop) {
   EXPECT_EQ(sh.lost_motion_m_per_n, 2e-07);
   EXPECT_EQ(sh.lost_motion_share, 1.0);
   EXPECT_EQ(sh.lost_motion_band_m_s, 0.015);
+  EXPECT_EQ(sh.series_compliance_m_per_n, 3.5e-07);
   EXPECT_TRUE(sh.bends());
   EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
   // f_c(0.5 A) = 1500 + (100 − 1500) e^(−2 · 0.5^1.8) = 1500 − 1400 e^(−0.5743491775)

@@ -515,7 +515,14 @@ TEST(Batch, TheOtherLawsStepInTheLanesThroughTheScalarDamper) {
   p.k1_n_m = 1238.8;
   p.x0_m = 2.309e-6;
   spencer.damper.rating.current_a = 1.0;
-  for (const auto& [name, plant] : {std::pair{"bouc_wen", bouc_wen}, std::pair{"spencer", spencer}}) {
+  // A tanh law behind a series compliance (a solve per step) with a lost motion beside it.
+  mrd::plant::PlantSpec series;
+  series.damper.law = mrd::physics::ForceLaw::kBinghamTanh;
+  series.damper.shape.series_compliance_m_per_n = 5e-9;
+  series.damper.shape.lost_motion_m_per_n = 2e-9;
+  series.damper.shape.lost_motion_share = 0.5;
+  for (const auto& [name, plant] :
+       {std::pair{"bouc_wen", bouc_wen}, std::pair{"spencer", spencer}, std::pair{"series", series}}) {
     SCOPED_TRACE(name);
     EXPECT_FALSE(mrd::batch::lanes_vectorize(plant.damper));
     Case c;

@@ -34,6 +34,7 @@ struct BinghamParams {
 ///   F     += k x                                                              spring beside the law (0: none)
 ///   v_TF   → v_TF + τ |a|                                                     transition time τ (0: Eq. 4.4's band)
 ///   F_law  → F_law ((1 − r) + r e) + (1 − e) f_c tanh(v / v_p)               lost motion (λ = 0 or r = 0: none)
+///   F_law  = F_law(v − Ḟ_law / k_s)                                          series compliance (1/k_s = 0: rigid)
 /// </pre>
 /// q > 1 is a force that rises slowly at low current and then saturates; m < 1
 /// a fluid that thins past yield (Herschel–Bulkley); k the accumulator's gas
@@ -44,8 +45,11 @@ struct BinghamParams {
 /// play, 0 inside it and 1 past it (inside it the force may instead grow
 /// over the band v_p; v_p = 0: none), baseline.hpp's "lost motion". The
 /// current exponents and the lost motion act on every law but Spencer's; m,
-/// k and τ on the Bingham laws (Eq. 4.4's and the tanh transition), as in
-/// the calibration.
+/// k, τ and the series compliance on the Bingham laws (Eq. 4.4's and the
+/// tanh transition), as in the calibration. The series compliance is the
+/// fluid's and the body's give between piston and valve: the law acts on the
+/// fluid's velocity, so the force's lag behind the motion grows with the
+/// force (series_compliance.hpp).
 struct LawShape {
   double yield_current_exponent = 1.0;    ///< q_y of f_c(I)
   double viscous_current_exponent = 1.0;  ///< q_c of c_0(I)
@@ -56,13 +60,16 @@ struct LawShape {
   double lost_motion_m_per_n = 0.0;       ///< λ: the play's width per newton of f_c(I, PR = 1), m/N
   double lost_motion_share = 0.0;         ///< r: the share of the law's force held up, [0, 1]
   double lost_motion_band_m_s = 0.0;      ///< v_p: the band of the force inside the play, m/s (0: none)
+  /// 1/k_s: a compliance in series with a Bingham law's force (its lost
+  /// motion included, the spring not), m/N (0: rigid; series_compliance.hpp)
+  double series_compliance_m_per_n = 0.0;
 
   [[nodiscard]] bool has_viscous_exponent() const noexcept { return viscous_ref_m_s > 0.0 && viscous_exponent != 1.0; }
   [[nodiscard]] bool has_lost_motion() const noexcept { return lost_motion_m_per_n > 0.0 && lost_motion_share > 0.0; }
   /// True when any term differs from the thesis's law.
   [[nodiscard]] bool bends() const noexcept {
     return yield_current_exponent != 1.0 || viscous_current_exponent != 1.0 || has_viscous_exponent() ||
-           stiffness_n_m != 0.0 || transition_time_s != 0.0 || has_lost_motion();
+           stiffness_n_m != 0.0 || transition_time_s != 0.0 || has_lost_motion() || series_compliance_m_per_n != 0.0;
   }
   bool operator==(const LawShape&) const = default;
 };

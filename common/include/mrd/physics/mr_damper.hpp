@@ -56,7 +56,12 @@
 ///    over the half window (3 ms; exact for a linear stroke).
 /// The spring and the play act on the stroke x[n] (step(u, v) moves it by
 /// v[n]·T); the play starts centred on the first step's stroke, as the
-/// calibration's on a record's first sample.
+/// calibration's on a record's first sample. A series compliance
+/// (series_compliance.hpp) solves each step's law force (its lost motion
+/// included, the spring not) from the last step's, F[−1] = 0 after a reset
+/// (the damper unloaded), as the calibration does from a record's second
+/// sample on (its first takes the law at that velocity: a record starts at
+/// rest).
 
 #include <algorithm>
 #include <array>
@@ -69,6 +74,7 @@
 #include "mrd/physics/damper_laws.hpp"
 #include "mrd/physics/lost_motion_play.hpp"
 #include "mrd/physics/participant_ratio.hpp"
+#include "mrd/physics/series_compliance.hpp"
 #include "mrd/physics/spencer_law.hpp"
 
 namespace mrd::physics {
@@ -142,10 +148,14 @@ class MrDamper {
     stroke_m_ = 0.0;
     last_velocity_m_s_ = 0.0;
     spencer_state_ = SpencerState{};
+    law_force_n_ = 0.0;
+    fluid_velocity_m_s_ = 0.0;
     const bool bingham = p.law == ForceLaw::kBingham || p.law == ForceLaw::kBinghamTanh;
     lost_ = p.law != ForceLaw::kSpencer && p.shape.has_lost_motion();
-    bent_ = lost_ || (bingham && (p.shape.has_viscous_exponent() || p.shape.stiffness_n_m != 0.0 ||
-                                  p.shape.transition_time_s != 0.0));
+    series_ = bingham && p.shape.series_compliance_m_per_n > 0.0;
+    bent_ = lost_ || series_ ||
+            (bingham && (p.shape.has_viscous_exponent() || p.shape.stiffness_n_m != 0.0 ||
+                         p.shape.transition_time_s != 0.0));
     play_.init(period_s);
     update_coefficients();
   }
@@ -160,6 +170,8 @@ class MrDamper {
     stroke_m_ = 0.0;
     last_velocity_m_s_ = 0.0;
     spencer_state_ = SpencerState{};
+    law_force_n_ = 0.0;
+    fluid_velocity_m_s_ = 0.0;
     play_.reset();
     update_coefficients();
   }
@@ -202,7 +214,10 @@ class MrDamper {
       stroke_m_ = stroke_m;
       f = bent_ ? shaped_force_n(velocity_m_s, stroke_m, z_) : bouc_wen_force_at_n(velocity_m_s, stroke_m, z_);
     } else {
-      f = force_n(velocity_m_s, stroke_m);
+      SeriesStep next{law_force_n_, fluid_velocity_m_s_};
+      f = bent_ ? shaped_force_n(velocity_m_s, stroke_m, 0.0, &next) : force_n(velocity_m_s, stroke_m);
+      law_force_n_ = next.law_force_n;
+      fluid_velocity_m_s_ = next.fluid_velocity_m_s;
       if (bent_) stroke_m_ = stroke_m;
       if (p_.law == ForceLaw::kSpencer) {
         spencer_state_ = spencer_state_after(spencer_, spencer_state_, stroke_m, velocity_m_s, period_s_);
@@ -217,7 +232,11 @@ class MrDamper {
   /// Returns the force over this step at the present stroke, then advances
   /// coil current and PR and (kBoucWen) moves the stroke by v·T, z with it.
   double step(double command_a, double velocity_m_s) noexcept {
-    const double f = force_n(velocity_m_s);
+    SeriesStep next{law_force_n_, fluid_velocity_m_s_};
+    const double f = bent_ && p_.law != ForceLaw::kBoucWen ? shaped_force_n(velocity_m_s, stroke_m_, 0.0, &next)
+                                                           : force_n(velocity_m_s);
+    law_force_n_ = next.law_force_n;
+    fluid_velocity_m_s_ = next.fluid_velocity_m_s;
     if (lost_) commit_play(stroke_m_);
     if (p_.law == ForceLaw::kBoucWen) {
       const double dx_m = velocity_m_s * period_s_;
@@ -261,6 +280,14 @@ class MrDamper {
   double last_velocity_m_s_ = 0.0;     ///< v[n−1]: the last step's velocity (the transition time's |a|)
   bool bent_ = false;  ///< a law shaped by m, k, τ or the lost motion (the current exponents act in f_c, c_0)
   bool lost_ = false;  ///< shape's lost motion acts
+  bool series_ = false;  ///< shape's series compliance acts (a Bingham law)
+  /// What a series compliance carries from one step to the next.
+  struct SeriesStep {
+    double law_force_n = 0.0;         ///< the law's force (behind the compliance), N
+    double fluid_velocity_m_s = 0.0;  ///< the fluid's velocity, m/s
+  };
+  double law_force_n_ = 0.0;         ///< the law's force of the last step behind the series compliance, N
+  double fluid_velocity_m_s_ = 0.0;  ///< the fluid's velocity of the last step behind it, m/s
   double yield_pr1_n_ = 0.0;  ///< |f_c(|i|, PR = 1)|: the lost motion's play is λ times it
   /// The lost motion's play (its committed strokes and driven sides).
   LostMotionPlay play_{};
@@ -277,48 +304,73 @@ class MrDamper {
   /// The law shaped by p_.shape (LawShape), in discrepancy::DamperModel's
   /// order: the law's part (Bouc–Wen's f_c z + c_0 v; a Bingham law's with
   /// the band v_TF + τ|a| and c_0 (|v|/v_r)^(m−1)), the lost motion on it,
-  /// then the spring (k_0 x or k x). `z` is Bouc–Wen's variable at the stroke.
-  double shaped_force_n(double velocity_m_s, double stroke_m, double z) const noexcept {
+  /// a Bingham law's behind the series compliance, then the spring (k_0 x or
+  /// k x). `z` is Bouc–Wen's variable at the stroke. `next`, when given,
+  /// receives the series compliance's law force and fluid velocity of this
+  /// step (left as it is without a series compliance).
+  double shaped_force_n(double velocity_m_s, double stroke_m, double z, SeriesStep* next = nullptr) const noexcept {
     const LawShape& sh = p_.shape;
-    double fb = 0.0;
     double elastic = 0.0;
+    const double e = lost_ ? engaged_mean(stroke_m) : 1.0;
     if (p_.law == ForceLaw::kBoucWen) {
-      fb = fc_n_ * z + c0_ns_m_ * velocity_m_s;
       elastic = p_.bouc_wen.stiffness_n_m * stroke_m;
-    } else {
-      fb = bent_bingham_law_n(velocity_m_s);
-      elastic = sh.stiffness_n_m * stroke_m;
+      return lost_motion_on(fc_n_ * z + c0_ns_m_ * velocity_m_s, 0.0, velocity_m_s, e).force_n + elastic;
     }
-    if (lost_) {
-      const double e = engaged_mean(stroke_m);
-      const double share = std::clamp(sh.lost_motion_share, 0.0, 1.0);
-      fb *= (1.0 - share) + share * e;
-      if (sh.lost_motion_band_m_s > 0.0) fb += (1.0 - e) * fc_n_ * std::tanh(velocity_m_s / sh.lost_motion_band_m_s);
-    }
-    return fb + elastic;
-  }
-
-  /// A Bingham law's part shaped by τ and m (LawShape).
-  double bent_bingham_law_n(double velocity_m_s) const noexcept {
-    const LawShape& sh = p_.shape;
-    const double av = std::fabs(velocity_m_s);
+    elastic = sh.stiffness_n_m * stroke_m;
+    // The band widens with the piston's acceleration over the last step.
     const double band =
         sh.transition_time_s != 0.0
             ? p_.bingham.v_tf_m_s + sh.transition_time_s * (std::fabs(velocity_m_s - last_velocity_m_s_) / period_s_)
             : p_.bingham.v_tf_m_s;
-    const double c_eff =
-        sh.has_viscous_exponent()
-            ? (av > 0.0 ? c0_ns_m_ * std::pow(av / sh.viscous_ref_m_s, sh.viscous_exponent - 1.0) : 0.0)
-            : c0_ns_m_;
-    double fb = 0.0;
-    if (p_.law == ForceLaw::kBinghamTanh) {
-      fb = physics::bingham_tanh_force_n(fc_n_, c_eff, velocity_m_s, band);
-    } else {
-      const double sgn = velocity_m_s > 0.0 ? 1.0 : (velocity_m_s < 0.0 ? -1.0 : 0.0);
-      const double tf = av < band ? av / band : 1.0;
-      fb = tf * (fc_n_ * sgn + c_eff * velocity_m_s);
+    const double m = sh.has_viscous_exponent() ? sh.viscous_exponent : 1.0;
+    const auto law_at = [&](double u) {
+      const double c_eff = bent_viscous_ns_m(u);
+      if (!series_) return lost_motion_on(bent_bingham_law_n(u, band, c_eff), 0.0, u, e);
+      if (p_.law == ForceLaw::kBinghamTanh) {
+        const double t = tanh_by_exp(u / band);  // as the calibration's solve
+        return lost_motion_on(fc_n_ * t + c_eff * u, bingham_tanh_slope_ns_m(fc_n_, c_eff, m, t, band), u, e);
+      }
+      return lost_motion_on(bent_bingham_law_n(u, band, c_eff), bingham_slope_ns_m(fc_n_, c_eff, m, u, band), u, e);
+    };
+    if (!series_) return law_at(velocity_m_s).force_n + elastic;
+    double u = fluid_velocity_m_s_ + (velocity_m_s - last_velocity_m_s_);
+    const double fb = series_force_n(velocity_m_s, law_force_n_, sh.series_compliance_m_per_n / period_s_, law_at, u);
+    if (next != nullptr) *next = {fb, u};
+    return fb + elastic;
+  }
+
+  /// The lost motion (engagement `e`) on a law's force `fb` at velocity v and on its slope `slope`.
+  ForceSlope lost_motion_on(double fb, double slope, double velocity_m_s, double e) const noexcept {
+    if (!lost_) return {fb, slope};
+    const LawShape& sh = p_.shape;
+    const double share = std::clamp(sh.lost_motion_share, 0.0, 1.0);
+    fb *= (1.0 - share) + share * e;
+    slope *= (1.0 - share) + share * e;
+    if (sh.lost_motion_band_m_s > 0.0) {
+      const double t = std::tanh(velocity_m_s / sh.lost_motion_band_m_s);
+      fb += (1.0 - e) * fc_n_ * t;
+      slope += (1.0 - e) * fc_n_ * (1.0 - t * t) / sh.lost_motion_band_m_s;
     }
-    return fb;
+    return {fb, slope};
+  }
+
+  /// c_0 (|v|/v_r)^(m−1): the viscous coefficient bent by m at v (LawShape), N·s/m.
+  double bent_viscous_ns_m(double velocity_m_s) const noexcept {
+    const LawShape& sh = p_.shape;
+    const double av = std::fabs(velocity_m_s);
+    return sh.has_viscous_exponent()
+               ? (av > 0.0 ? c0_ns_m_ * std::pow(av / sh.viscous_ref_m_s, sh.viscous_exponent - 1.0) : 0.0)
+               : c0_ns_m_;
+  }
+
+  /// A Bingham law's part at velocity v with the band `band` (v_TF + τ|a|)
+  /// and the viscous coefficient `c_eff` (bent_viscous_ns_m(v)).
+  double bent_bingham_law_n(double velocity_m_s, double band, double c_eff) const noexcept {
+    if (p_.law == ForceLaw::kBinghamTanh) return physics::bingham_tanh_force_n(fc_n_, c_eff, velocity_m_s, band);
+    const double av = std::fabs(velocity_m_s);
+    const double sgn = velocity_m_s > 0.0 ? 1.0 : (velocity_m_s < 0.0 ? -1.0 : 0.0);
+    const double tf = av < band ? av / band : 1.0;
+    return tf * (fc_n_ * sgn + c_eff * velocity_m_s);
   }
 
   /// Eq. 4.4 × Eq. 5.12: TF(v) · (f_c sgn v + c_0 v).
