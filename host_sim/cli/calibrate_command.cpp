@@ -53,8 +53,8 @@ and then, with --check records or cross-validation only (bingham):
   stiffness: a spring k x beside the law (the accumulator's gas charge)     stiffness_n_m
 An extra is kept when it lowers the BIC by 10 or more, its parameters are off their bounds and
 it also lowers the RMS gap of the --check records (--no-transition-time, --no-series-compliance,
---no-lost-motion: not fitted). The form chosen: of the laws each with the extras it kept, the lowest RMS gap on the
---check records. So the check records' gaps are those of a validation set; --test records are
+--no-lost-motion: not fitted). The form chosen: of the laws each with the extras it kept, the
+lowest RMS gap on the --check records. So the check records' gaps are those of a validation set; --test records are
 judged only after everything is chosen (an untouched test set). A note says when every
 check record repeats the amplitude and frequency of a fitted one (within 1.25x): such a
 check judges the current laws, not other motions.

@@ -39,6 +39,8 @@
 ///              y starts at x_d[0], z at 0; a preyield_hysteresis effect leaves it as it is)
 ///   F_b[k]  ×= (1 − r) + r e_lm[k]   (the baseline's lost motion, width λ Y(i) on x_d, baseline.hpp)
 ///   F_b[k]  ×= 1 + a sgn v_d                                                   (direction_asymmetry)
+///   F_b[k]   = the above at u[k] = v_d[k] − (F_b[k] − F_b[k−1]) k_s⁻¹ / dt_{k−1}, solved for F_b[k]
+///              from k = 1 on (the baseline's series compliance 1/k_s, bingham; baseline.hpp)
 ///   F_b: the bouc_wen form with x_y fitted, on either baseline              (preyield_hysteresis)
 ///   F[k]     = F_b[k] + k_gas x_d[k] + F_0                                   (gas_spring, force_offset)
 ///   E[k+1]   = E[k] + F_b[k] v_d[k] dt_k;   ∫Q += |v_d| A dt_k
