@@ -7,6 +7,7 @@
 // solve), and keeps it on check records of another motion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -15,6 +16,7 @@
 
 #include "host_sim/discrepancy/calibrate.hpp"
 #include "host_sim/discrepancy/damper_model.hpp"
+#include "mrd/physics/damper_laws.hpp"
 #include "mrd/physics/series_compliance.hpp"
 
 namespace mrd::discrepancy {
@@ -46,6 +48,20 @@ TEST(SeriesCompliance, OneStepIsItsHandCalculation) {
   u = -5.0;
   EXPECT_NEAR(physics::series_force_n(0.02, 100.0, 0.0025, yield, u), 108.0, 1e-6);
   EXPECT_LT(std::fabs(u), 1e-9);
+}
+
+// The tanh the solve uses (physics::tanh_by_exp) against the C library's,
+// from 1e−12 to 40 either side: within 1e−15 (the division's half ulp of 2
+// and exp()'s rounding), and ±1 beyond.
+TEST(SeriesCompliance, TheFasterTanhIsTheLibrarys) {
+  double worst = 0.0;
+  for (double x = 1e-12; x < 40.0; x *= 1.01) {
+    for (const double s : {x, -x}) worst = std::max(worst, std::fabs(physics::tanh_by_exp(s) - std::tanh(s)));
+  }
+  EXPECT_LT(worst, 1e-15);
+  EXPECT_EQ(physics::tanh_by_exp(400.0), 1.0);
+  EXPECT_EQ(physics::tanh_by_exp(-400.0), -1.0);
+  EXPECT_EQ(physics::tanh_by_exp(0.0), 0.0);
 }
 
 /// The generating damper: a tanh law Y(I) tanh(u/v_TF) + C(I) u (Eq. 4.2–4.3's
