@@ -538,7 +538,7 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
         if (play_band > 0.0) {
           const double t = std::tanh(u / play_band);
           f += (1.0 - e) * fy * t;
-          df += (1.0 - e) * fy * (1.0 - t * t) / play_band;
+          if (series) df += (1.0 - e) * fy * (1.0 - t * t) / play_band;  // the slope only where it is solved for
         }
       }
       if (asym != 0.0) {
