@@ -131,7 +131,8 @@ TEST_F(CalibrateCli, TestRecordsAreJudgedButChooseNothing) {
   const auto same = record("same.csv", 0.75, 0.008, 0.5, 8.0);
   const auto twice = record("twice.csv", 1.0, 0.005, 1.0, 4.0, 2.0);
   const std::string common = "calibrate --measured " + a.string() + " " + b.string() + " " + c.string() +
-                             " --check " + check.string() + " --law bingham --transition tanh --no-lost-motion --no-plots --out ";
+                             " --check " + check.string() +
+                             " --law bingham --transition tanh --no-lost-motion --no-series-compliance --no-plots --out ";
   TempDir plain;
   const auto r0 = run_mrd(common + plain.path().string(), scratch_.path());
   ASSERT_EQ(r0.exit_code, 0) << r0.err;
@@ -186,7 +187,7 @@ TEST_F(CalibrateCli, TwoMotionsJudgeEachOtherWithoutCheckRecords) {
   const auto a = record("a.csv", 0.0), b = record("b.csv", 1.0);
   const auto c = record("c.csv", 0.0, 0.002, 3.0), d = record("d.csv", 1.0, 0.002, 3.0);
   const std::string common = "calibrate --measured " + a.string() + " " + c.string() + " " + b.string() + " " +
-                             d.string() + " --law bingham --transition tanh --no-lost-motion --no-plots";
+                             d.string() + " --law bingham --transition tanh --no-lost-motion --no-series-compliance --no-plots";
   const auto r = run_mrd(common + " --out " + out_.path().string(), scratch_.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(slurp(out_.path() / "summary.json"));

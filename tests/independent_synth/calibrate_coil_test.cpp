@@ -74,6 +74,7 @@ d::CalibrateOptions eq44_only() {
   o.transition = d::TransitionShape::linear;
   o.transition_time = false;
   o.lost_motion = false;
+  o.series_compliance = false;
   o.samples_per_record = 1500;
   return o;
 }
