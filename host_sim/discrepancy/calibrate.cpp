@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <thread>
 #include <utility>
 
 #include "host_sim/discrepancy/baseline_check.hpp"
@@ -241,30 +242,49 @@ struct JointData {
   }
 };
 
+/// The joint residuals and their forward-difference Jacobian, one column per
+/// free parameter. The columns are independent simulations: with `threads`
+/// > 1 they are dealt to that many workers (column j to worker j mod
+/// threads), each with its own models and scratch, so that a fit nobody
+/// runs beside uses every core; each column is the same arithmetic whatever
+/// the count, so the fit is the same to the bit.
 class JointCost final : public ceres::CostFunction {
  public:
-  JointCost(const JointData& data, const Layout& layout, const Baseline& base)
-      : data_(data), layout_(layout), base_(base), models_(data.models(base)) {
+  JointCost(const JointData& data, const Layout& layout, const Baseline& base, unsigned threads)
+      : data_(data),
+        layout_(layout),
+        base_(base),
+        workers_(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(layout.free.size(), 1))) {
     set_num_residuals(static_cast<int>(data.total));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(layout.free.size()));
+    for (std::size_t w = 0; w < workers_; ++w) models_.push_back(data.models(base));
+    ws_.resize(workers_);
+    column_.resize(workers_);
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const double* theta = parameters[0];
     const std::size_t k = layout_.free.size();
     const std::size_t m = data_.total;
-    if (!data_.residuals(models_, ws_, layout_.apply(base_, theta), residuals)) return false;
+    if (!data_.residuals(models_[0], ws_[0], layout_.apply(base_, theta), residuals)) return false;
     if (jacobians == nullptr || jacobians[0] == nullptr) return true;
-    std::vector<double> tp(theta, theta + k);
-    std::vector<double> rp(m);
-    for (std::size_t j = 0; j < k; ++j) {
-      const double h = tp[j] + kStep > std::log(kUpper[layout_.free[j]]) ? -kStep : kStep;
-      tp[j] = theta[j] + h;
-      if (!data_.residuals(models_, ws_, layout_.apply(base_, tp.data()), rp.data())) return false;
-      tp[j] = theta[j];
-      for (std::size_t r = 0; r < m; ++r) jacobians[0][r * k + j] = (rp[r] - residuals[r]) / h;
-    }
-    return true;
+    std::vector<char> finite(workers_, 1);
+    parallel_for(workers_, static_cast<unsigned>(workers_), [&](std::size_t w) {
+      std::vector<double> tp(theta, theta + k);
+      std::vector<double>& rp = column_[w];
+      rp.resize(m);
+      for (std::size_t j = w; j < k; j += workers_) {
+        const double h = tp[j] + kStep > std::log(kUpper[layout_.free[j]]) ? -kStep : kStep;
+        tp[j] = theta[j] + h;
+        if (!data_.residuals(models_[w], ws_[w], layout_.apply(base_, tp.data()), rp.data())) {
+          finite[w] = 0;
+          return;
+        }
+        tp[j] = theta[j];
+        for (std::size_t r = 0; r < m; ++r) jacobians[0][r * k + j] = (rp[r] - residuals[r]) / h;
+      }
+    });
+    return std::all_of(finite.begin(), finite.end(), [](char f) { return f != 0; });
   }
 
  private:
@@ -272,10 +292,12 @@ class JointCost final : public ceres::CostFunction {
   const JointData& data_;
   const Layout& layout_;
   Baseline base_;
-  // One solve's models and scratch, put on each evaluated baseline in turn
-  // (Ceres evaluates from one thread: lm_solver_options).
-  mutable std::vector<DamperModel> models_;
-  mutable ModelWorkspace ws_;
+  std::size_t workers_;
+  // Each worker's models and scratch, put on each evaluated baseline in turn
+  // (Ceres calls Evaluate from one thread: lm_solver_options).
+  mutable std::vector<std::vector<DamperModel>> models_;
+  mutable std::vector<ModelWorkspace> ws_;
+  mutable std::vector<std::vector<double>> column_;  ///< each worker's perturbed residuals
 };
 
 /// Iterations of each start, and of the best start to the end (fit_law).
@@ -290,13 +312,13 @@ struct LocalResult {
 };
 
 LocalResult local_fit(const JointData& data, const Layout& layout, const Baseline& base, std::vector<double> theta,
-                      int max_iterations) {
+                      int max_iterations, unsigned threads) {
   LocalResult out;
   out.theta = std::move(theta);
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(po);
-  problem.AddResidualBlock(new JointCost(data, layout, base), nullptr, out.theta.data());
+  problem.AddResidualBlock(new JointCost(data, layout, base, threads), nullptr, out.theta.data());
   for (std::size_t j = 0; j < layout.free.size(); ++j) {
     problem.SetParameterLowerBound(out.theta.data(), static_cast<int>(j), std::log(kLower[layout.free[j]]));
     problem.SetParameterUpperBound(out.theta.data(), static_cast<int>(j), std::log(kUpper[layout.free[j]]));
@@ -477,11 +499,11 @@ double top_current_a(const Prepared& p) {
 
 /// Standard errors of the free parameters (in ln value), from σ² (JᵀJ)⁻¹ n/n_eff.
 std::vector<double> log_sigmas(const JointData& d, const Layout& layout, const Baseline& base,
-                               const std::vector<double>& theta, double rss, double n_eff) {
+                               const std::vector<double>& theta, double rss, double n_eff, unsigned threads) {
   const std::size_t k = theta.size();
   const std::size_t m = d.total;
   std::vector<double> res(m), jac(m * k);
-  JointCost cost(d, layout, base);
+  JointCost cost(d, layout, base, threads);
   const double* params[] = {theta.data()};
   double* jacs[] = {jac.data()};
   std::vector<double> sig(k, 0.0);
@@ -520,6 +542,19 @@ Extras extras_of(const Baseline& b) {
           b.has_bingham_stiffness(), b.has_viscous_exponent(), b.has_series_compliance()};
 }
 
+/// `threads` with 0 read as every core.
+unsigned resolved_threads(unsigned threads) {
+  return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+}
+
+/// `o` for one of `count` fits run side by side on its threads: the threads
+/// each fit's Jacobian may use (at least one).
+CalibrateOptions side_by_side(const CalibrateOptions& o, std::size_t count) {
+  CalibrateOptions each = o;
+  each.threads = std::max<unsigned>(1u, resolved_threads(o.threads) / static_cast<unsigned>(std::max<std::size_t>(count, 1)));
+  return each;
+}
+
 /// Fits `law` (with the tanh transition when `tanh` and the law is Bingham)
 /// with `extras` to the records. With `from` given (a fit of the
 /// same law with one extra fewer), starts from it with the new extra's
@@ -540,6 +575,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   const JointData& d = spencer ? weighted : p.data;
   const std::size_t n_currents = p.currents_a.size();
   const Baseline thesis = thesis_baseline();
+  const unsigned threads = resolved_threads(opt.threads);  // the Jacobian's columns side by side
 
   Layout layout;
   layout.constant_laws = n_currents <= 1;
@@ -833,7 +869,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     std::vector<double> theta;
     Baseline sc = s;
     for (const Slot slot : layout.free) theta.push_back(std::log(clamp_slot(layout.get(sc, slot), slot)));
-    const LocalResult r = local_fit(d, layout, base, std::move(theta), kScreenIterations);
+    const LocalResult r = local_fit(d, layout, base, std::move(theta), kScreenIterations, threads);
     if (!have || r.cost < best.cost) {
       best = r;
       have = true;
@@ -841,7 +877,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
   }
   if (!best.converged) {
     const int screened = best.iterations;
-    best = local_fit(d, layout, base, best.theta, kMaxIterations);
+    best = local_fit(d, layout, base, best.theta, kMaxIterations, threads);
     best.iterations += screened;
   }
 
@@ -859,7 +895,7 @@ LawFit fit_law(const Prepared& p, BaseLaw law, bool tanh, const CalibrateOptions
     at += d.index[r].size();
   }
 
-  const std::vector<double> sl = log_sigmas(d, layout, base, best.theta, fit.rss, fit.n_eff);
+  const std::vector<double> sl = log_sigmas(d, layout, base, best.theta, fit.rss, fit.n_eff, threads);
   std::array<double, kSlots> sigma{};
   std::array<bool, kSlots> fitted{}, at_bound{};
   for (std::size_t j = 0; j < layout.free.size(); ++j) {
@@ -940,9 +976,10 @@ std::vector<double> baseline_gaps(const Baseline& baseline, std::span<const Meas
 std::vector<double> record_floor_gaps(const Baseline& form, std::span<const MeasuredData> records,
                                       const CalibrateOptions& options) {
   std::vector<double> floors(records.size());
+  const CalibrateOptions each = side_by_side(options, records.size());
   parallel_for(records.size(), options.threads, [&](std::size_t r) {
     const Prepared p = prepare(records.subspan(r, 1), options);
-    const LawFit f = fit_law(p, form.law, form.tanh_transition, options, nullptr, extras_of(form), &form);
+    const LawFit f = fit_law(p, form.law, form.tanh_transition, each, nullptr, extras_of(form), &form);
     floors[r] = baseline_gaps(f.baseline, records.subspan(r, 1), options.smoothing_half_window_s).front();
   });
   return floors;
@@ -1111,8 +1148,9 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
   }
   {
     std::vector<LawFit> fitted(plain.size());
+    const CalibrateOptions each = side_by_side(options, plain.size());
     parallel_for(plain.size(), options.threads, [&](std::size_t j) {
-      fitted[j] = fit_law(p, plain[j].first, plain[j].second, options);
+      fitted[j] = fit_law(p, plain[j].first, plain[j].second, each);
       fitted[j].record_gaps = baseline_gaps(fitted[j].baseline, records, options.smoothing_half_window_s);
     });
     for (LawFit& f : fitted) res.fits.push_back(std::move(f));
@@ -1202,8 +1240,9 @@ CalibrationResult calibrate(std::span<const MeasuredData> records, const Calibra
     } else {
       const Baseline& b = fit.baseline;
       std::vector<std::vector<double>> held(folds.size());
+      const CalibrateOptions each = side_by_side(options, folds.size());
       parallel_for(folds.size(), options.threads, [&](std::size_t k) {
-        const LawFit g = fit_law(folds[k].train, b.law, b.tanh_transition, options, nullptr, extras_of(b), &b);
+        const LawFit g = fit_law(folds[k].train, b.law, b.tanh_transition, each, nullptr, extras_of(b), &b);
         held[k] = baseline_gaps(g.baseline, folds[k].held, options.smoothing_half_window_s);
       });
       for (std::size_t k = 0; k < folds.size(); ++k) {

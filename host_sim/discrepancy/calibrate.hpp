@@ -110,8 +110,9 @@ enum class LostMotionForm { both, share, viscous };
 
 struct CalibrateOptions {
   /// Threads for the fits that do not depend on each other (the laws' plain
-  /// fits, each motion left out); 0: all cores. The result is the same
-  /// whatever the count.
+  /// fits, each motion left out) and, within a fit, for its Jacobian's
+  /// columns (those left to it when fits run side by side); 0: all cores.
+  /// The result is the same whatever the count.
   unsigned threads = 0;
   std::optional<BaseLaw> law;  ///< nullopt: fit every law (auto), choose as CalibrationResult says
   /// Whether auto fits the spencer law too (a fit of eleven parameters

@@ -272,6 +272,34 @@ TEST(Calibrate, RecoversABoucWenDamperAndAutoPrefersIt) {
   expect_recovered(truth, r.best());
 }
 
+// One fit alone (one law, one transition, nothing to judge): its Jacobian's
+// columns are dealt to the threads (column j to thread j mod 3 here, so
+// every thread takes several, and one fewer than the others), each column
+// the same simulation as on one thread, so the fit is the same to the bit.
+TEST(Calibrate, AFitsJacobianOnThreadsIsTheSameFitToTheBit) {
+  const std::vector<MeasuredData> recs = synth_set(small_damper(BaseLaw::bingham));
+  CalibrateOptions opt = test_options();
+  opt.law = BaseLaw::bingham;
+  opt.transition = TransitionShape::linear;
+  opt.transition_time = opt.lost_motion = false;
+  opt.cross_validate = false;
+  opt.threads = 1;
+  const CalibrationResult one = calibrate(recs, opt);
+  opt.threads = 3;
+  const CalibrationResult three = calibrate(recs, opt);
+  ASSERT_EQ(one.fits.size(), 1u);
+  ASSERT_EQ(three.fits.size(), 1u);
+  ASSERT_GE(one.best().params.size(), 7u);  // Y and C laws, v_TF, the force lag: columns for every thread
+  ASSERT_EQ(one.best().params.size(), three.best().params.size());
+  for (std::size_t j = 0; j < one.best().params.size(); ++j) {
+    EXPECT_EQ(one.best().params[j].value, three.best().params[j].value) << one.best().params[j].name;
+    EXPECT_EQ(one.best().params[j].sigma, three.best().params[j].sigma) << one.best().params[j].name;
+  }
+  EXPECT_EQ(one.best().iterations, three.best().iterations);
+  EXPECT_EQ(one.best().rss, three.best().rss);
+  EXPECT_EQ(one.best().record_gaps, three.best().record_gaps);
+}
+
 TEST(Calibrate, RecoversALostMotionAndKeepsIt) {
   // λ = 2e-7 m/N: at 1 A, Y = 1500 − 1400 e^−1.5 = 1187.6 N, a play of
   // 0.24 mm on the 2 mm and 5 mm strokes; half the force held up.
@@ -323,8 +351,8 @@ TEST(Calibrate, RecoversALostMotionAndKeepsIt) {
   linear.threads = 2;
   const CalibrationResult two = calibrate(recs, linear);
   ASSERT_EQ(two.cross_validation_groups.size(), 2u);
-  // The laws' fits and the folds side by side: the same result to the bit
-  // as one after the other.
+  // The laws' fits, the folds and a fit's Jacobian columns side by side: the
+  // same result to the bit as one after the other.
   linear.threads = 1;
   const CalibrationResult serial = calibrate(recs, linear);
   ASSERT_EQ(serial.fits.size(), two.fits.size());
