@@ -20,6 +20,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <initializer_list>
 #include <type_traits>
 
 #include "firmware/core/numeric_formats.hpp"
@@ -132,6 +133,12 @@ class BasicInputGuard {
 
   void init(const InputGuardLimits& limits) noexcept {
     limits_ = limits;
+    // An infinite limit as the largest float: |v| ≤ limit (basic()) then
+    // still leaves ±∞ outside, to be named infinite, as every finite v is inside.
+    for (float* l : {&limits_.disp_limit_m, &limits_.force_limit_n, &limits_.accel_limit_m_s2,
+                     &limits_.coil_current_limit_a}) {
+      if (*l > kLargestFloat) *l = kLargestFloat;
+    }
     reset();
   }
 
@@ -172,6 +179,7 @@ class BasicInputGuard {
 
  private:
   static constexpr std::uint32_t kNever = 0xffffffffu;
+  static constexpr float kLargestFloat = 3.40282347e38f;
   InputGuardLimits limits_{};
   std::array<Bits, 2> last_bits_{};
   std::array<Count, 2> same_run_{};
@@ -180,9 +188,14 @@ class BasicInputGuard {
 
   static constexpr Fault basic(Sample v, Mask flagged_valid, float limit) noexcept {
     const Bits bits = __builtin_bit_cast(Bits, v);
-    const Mask special = (bits & 0x7f800000u) == 0x7f800000u;  // NaN or infinite (classify_float)
-    Fault f = num::select(!(v <= limit && -limit <= v), fault(InputFault::kOutOfRange), fault(InputFault::kNone));
-    if (num::any(special)) {
+    // |v| ≤ limit, false for NaN: the same as v ≤ limit && −limit ≤ v for
+    // every v and limit (the sign bit cleared is |v|, NaN stays NaN); ±∞,
+    // whose fault is named below, is outside since limit is finite (init()).
+    const Mask inside = __builtin_bit_cast(Sample, bits & 0x7fffffffu) <= limit;
+    Fault f = fault(InputFault::kNone);
+    if (!num::all(inside)) [[unlikely]] {
+      const Mask special = (bits & 0x7f800000u) == 0x7f800000u;  // NaN or infinite (classify_float)
+      f = num::select(inside, f, fault(InputFault::kOutOfRange));
       f = num::select(special,
                       num::select((bits & 0x007fffffu) != 0u, fault(InputFault::kNotANumber),
                                   fault(InputFault::kInfinite)),

@@ -31,6 +31,42 @@ TEST(InputGuardClassify, FindsNanAndInfinityFromTheBits) {
   EXPECT_EQ(classify_float(-0.0f), InputFault::kNone);
 }
 
+// The guard's range test, |v| ≤ limit, against its definition −limit ≤ v ≤
+// limit with NaN and ±∞ named for what they are, at the limit's edges and
+// with limits no float reaches.
+TEST(InputGuardRange, EdgesOfTheLimitAndLimitsBeyondEveryFloat) {
+  const auto disp_fault = [](float limit, float v) {
+    InputGuardLimits l;
+    l.disp_limit_m = limit;
+    InputGuard g;
+    g.init(l);
+    ControllerInput in;
+    in.damper_disp_m = v;
+    return g.check(in)[InputGuard::idx(InputSignal::kDisp)];
+  };
+  const float above = std::nextafter(0.3f, 1.0f);
+  EXPECT_EQ(disp_fault(0.3f, 0.3f), InputFault::kNone);
+  EXPECT_EQ(disp_fault(0.3f, -0.3f), InputFault::kNone);
+  EXPECT_EQ(disp_fault(0.3f, -0.0f), InputFault::kNone);
+  EXPECT_EQ(disp_fault(0.3f, above), InputFault::kOutOfRange);
+  EXPECT_EQ(disp_fault(0.3f, -above), InputFault::kOutOfRange);
+  EXPECT_EQ(disp_fault(0.3f, kInf), InputFault::kInfinite);
+  EXPECT_EQ(disp_fault(0.3f, -kInf), InputFault::kInfinite);
+  EXPECT_EQ(disp_fault(0.3f, kNaN), InputFault::kNotANumber);
+  // A limit of +∞ (a double limit beyond float's range, converted): every
+  // finite stroke is inside, ±∞ are still infinite values, not strokes.
+  const float big = std::numeric_limits<float>::max();
+  EXPECT_EQ(disp_fault(kInf, big), InputFault::kNone);
+  EXPECT_EQ(disp_fault(kInf, -big), InputFault::kNone);
+  EXPECT_EQ(disp_fault(kInf, kInf), InputFault::kInfinite);
+  EXPECT_EQ(disp_fault(kInf, -kInf), InputFault::kInfinite);
+  EXPECT_EQ(disp_fault(kInf, kNaN), InputFault::kNotANumber);
+  // A limit no value meets (−limit ≤ v ≤ limit is empty): everything finite
+  // is out of range.
+  EXPECT_EQ(disp_fault(-1.0f, 0.0f), InputFault::kOutOfRange);
+  EXPECT_EQ(disp_fault(kNaN, 0.0f), InputFault::kOutOfRange);
+}
+
 template <class Policy>
 class BadInputTest : public ::testing::Test {
  protected:

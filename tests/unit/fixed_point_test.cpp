@@ -2,9 +2,13 @@
 // helpers that let one block compile for float and fixed point.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
+#include <utility>
+#include <vector>
 
 #include "mrd/num/fixed.hpp"
 #include "mrd/num/policy.hpp"
@@ -46,6 +50,36 @@ TEST(Fixed, AdditionAndSubtractionSaturateNeverWrap) {
   EXPECT_DOUBLE_EQ((Q15_16::from_double(1.25) + Q15_16::from_double(-3.5)).to_double(), -2.25);
 }
 
+// +, − and negation equal the exact integer result clamped to int32, at the
+// range ends and on a spread of raw values (the reference is 64-bit integer
+// arithmetic written here).
+TEST(Fixed, SumsDifferencesAndNegationAreTheClampedExactResults) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::int32_t>::max();
+  constexpr std::int64_t kMin = std::numeric_limits<std::int32_t>::min();
+  const auto clamped = [](std::int64_t v) { return v > kMax ? kMax : (v < kMin ? kMin : v); };
+  std::vector<std::int32_t> raws = {std::numeric_limits<std::int32_t>::min(),
+                                    std::numeric_limits<std::int32_t>::min() + 1,
+                                    -(1 << 30) - 1, -(1 << 30), -2, -1, 0, 1, 2, 1 << 30, (1 << 30) + 1,
+                                    std::numeric_limits<std::int32_t>::max() - 1,
+                                    std::numeric_limits<std::int32_t>::max()};
+  std::mt19937 rng(20261128);
+  std::uniform_int_distribution<std::int32_t> any_raw(std::numeric_limits<std::int32_t>::min(),
+                                                      std::numeric_limits<std::int32_t>::max());
+  for (int k = 0; k < 200; ++k) raws.push_back(any_raw(rng));
+  for (const std::int32_t a : raws) {
+    const Q15_16 x = Q15_16::from_raw(a);
+    EXPECT_EQ((-x).raw(), clamped(-std::int64_t{a})) << a;
+    for (const std::int32_t b : raws) {
+      const Q15_16 y = Q15_16::from_raw(b);
+      ASSERT_EQ((x + y).raw(), clamped(std::int64_t{a} + b)) << a << " + " << b;
+      ASSERT_EQ((x - y).raw(), clamped(std::int64_t{a} - b)) << a << " - " << b;
+    }
+  }
+  static_assert((Q15_16::max() + Q15_16::epsilon()) == Q15_16::max());
+  static_assert((Q15_16::lowest() - Q15_16::epsilon()) == Q15_16::lowest());
+  static_assert((Q15_16{} - Q15_16::lowest()) == Q15_16::max());
+}
+
 TEST(Fixed, MultiplicationRoundsAndSaturates) {
   EXPECT_DOUBLE_EQ((Q15_16::from_double(1.5) * Q15_16::from_double(-2.25)).to_double(), -3.375);
   EXPECT_EQ(Q15_16::from_double(300.0) * Q15_16::from_double(300.0), Q15_16::max());
@@ -78,6 +112,60 @@ TEST(Fixed, MixedFormatMultiplyAndCast) {
   EXPECT_DOUBLE_EQ(q_cast<Q7_24>(Q15_16::from_double(-3.25)).to_double(), -3.25);
   // Dropping fraction bits rounds to nearest.
   EXPECT_EQ(q_cast<Q15_16>(Q7_24::from_raw(1 << 7)).raw(), 1);  // 0.5 step → rounds up
+}
+
+// Conversions round to nearest with ties away from zero, exactly: adding ½
+// and truncating rounds twice (0.49999997 + 0.5 is 1 in float; an odd
+// integer in [2^23, 2^24), where floats step by 1, plus 0.5 ties to the even
+// one above). Fixed<31, 0> counts whole units, so raw = round(v). The
+// reference: trunc and fraction in double, where both are exact.
+TEST(Fixed, FloatConversionRoundsHalfAwayFromZeroOnWholeBinades) {
+  using Units = Fixed<31, 0>;
+  const auto reference = [](float v) {
+    const double t = std::trunc(static_cast<double>(v));
+    const double frac = static_cast<double>(v) - t;
+    return static_cast<std::int64_t>(t) + (frac >= 0.5 ? 1 : 0) - (frac <= -0.5 ? 1 : 0);
+  };
+  EXPECT_EQ(from_float<Units>(0.49999997f).raw(), 0);
+  EXPECT_EQ(from_float<Units>(-0.49999997f).raw(), 0);
+  EXPECT_EQ(from_float<Units>(0.5f).raw(), 1);
+  EXPECT_EQ(from_float<Units>(-0.5f).raw(), -1);
+  EXPECT_EQ(from_float<Units>(2.5f).raw(), 3);
+  EXPECT_EQ(from_float<Units>(8388609.0f).raw(), 8388609);
+  EXPECT_EQ(from_float<Units>(-8388609.0f).raw(), -8388609);
+  EXPECT_EQ(from_float<Units>(8388607.5f).raw(), 8388608);  // a tie, away from zero
+  EXPECT_EQ(from_float<Units>(-8388607.5f).raw(), -8388608);
+  EXPECT_EQ(from_float<Units>(-0.0f).raw(), 0);
+  EXPECT_EQ(from_float<Units>(2147483520.0f).raw(), 2147483520);  // the largest float below 2^31
+  EXPECT_EQ(from_float<Units>(2147483648.0f), Units::max());
+  EXPECT_EQ(from_float<Units>(-2147483648.0f), Units::lowest());
+  EXPECT_EQ(from_float<Units>(std::numeric_limits<float>::quiet_NaN()).raw(), 0);
+  // Every third float of the binades where rounding twice goes wrong:
+  // [0.25, 1) around ½, and [2^22, 2^24) where the step is ½ and 1.
+  std::int64_t wrong = 0;
+  for (const auto& [lo, hi] : {std::pair{0.25f, 1.0f}, std::pair{4194304.0f, 16777216.0f}}) {
+    const auto first = std::bit_cast<std::uint32_t>(lo);
+    const auto end = std::bit_cast<std::uint32_t>(hi);
+    for (std::uint32_t b = first; b < end; b += 3) {
+      const float v = std::bit_cast<float>(b);
+      if (from_float<Units>(v).raw() != reference(v)) ++wrong;
+      if (from_float<Units>(-v).raw() != reference(-v)) ++wrong;
+    }
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
+TEST(Fixed, DoubleConversionRoundsHalfAwayFromZeroExactly) {
+  using Units = Fixed<31, 0>;
+  EXPECT_EQ(Units::from_double(0.49999999999999994).raw(), 0);
+  EXPECT_EQ(Units::from_double(-0.49999999999999994).raw(), 0);
+  EXPECT_EQ(Units::from_double(0.5).raw(), 1);
+  EXPECT_EQ(Units::from_double(-0.5).raw(), -1);
+  EXPECT_EQ(Units::from_double(1e9 + 0.5).raw(), 1000000001);
+  EXPECT_EQ(Units::from_double(-1e9 - 0.5).raw(), -1000000001);
+  EXPECT_EQ(Units::from_double(2147483646.5), Units::max());
+  EXPECT_EQ(Units::from_double(-2147483647.5), Units::lowest());
+  static_assert(Units::from_double(0.49999999999999994).raw() == 0);
 }
 
 TEST(Fixed, ConstexprUsable) {

@@ -10,8 +10,9 @@
 /// - conversions from double/float round to nearest and saturate to the
 ///   range; NaN converts to 0 (callers that must treat NaN as a fault check
 ///   for it before converting);
-/// - +, −, negation, ×, ÷ compute in a 64-bit accumulator and saturate the
-///   result to the range; they never wrap;
+/// - +, −, negation, ×, ÷ saturate the exact result to the range (× and ÷
+///   in a 64-bit accumulator; + and − from the overflow flag); they never
+///   wrap;
 /// - × and `mul<Out>` round the 64-bit product to nearest (ties towards +∞)
 ///   when dropping fractional bits;
 /// - ÷ by zero saturates to the range end with the sign of the dividend
@@ -25,22 +26,40 @@
 namespace mrd::num {
 
 namespace detail {
+/// v saturated to int32. The common case (v fits) is one sign-extension and
+/// one compare; the range end is picked only when v does not fit.
 constexpr std::int32_t saturate_i32(std::int64_t v) noexcept {
-  if (v > std::numeric_limits<std::int32_t>::max()) return std::numeric_limits<std::int32_t>::max();
-  if (v < std::numeric_limits<std::int32_t>::min()) return std::numeric_limits<std::int32_t>::min();
-  return static_cast<std::int32_t>(v);
+  const auto low = static_cast<std::int32_t>(v);  // modular (C++20)
+  if (low == v) [[likely]]
+    return low;
+  return v > 0 ? std::numeric_limits<std::int32_t>::max() : std::numeric_limits<std::int32_t>::min();
+}
+
+/// a + b and a − b saturated to int32, from the processor's overflow flag:
+/// the exact sum leaves the range only when a and b (a and −b) have the same
+/// sign, and then on the side of a's sign.
+constexpr std::int32_t add_saturate_i32(std::int32_t a, std::int32_t b) noexcept {
+  std::int32_t r = 0;
+  if (__builtin_add_overflow(a, b, &r)) [[unlikely]]
+    return a < 0 ? std::numeric_limits<std::int32_t>::min() : std::numeric_limits<std::int32_t>::max();
+  return r;
+}
+constexpr std::int32_t sub_saturate_i32(std::int32_t a, std::int32_t b) noexcept {
+  std::int32_t r = 0;
+  if (__builtin_sub_overflow(a, b, &r)) [[unlikely]]
+    return a < 0 ? std::numeric_limits<std::int32_t>::min() : std::numeric_limits<std::int32_t>::max();
+  return r;
 }
 
 /// Shifts a 64-bit value right by `shift` bits with rounding to nearest
 /// (ties towards +∞), or left by −shift bits with saturation, then saturates
-/// to int32.
+/// to int32. |v| ≤ 2^62 (a product of two int32, or an int32).
 constexpr std::int32_t shift_round_saturate(std::int64_t v, int shift) noexcept {
   if (shift > 0) {
     if (shift >= 63) return 0;
     const std::int64_t half = std::int64_t{1} << (shift - 1);
-    // Avoid overflow of v + half near INT64_MAX (impossible for products of
-    // two int32, kept for safety).
-    if (v > std::numeric_limits<std::int64_t>::max() - half) return saturate_i32(v >> shift);
+    // v + half cannot overflow: every caller passes a product of two int32
+    // or an int32 (|v| ≤ 2^62), and half ≤ 2^61.
     return saturate_i32((v + half) >> shift);
   }
   if (shift < 0) {
@@ -82,8 +101,12 @@ class Fixed {
     const double scaled = v * kScale;
     if (scaled >= 2147483647.0) return max();
     if (scaled <= -2147483648.0) return lowest();
-    const double r = scaled >= 0.0 ? scaled + 0.5 : scaled - 0.5;
-    return from_raw(static_cast<raw_type>(static_cast<std::int64_t>(r)));
+    // Nearest, ties away from zero, from the exact fraction (scaled + 0.5
+    // would round twice: 0.49999999999999994 to 1).
+    const auto whole = static_cast<std::int64_t>(scaled);
+    const double frac = scaled - static_cast<double>(whole);
+    const std::int64_t r = whole + (frac >= 0.5 ? 1 : 0) - (frac <= -0.5 ? 1 : 0);
+    return from_raw(static_cast<raw_type>(r));  // |scaled| < 2^31 above: r fits
   }
   static constexpr Fixed from_float(float v) noexcept { return from_double(static_cast<double>(v)); }
 
@@ -102,15 +125,9 @@ class Fixed {
     return raw_ == std::numeric_limits<raw_type>::max() || raw_ == std::numeric_limits<raw_type>::min();
   }
 
-  friend constexpr Fixed operator+(Fixed a, Fixed b) noexcept {
-    return from_raw(detail::saturate_i32(std::int64_t{a.raw_} + b.raw_));
-  }
-  friend constexpr Fixed operator-(Fixed a, Fixed b) noexcept {
-    return from_raw(detail::saturate_i32(std::int64_t{a.raw_} - b.raw_));
-  }
-  friend constexpr Fixed operator-(Fixed a) noexcept {
-    return from_raw(detail::saturate_i32(-std::int64_t{a.raw_}));
-  }
+  friend constexpr Fixed operator+(Fixed a, Fixed b) noexcept { return from_raw(detail::add_saturate_i32(a.raw_, b.raw_)); }
+  friend constexpr Fixed operator-(Fixed a, Fixed b) noexcept { return from_raw(detail::sub_saturate_i32(a.raw_, b.raw_)); }
+  friend constexpr Fixed operator-(Fixed a) noexcept { return from_raw(detail::sub_saturate_i32(0, a.raw_)); }
   friend constexpr Fixed operator*(Fixed a, Fixed b) noexcept {
     return from_raw(detail::shift_round_saturate(std::int64_t{a.raw_} * b.raw_, FracBits));
   }

@@ -170,16 +170,26 @@ template <class T>
 /// Run-time conversion of a float sample (a sensor value crossing the
 /// control core's boundary) without double arithmetic, for targets whose FPU
 /// is single precision. Fixed point: v·2^F in float (exact, a power of two),
-/// rounded to nearest (ties away from zero; above 2^23 counts, where float
+/// rounded to nearest (ties away from zero; from 2^23 counts on, where float
 /// has no fraction left, the float value itself), saturated; NaN gives 0.
+/// The float just below ½ (nextafterf(0.5f, 0)).
+inline constexpr float kJustBelowHalf = 0.49999997f;
+
 template <class T>
 constexpr T from_float(float v) noexcept {
   if constexpr (requires { T::kFracBits; }) {
-    if (v != v) return T{};
     const float scaled = v * static_cast<float>(std::int64_t{1} << T::kFracBits);
-    if (scaled >= 2147483648.0f) return T::max();
-    if (scaled <= -2147483648.0f) return T::lowest();
-    const float r = scaled >= 0.0f ? scaled + 0.5f : scaled - 0.5f;
+    if (!(__builtin_fabsf(scaled) < 2147483648.0f)) [[unlikely]] {
+      if (v != v) return T{};
+      return scaled > 0.0f ? T::max() : T::lowest();
+    }
+    // Nearest, ties away from zero: scaled ± the float just below ½, then
+    // toward zero. ± ½ itself would round twice (0.49999997 + 0.5 is 1 in
+    // float; an odd count in [2^23, 2^24), where float steps by 1, plus 0.5
+    // ties to the even count above); with 0.49999997 the sum rounds to the
+    // right side of every integer, for every float below 2^31 (checked on
+    // all of them; fixed_point_test.cpp checks whole binades).
+    const float r = scaled + __builtin_copysignf(kJustBelowHalf, scaled);
     return T::from_raw(static_cast<typename T::raw_type>(r));
   } else {
     return static_cast<T>(v);
