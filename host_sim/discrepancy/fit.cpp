@@ -111,17 +111,63 @@ FitData make_fit_data(const DamperModel& model, std::span<const double> measured
   return d;
 }
 
-SampleSplit split_samples(std::span<const double> time_s, SampleRange range) {
+namespace {
+
+/// Whether block b is held out under the pattern shifted by `shift`.
+bool held_out_block(std::size_t block, std::size_t shift) {
+  const std::size_t r = (block + 10 - shift % 10) % 10;
+  return r == 2 || r == 5 || r == 8;
+}
+
+}  // namespace
+
+SampleSplit split_samples(std::span<const double> time_s, SampleRange range, std::span<const double> velocity_m_s) {
   SampleSplit s;
   range.end = std::min(range.end, time_s.size());
   if (range.begin >= range.end) return s;
   const double t0 = time_s[range.begin];
   const double span_s = time_s[range.end - 1] - t0;
-  for (std::size_t k = range.begin; k < range.end; ++k) {
+  const auto block_of = [&](std::size_t k) {
     const double u = span_s > 0.0 ? (time_s[k] - t0) / span_s : 0.0;
-    const auto block = std::min(static_cast<std::size_t>(u * static_cast<double>(kSplitBlocks)), kSplitBlocks - 1);
-    const std::size_t r = block % 10;
-    (r == 2 || r == 5 || r == 8 ? s.held_out : s.train).push_back(k);
+    return std::min(static_cast<std::size_t>(u * static_cast<double>(kSplitBlocks)), kSplitBlocks - 1);
+  };
+  // Samples within kReversalZone_s after a reversal (a sign change of the
+  // velocity, as engaged_samples counts them; a velocity that chatters
+  // through zero restarts the zone), per block, and the reversals themselves
+  // (sign changes more than a zone after the one before).
+  std::vector<double> zone(kSplitBlocks, 0.0);
+  double zone_total = 0.0;
+  std::size_t reversals = 0;
+  if (velocity_m_s.size() >= range.end) {
+    double last_s = -1e300;
+    for (std::size_t k = range.begin + 1; k < range.end; ++k) {
+      if ((velocity_m_s[k] > 0.0) != (velocity_m_s[k - 1] > 0.0)) {
+        if (time_s[k] - last_s > kReversalZone_s) ++reversals;
+        last_s = time_s[k];
+      }
+      if (time_s[k] - last_s <= kReversalZone_s) {
+        zone[block_of(k)] += 1.0;
+        zone_total += 1.0;
+      }
+    }
+  }
+  const auto held_share = [&](std::size_t shift) {
+    double n = 0.0;
+    for (std::size_t b = 0; b < kSplitBlocks; ++b) n += held_out_block(b, shift) ? zone[b] : 0.0;
+    return n / zone_total;
+  };
+  if (reversals >= kMinSplitReversals && held_share(0) < kMinHeldReversalShare) {
+    double best = std::fabs(held_share(0) - kHeldOutShare);
+    for (std::size_t shift = 1; shift < 10; ++shift) {
+      const double miss = std::fabs(held_share(shift) - kHeldOutShare);
+      if (miss < best) {
+        best = miss;
+        s.pattern_shift = shift;
+      }
+    }
+  }
+  for (std::size_t k = range.begin; k < range.end; ++k) {
+    (held_out_block(block_of(k), s.pattern_shift) ? s.held_out : s.train).push_back(k);
   }
   return s;
 }

@@ -37,12 +37,32 @@ struct FitData {
 /// whole length so that effects that act early, such as settling, or late,
 /// such as a thermal fade, are seen on both sides) are held out of every fit
 /// and only judge it.
+///
+/// With the velocity given: what happens only at reversals (free play, the
+/// force's build-up through a reversal) must be judged too. A slow motion
+/// reverses a few times a record (a 0.2 Hz sine eight times in 20 s), and
+/// the samples just after its reversals can all fall in fitted blocks. When
+/// the record reverses kMinSplitReversals times or more and the held-out
+/// blocks hold less than kMinHeldReversalShare of the samples within
+/// kReversalZone_s after a reversal, the pattern turns (index modulo 10 is
+/// 2, 5, 8 plus a shift) to the shift whose held-out share of them is
+/// nearest the held-out share of the record, 30 % (the smallest such shift).
+/// The choice reads the motion only, never the force it judges.
 inline constexpr std::size_t kSplitBlocks = 40;
+inline constexpr double kHeldOutShare = 0.3;
+inline constexpr std::size_t kMinSplitReversals = 3;
+inline constexpr double kMinHeldReversalShare = 0.1;
+/// The time after a reversal in which a free play of about a millimetre is
+/// taken up at the slowest motions the workflow meets: from rest at the
+/// acceleration ω²X of a 0.2 Hz, 50 mm sine (0.08 m/s²), t = √(2 play / a) = 0.16 s.
+inline constexpr double kReversalZone_s = 0.2;
 struct SampleSplit {
   std::vector<std::size_t> train;     ///< ascending
   std::vector<std::size_t> held_out;  ///< ascending
+  std::size_t pattern_shift = 0;      ///< the held-out blocks' index modulo 10 is 2, 5, 8 plus this
 };
-[[nodiscard]] SampleSplit split_samples(std::span<const double> time_s, SampleRange range);
+[[nodiscard]] SampleSplit split_samples(std::span<const double> time_s, SampleRange range,
+                                        std::span<const double> velocity_m_s = {});
 /// The whole record split.
 [[nodiscard]] SampleSplit split_samples(std::span<const double> time_s);
 

@@ -930,7 +930,8 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   res.baseline_name = opt.baseline.name;
   res.expected_gap = opt.baseline.expected_gap;
   res.expected_gap_basis = opt.baseline.expected_gap_basis;
-  const SampleSplit split = split_samples(data.time_s, moving_span(model.input().vel_m_s));
+  const SampleSplit split =
+      split_samples(data.time_s, moving_span(model.input().vel_m_s), model.input().vel_m_s);
   const FitData fd = make_fit_data(model, data.force_n, split.train, opt.fit_samples);
   const FitData held = make_fit_data(model, data.force_n, split.held_out, 0);
   res.fit_samples = fd.index.size();
@@ -968,6 +969,15 @@ DiscrepancyResult run_discrepancy(const MeasuredData& data, const DiscrepancyOpt
   if (!res.baseline_check.mismatch) {
     const double base_rms = fit_times.empty() ? 0.0 : std::sqrt(base_ss / static_cast<double>(fit_times.size()));
     const SelectionContext ctx{fd, held, fit_times, opt, res.n_eff_baseline, 2.0 * check.amplitude_m, base_rms};
+    if (split.pattern_shift != 0) {
+      res.findings.push_back("The held-out blocks are those whose index modulo 10 is " +
+                             std::to_string((2 + split.pattern_shift) % 10) + ", " +
+                             std::to_string((5 + split.pattern_shift) % 10) + ", " +
+                             std::to_string((8 + split.pattern_shift) % 10) +
+                             " (of 40), not 2, 5, 8: those held less than " +
+                             format_number("%g", 100.0 * kMinHeldReversalShare) +
+                             " % of the samples just after the record's reversals.");
+    }
     forward_selection(ctx, current, ws, res.rounds);
     refit_forms(ctx, current, ws, res.findings);
     backward_check(ctx, current, ws, res.dropped);
