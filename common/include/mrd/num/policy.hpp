@@ -17,6 +17,7 @@
 /// Coefficients are designed in double once, at `init()`, then quantized.
 
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 
@@ -62,11 +63,33 @@ template <class M, class T>
 /// Some lane's / every lane's mask is set (a bool is its own).
 constexpr bool any(bool m) noexcept { return m; }
 constexpr bool all(bool m) noexcept { return m; }
-/// (Lanes: the mask's bytes as 64-bit words, OR-ed or AND-ed: no lane by
-/// lane extraction.)
+/// (Lanes: one vector test where the instruction set has it, AVX's vptest
+/// on 32 bytes, SSE2's byte masks on 16; else the mask's bytes as 64-bit
+/// words, OR-ed or AND-ed. A mask lane is 0 or −1, so "every byte set" is
+/// "every lane set". No lane by lane extraction.)
 template <LaneVector M>
 [[gnu::always_inline]] inline bool any(M m) noexcept {
   static_assert(sizeof(M) % 8 == 0, "masks of an even number of 32-bit lanes");
+#if defined(__AVX__)
+  if constexpr (sizeof(M) == 32) {
+    typedef long long Words __attribute__((vector_size(32)));
+    Words w;
+    __builtin_memcpy(&w, &m, sizeof m);
+    return __builtin_ia32_ptestz256(w, w) == 0;
+  }
+#endif
+#if defined(__SSE2__)
+  if constexpr (sizeof(M) % 16 == 0) {
+    typedef char Bytes __attribute__((vector_size(16)));
+    int bits = 0;
+    for (std::size_t k = 0; k < sizeof(M) / 16; ++k) {
+      Bytes b;
+      __builtin_memcpy(&b, reinterpret_cast<const char*>(&m) + 16 * k, 16);
+      bits |= __builtin_ia32_pmovmskb128(b);
+    }
+    return bits != 0;
+  }
+#endif
   std::uint64_t w[sizeof(M) / 8];
   __builtin_memcpy(w, &m, sizeof m);
   std::uint64_t r = 0;
@@ -76,6 +99,27 @@ template <LaneVector M>
 template <LaneVector M>
 [[gnu::always_inline]] inline bool all(M m) noexcept {
   static_assert(sizeof(M) % 8 == 0, "masks of an even number of 32-bit lanes");
+#if defined(__AVX__)
+  if constexpr (sizeof(M) == 32) {
+    typedef long long Words __attribute__((vector_size(32)));
+    Words w;
+    __builtin_memcpy(&w, &m, sizeof m);
+    const Words ones = ~Words{};  // every bit set
+    return __builtin_ia32_ptestc256(w, ones) != 0;
+  }
+#endif
+#if defined(__SSE2__)
+  if constexpr (sizeof(M) % 16 == 0) {
+    typedef char Bytes __attribute__((vector_size(16)));
+    int bits = 0xffff;
+    for (std::size_t k = 0; k < sizeof(M) / 16; ++k) {
+      Bytes b;
+      __builtin_memcpy(&b, reinterpret_cast<const char*>(&m) + 16 * k, 16);
+      bits &= __builtin_ia32_pmovmskb128(b);
+    }
+    return bits == 0xffff;
+  }
+#endif
   std::uint64_t w[sizeof(M) / 8];
   __builtin_memcpy(w, &m, sizeof m);
   std::uint64_t r = ~std::uint64_t{0};

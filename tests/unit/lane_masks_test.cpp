@@ -1,0 +1,71 @@
+// num::any and num::all on lane masks (mrd/num/policy.hpp) for every lane
+// count the lanes use, each lane alone set or alone clear, none and all:
+// the answers a loop over the lanes gives. The file is compiled twice, for
+// the baseline (SSE2's byte masks) and, on x86-64, for x86-64-v3 (AVX's
+// vptest on 32 bytes), the instruction sets the controller's lanes are built
+// for (host_sim/batch).
+#include <gtest/gtest.h>
+
+#include <cstddef>
+
+#include "mrd/num/policy.hpp"
+
+#ifndef MRD_LANE_MASKS_ISA
+#define MRD_LANE_MASKS_ISA Baseline
+#endif
+#define MRD_LANE_MASKS_CAT2(a, b) a##b
+#define MRD_LANE_MASKS_CAT(a, b) MRD_LANE_MASKS_CAT2(a, b)
+#define MRD_LANE_MASKS_SUITE MRD_LANE_MASKS_CAT(LaneMasks, MRD_LANE_MASKS_ISA)
+
+namespace {
+
+template <int N>
+void check_every_pattern() {
+  using Mask = mrd::num::LaneMask<N>;
+  const auto loop_any = [](const Mask& m) {
+    for (int l = 0; l < N; ++l) {
+      if (m[l] != 0) return true;
+    }
+    return false;
+  };
+  const auto loop_all = [](const Mask& m) {
+    for (int l = 0; l < N; ++l) {
+      if (m[l] == 0) return false;
+    }
+    return true;
+  };
+  const Mask none{};
+  const Mask every = mrd::num::all_set<Mask>();
+  EXPECT_FALSE(mrd::num::any(none));
+  EXPECT_FALSE(mrd::num::all(none));
+  EXPECT_TRUE(mrd::num::any(every));
+  EXPECT_TRUE(mrd::num::all(every));
+  for (int l = 0; l < N; ++l) {
+    Mask one{};
+    one[l] = -1;
+    EXPECT_EQ(mrd::num::any(one), loop_any(one)) << "lane " << l << " alone set";
+    EXPECT_EQ(mrd::num::all(one), loop_all(one)) << "lane " << l << " alone set";
+    EXPECT_TRUE(mrd::num::any(one));
+    EXPECT_EQ(mrd::num::all(one), N == 1);
+    Mask all_but = every;
+    all_but[l] = 0;
+    EXPECT_TRUE(mrd::num::any(all_but) || N == 1) << "lane " << l << " alone clear";
+    EXPECT_FALSE(mrd::num::all(all_but)) << "lane " << l << " alone clear";
+  }
+  // Masks from comparisons, as the controller makes them.
+  typename mrd::num::LaneVectors<N>::Float x{};
+  for (int l = 0; l < N; ++l) x[l] = static_cast<float>(l) - 1.5f;
+  EXPECT_EQ(mrd::num::any(x > 100.0f), false);
+  EXPECT_EQ(mrd::num::all(x > -2.0f), true);
+  EXPECT_EQ(mrd::num::any(x > static_cast<float>(N) - 3.0f), true);  // the last lane, N − 2.5
+  EXPECT_EQ(mrd::num::all(x < static_cast<float>(N) - 3.0f), false);
+}
+
+TEST(MRD_LANE_MASKS_SUITE, AnyAndAllAgreeWithALoopOverTheLanes) {
+  check_every_pattern<2>();
+  check_every_pattern<4>();
+  check_every_pattern<8>();
+  check_every_pattern<16>();
+}
+
+}  // namespace
