@@ -18,6 +18,7 @@
 #include "host_sim/batch/core_lanes.hpp"
 #include "host_sim/batch/lane_block.hpp"
 #include "host_sim/batch/lane_stepper.hpp"
+#include "host_sim/batch/peak_bounds.hpp"
 #include "host_sim/structure/discrete_building.hpp"
 #include "mrd/physics/bingham.hpp"
 #include "mrd/physics/mr_damper.hpp"
@@ -180,7 +181,9 @@ bool thesis_shape(const plant::PlantSpec& spec) {
   return d.modal_stepping();
 }
 
-SharedModel shared_model(const plant::PlantSpec& spec) {
+}  // namespace
+
+SharedModel thesis_shared_model(const plant::PlantSpec& spec) {
   structure::DiscreteBuilding b;
   b.init(spec.building, spec.step_s);
   SharedModel m = damper_constants(spec);
@@ -194,11 +197,14 @@ SharedModel shared_model(const plant::PlantSpec& spec) {
     for (int i = 0; i < kBlockDofs; ++i) m.accel_rows[i][r] = b.accel_rows()(i, r);
     for (int i = 0; i < kBlockDofs; ++i) m.disp_rows[i][r] = b.modal_basis()(i, r);
   }
-  // The kernel takes the next tick's base displacement from the story drifts' first row.
+  // The story drifts' first row is the base's displacement.
   static_assert(structure::kBaseDof == 0, "disp_rows[0] is disp_row");
   m.inv_base_mass_per_kg = b.inv_base_mass_per_kg();
+  set_peak_bounds(m);
   return m;
 }
+
+namespace {
 
 constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 constexpr int kModes = 3;
@@ -211,7 +217,7 @@ class ThesisLanes {
   ThesisLanes(const plant::PlantSpec& spec, const LaneKernel& kernel, bool story_drift)
       : spec_(spec),
         kernel_(kernel),
-        model_(shared_model(spec)),
+        model_(thesis_shared_model(spec)),
         block_(std::make_unique<LaneBlock>()),
         run_(story_drift ? kernel.run : kernel.run_without_drift),
         core_run_(story_drift ? kernel.core_run : kernel.core_run_without_drift) {
@@ -224,7 +230,9 @@ class ThesisLanes {
   void rest(int l, double sq) {
     LaneBlock& b = *block_;
     for (auto& row : b.q) row[l] = 0.0;
-    for (double* v : {b.y_slow, b.y_fast, b.displaced_m3, b.held_force_n, b.base_accel_m_s2, b.rise_k, b.peak_disp_m,
+    for (double* v : {b.y_slow, b.y_fast, b.displaced_m3, b.held_force_n, b.base_accel_m_s2, b.rise_k,
+                      b.floor_bound.amp, b.floor_bound.reach, b.floor_bound.rate, b.drift_bound.amp,
+                      b.drift_bound.reach, b.drift_bound.rate, b.peak_disp_m,
                       b.peak_force_n, b.peak_vel_m_s, b.peak_current_a, b.peak_floor_accel_m_s2,
                       b.peak_base_accel_m_s2, b.peak_story_drift_m, b.coil_peak_a, b.coil_sum_sq_a2,
                       b.coil_peak_rise_k, b.last_command_a, b.ticks_above_rated, b.command_changes, b.command_a}) {

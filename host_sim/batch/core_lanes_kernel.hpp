@@ -67,7 +67,6 @@ void core_run_ticks(const SharedModel& m, LaneBlock& b, void* core_p, std::size_
   if (ticks == 0) return;
   CoreLanes& core = *std::launder(static_cast<CoreLanes*>(core_p));
   Regs r;
-  vd roof, floor_peak;
   load_regs(b, 0, r);
   CoreLanes::Input in;
   std::memcpy(&in.tick, tick0, sizeof in.tick);
@@ -93,12 +92,10 @@ void core_run_ticks(const SharedModel& m, LaneBlock& b, void* core_p, std::size_
     // run::coil_drive and plant::command_stage_a: the command while the drive is enabled, else 0 A.
     const vd stage = __builtin_convertvector(enable, vi) ? __builtin_convertvector(command, vd) : zero;
     u = active_wide ? stage : u;
-    advance_regs<kStoryDrift>(m, s, u, r, roof, floor_peak, x);
+    advance_regs<kStoryDrift>(m, s, u, r, x);
   }
   store(b.command_a, u);
   store_regs(b, 0, r);
-  store(b.roof_accel_m_s2, roof);
-  store(b.floor_peak_m_s2, floor_peak);
 }
 
 void core_run(const SharedModel& m, LaneBlock& b, void* core, std::size_t ticks, const std::uint32_t* tick0,

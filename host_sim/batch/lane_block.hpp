@@ -17,6 +17,23 @@ namespace mrd::batch {
 inline constexpr int kMaxLanes = 8;
 inline constexpr int kBlockStates = 12;  ///< building states (6 DOFs × displacement, velocity)
 inline constexpr int kBlockDofs = 6;
+inline constexpr int kBlockModes = kBlockStates / 2;  ///< 2 × 2 modal blocks
+/// What a peak bound adds to cover underflow (add_floor_peaks in lane_kernel.hpp).
+inline constexpr double kBoundFloor = 1e-290;
+/// The share of the amplitude bound a reach adds for the roundings of the
+/// rows' sums (each within 12 u of Σ|c_k q_k|; u = 2⁻⁵³).
+inline constexpr double kBoundRounding = 1e-12;
+
+/// The weights of one group of rows' peak bounds (the floors' absolute
+/// accelerations, m/s², or the story drifts, m; add_floor_peaks in
+/// lane_kernel.hpp): the amplitude bound Σ_j weight[j] ρ_j grows by
+/// per_ag |a_g| + per_force |F| a step; the rate bound Σ_j rate_weight[j] ρ_j
+/// by rate_per_ag |a_g| + rate_per_force |F|.
+struct PeakBoundModel {
+  double weight[kBlockModes] = {}, rate_weight[kBlockModes] = {};
+  double per_ag = 0.0, per_force = 0.0;            ///< per m/s², per N
+  double rate_per_ag = 0.0, rate_per_force = 0.0;  ///< per m/s², per N
+};
 
 /// What every lane of a batch shares.
 struct SharedModel {
@@ -28,6 +45,9 @@ struct SharedModel {
   double accel_rows[kBlockDofs][kBlockStates] = {};  ///< rows 6..11 of A·T: ẍ from q
   double disp_rows[kBlockDofs][kBlockStates] = {};   ///< rows 0..5 of T: displacements from q
   double inv_base_mass_per_kg = 0.0;
+  // Bounds on the floors' absolute accelerations and the story drifts.
+  bool peak_bounds = false;  ///< every block contracts: the bounds hold (else the floors every tick)
+  PeakBoundModel floor_bound, drift_bound;
   // Damper, Eq. 4.4, 5.10–5.11.
   double fc_a_n = 0.0, fc_b_n = 0.0, neg_fc_c_per_a = 0.0;
   double c0_a_ns_m = 0.0, c0_b_ns_m = 0.0, neg_c0_c_per_a = 0.0;
@@ -72,6 +92,12 @@ struct alignas(64) LaneBlock {
   /// exp(−f_c,c |i|), exp(−c_0,c |i|) of Eq. 4.2–4.3 and the |i| they were
   /// computed for (NaN: none yet).
   Lanes exp_fc = {}, exp_c0 = {}, exp_current_a = {};
+  /// Bounds on every floor's |ẍ + a_g| (m/s²) and every story's drift (m)
+  /// at t_n (SharedModel's peak bounds; 0 at rest): from the amplitudes, the
+  /// reach from the last computed value, and the rate bound per step.
+  struct PeakBound {
+    Lanes amp = {}, reach = {}, rate = {};
+  } floor_bound, drift_bound;
 
   // Peaks and coil figures so far.
   Lanes peak_disp_m = {}, peak_force_n = {}, peak_vel_m_s = {}, peak_current_a = {};
@@ -89,8 +115,6 @@ struct alignas(64) LaneBlock {
 
   // What sense() measured at t_n.
   Lanes ground_accel_m_s2 = {}, base_disp_m = {}, base_vel_m_s = {}, damper_force_n = {}, current_a = {};
-  // What advance() reached at t_{n+1}.
-  Lanes roof_accel_m_s2 = {}, floor_peak_m_s2 = {};
 };
 
 struct AnyModel;  // lane_block_any.hpp

@@ -122,6 +122,9 @@ template <class V4, class V>
 #endif
 }
 
+/// True when every lane of the comparison result `m` is set.
+[[gnu::always_inline]] inline bool all(vi m) { return !any(~m); }
+
 /// The doubles at the addresses `addr`, one per lane.
 [[gnu::always_inline]] inline vd gather_at(vu addr) {
 #if MRD_BATCH_X86 == 512
@@ -133,6 +136,19 @@ template <class V4, class V>
   vd v;
   for (int l = 0; l < kW; ++l) v[l] = *reinterpret_cast<const double*>(addr[l]);
   return v;
+#endif
+}
+
+/// The correctly rounded square root per lane (std::sqrt).
+[[gnu::always_inline]] inline vd vsqrt(vd x) {
+#if MRD_BATCH_X86 == 512
+  return (vd)_mm512_mask_sqrt_pd((__m512d)x, 0xff, (__m512d)x);  // _mm512_sqrt_pd: a false "uninitialized" in GCC 12
+#elif MRD_BATCH_X86 == 256
+  return by_halves<vd4, vd>([&](int h) { return (vd4)_mm256_sqrt_pd((__m256d)half<vd4>(x, h)); });
+#else
+  vd y;
+  for (int l = 0; l < kW; ++l) y[l] = __builtin_sqrt(x[l]);
+  return y;
 #endif
 }
 
@@ -206,6 +222,21 @@ template <class V4, class V>
 }
 #endif
 
+/// A peak bound's state (LaneBlock::PeakBound) in registers.
+struct BoundRegs {
+  vd amp, reach, rate;
+};
+[[gnu::always_inline]] inline void load_bound(const LaneBlock::PeakBound& b, int o, BoundRegs& r) {
+  r.amp = load(b.amp + o);
+  r.reach = load(b.reach + o);
+  r.rate = load(b.rate + o);
+}
+[[gnu::always_inline]] inline void store_bound(LaneBlock::PeakBound& b, int o, const BoundRegs& r) {
+  store(b.amp + o, r.amp);
+  store(b.reach + o, r.reach);
+  store(b.rate + o, r.rate);
+}
+
 /// The block's state in registers.
 struct Regs {
   vd q[kBlockStates];
@@ -213,6 +244,7 @@ struct Regs {
   vd pk_disp, pk_force, pk_vel, pk_current, pk_floor, pk_base, pk_drift;
   vd coil_peak, coil_sum_sq, coil_peak_rise, last_cmd, above, changes;
   vd exp_fc, exp_c0, exp_current;  ///< the current laws' exp() terms and the |i| they are for
+  BoundRegs floor_bound, drift_bound;  ///< bounds on the floors' accelerations and the story drifts (add_floor_peaks)
   vu ground_addr, ground_step;  ///< where each lane reads a_g, and its stride in bytes
   vd ground_scale;
 };
@@ -247,6 +279,8 @@ struct Regs {
   r.exp_fc = load(b.exp_fc + o);
   r.exp_c0 = load(b.exp_c0 + o);
   r.exp_current = load(b.exp_current_a + o);
+  load_bound(b.floor_bound, o, r.floor_bound);
+  load_bound(b.drift_bound, o, r.drift_bound);
   __builtin_memcpy(&r.ground_addr, b.ground + o, sizeof r.ground_addr);
   vi stride;
   __builtin_memcpy(&stride, b.ground_stride + o, sizeof stride);
@@ -281,6 +315,8 @@ struct Regs {
   store(b.exp_fc + o, r.exp_fc);
   store(b.exp_c0 + o, r.exp_c0);
   store(b.exp_current_a + o, r.exp_current);
+  store_bound(b.floor_bound, o, r.floor_bound);
+  store_bound(b.drift_bound, o, r.drift_bound);
   __builtin_memcpy(b.ground + o, &r.ground_addr, sizeof r.ground_addr);
 }
 
@@ -311,12 +347,102 @@ struct Sensed {
   return s;
 }
 
-/// Plant::advance on the thesis plant with the command stage's output `u`;
-/// `x_next` becomes base_disp(m, r) of the new state (with the story
-/// drifts, their first displacement: the same row, summed in the same order).
+/// A peak bound's step: W from the amplitudes grows by the step's inputs'
+/// term; the reach, from the last computed value, by the rate bound and the
+/// same term, and the rate bound by its own (see add_floor_peaks).
+[[gnu::always_inline]] inline void grow_bound(const PeakBoundModel& g, BoundRegs& b, vd ag_abs, vd force_abs) {
+  const vd in = splat(g.per_ag) * ag_abs + splat(g.per_force) * force_abs;
+  b.amp = b.amp + in;
+  b.reach = b.reach + (b.rate + in);
+  b.rate = b.rate + (splat(g.rate_per_ag) * ag_abs + splat(g.rate_per_force) * force_abs);
+}
+
+/// True when some lane's bound reaches its `peak`: its rows must be computed.
+[[gnu::always_inline]] inline bool may_rise(const BoundRegs& b, vd peak) {
+  const vd w = b.amp < b.reach ? b.amp : b.reach;
+  return !all((vi)(w + splat(kBoundFloor) < peak));
+}
+
+/// A peak bound set anew on a tick whose rows were computed: `now` is this
+/// tick's largest |row|, `rho` the modes' amplitudes.
+[[gnu::always_inline]] inline void reset_bound(const PeakBoundModel& g, BoundRegs& b, const vd* rho, vd now) {
+  vd amp = splat(g.weight[0]) * rho[0];
+  vd rate = splat(g.rate_weight[0]) * rho[0];
+  for (int j = 1; j < kBlockModes; ++j) {
+    amp = amp + splat(g.weight[j]) * rho[j];
+    rate = rate + splat(g.rate_weight[j]) * rho[j];
+  }
+  b.amp = amp;
+  b.rate = rate;
+  b.reach = now + splat(kBoundRounding) * amp;
+}
+
+/// The floors' and the story drifts' peaks of Plant::add_peaks_after_advance
+/// on the state step() reached, whose base displacement is `x0`; `s` holds
+/// the inputs of that step.
+///
+/// A tick can raise neither peak in a lane while the lane's bound on every
+/// floor's |ẍ + a_g| (every story's |x_i − x_{i−1}|), as the scalar plant
+/// computes it with its roundings, stays below the peak: the kernel then
+/// leaves the peak as it is, the same double, and computes the floors
+/// (drifts) only on ticks where some lane's bound reaches its peak. Two
+/// bounds hold at once and the smaller is taken (PeakBoundModel,
+/// batch_run.cpp, derives their weights):
+///  - from the modes' amplitudes ρ_j = ‖(q_2j, q_2j+1)‖₂: a row's
+///    Σ_k |c_k q_k| is at most Σ_j ‖c^(j)‖₂ ρ_j (Cauchy–Schwarz), and a
+///    step moves ρ_j to at most ρ_j + ‖γ_j^a‖ |a_g| + ‖γ_j^F‖ |F| since
+///    ‖B_j‖₂ < 1 (a damped mode), so the bound grows by the inputs' term;
+///  - from the row's value when it was last computed (its reach): a step
+///    changes a row by c·((B − I) q + γ^a a_g + γ^F F), at most the rate
+///    bound Σ_j ‖c^(j)‖ ‖B_j − I‖₂ ρ_j plus the same inputs' term, and the
+///    rate bound grows with the amplitudes.
+/// Either is set anew on a tick that computes its rows.
 template <bool kStoryDrift>
-[[gnu::always_inline]] inline void advance_regs(const SharedModel& m, const Sensed& s, vd u, Regs& r, vd& roof,
-                                                vd& floor_peak, vd& x_next) {
+[[gnu::always_inline]] inline void add_floor_peaks(const SharedModel& m, const Sensed& s, Regs& r, vd x0) {
+  bool floors = true, drifts = kStoryDrift;
+  if (m.peak_bounds) {
+    const vd ag = vabs(s.ag);
+    const vd force = vabs(s.force);
+    grow_bound(m.floor_bound, r.floor_bound, ag, force);
+    floors = may_rise(r.floor_bound, r.pk_floor);
+    if constexpr (kStoryDrift) {
+      grow_bound(m.drift_bound, r.drift_bound, ag, force);
+      drifts = may_rise(r.drift_bound, r.pk_drift);
+    }
+  }
+  if (!floors && !drifts) return;
+  vd floors_now = splat(0.0), drifts_now = splat(0.0);
+  if (floors) {
+    // DiscreteBuilding::abs_accel_m_s2(): Eigen's lazy product sums over q in order.
+    for (int i = 1; i < kBlockDofs; ++i) {
+      vd acc = splat(m.accel_rows[i][0]) * r.q[0];
+      for (int k = 1; k < kBlockStates; ++k) acc = splat(m.accel_rows[i][k]) * r.q[k] + acc;
+      floors_now = vmax(floors_now, vabs(acc));
+    }
+    r.pk_floor = vmax(r.pk_floor, floors_now);
+  }
+  if (drifts) {
+    // Story drifts |x_i − x_{i−1}|, i = 1..5, each x_i as DiscreteBuilding::disp_m sums it
+    // (row 0 is the base's: disp_rows[0] = disp_row, batch_run.cpp, so x_0 is `x0`).
+    vd below = x0;
+    for (int i = 1; i < kBlockDofs; ++i) {
+      const vd x = dot_row12(m.disp_rows[i], r.q);
+      drifts_now = vmax(drifts_now, vabs(x - below));
+      below = x;
+    }
+    r.pk_drift = vmax(r.pk_drift, drifts_now);
+  }
+  if (!m.peak_bounds) return;
+  vd rho[kBlockModes];
+  for (int j = 0; j < kBlockModes; ++j) rho[j] = vsqrt(r.q[2 * j] * r.q[2 * j] + r.q[2 * j + 1] * r.q[2 * j + 1]);
+  if (floors) reset_bound(m.floor_bound, r.floor_bound, rho, floors_now);
+  if (drifts) reset_bound(m.drift_bound, r.drift_bound, rho, drifts_now);
+}
+
+/// Plant::advance on the thesis plant with the command stage's output `u`;
+/// `x_next` becomes base_disp(m, r) of the new state.
+template <bool kStoryDrift>
+[[gnu::always_inline]] inline void advance_regs(const SharedModel& m, const Sensed& s, vd u, Regs& r, vd& x_next) {
   // MrDamper::step: coil (Eq. 4.5), then PR (Eq. 5.9), then f_c, c_0.
   r.y_slow = splat(m.a_slow) * r.y_slow + splat(m.one_minus_a_slow) * u;
   r.y_fast = splat(m.a_fast) * r.y_fast + splat(m.one_minus_a_fast) * u;
@@ -364,33 +490,14 @@ template <bool kStoryDrift>
   r.pk_force = vmax(r.pk_force, vabs(s.force));
   r.pk_vel = vmax(r.pk_vel, vabs(s.v));
   r.pk_current = vmax(r.pk_current, i_abs);
-  // DiscreteBuilding::abs_accel_m_s2(): Eigen's lazy product sums over q in order.
-  vd a[kBlockDofs];
-  for (int i = 0; i < kBlockDofs; ++i) {
-    vd acc = splat(m.accel_rows[i][0]) * r.q[0];
-    for (int k = 1; k < kBlockStates; ++k) acc = splat(m.accel_rows[i][k]) * r.q[k] + acc;
-    a[i] = acc;
-  }
-  a[0] = a[0] - splat(m.inv_base_mass_per_kg) * r.held;
-  floor_peak = vabs(a[1]);
-  for (int i = 2; i < kBlockDofs; ++i) floor_peak = vmax(floor_peak, vabs(a[i]));
-  roof = a[kBlockDofs - 1];
-  r.pk_floor = vmax(r.pk_floor, floor_peak);
-  r.pk_base = vmax(r.pk_base, vabs(a[0]));
-  r.base_accel = a[0];
-  if constexpr (!kStoryDrift) {
-    x_next = base_disp(m, r);
-    return;
-  }
-  // Story drifts |x_i − x_{i−1}|, i = 1..5, each x_i as DiscreteBuilding::disp_m sums it
-  // (row 0 is the base's: disp_rows[0] = disp_row, batch_run.cpp).
-  vd below = dot_row12(m.disp_rows[0], r.q);
-  x_next = below;
-  for (int i = 1; i < kBlockDofs; ++i) {
-    const vd x = dot_row12(m.disp_rows[i], r.q);
-    r.pk_drift = vmax(r.pk_drift, vabs(x - below));
-    below = x;
-  }
+  // DiscreteBuilding::abs_accel_m_s2(0): Eigen's lazy product sums over q in order.
+  vd a0 = splat(m.accel_rows[0][0]) * r.q[0];
+  for (int k = 1; k < kBlockStates; ++k) a0 = splat(m.accel_rows[0][k]) * r.q[k] + a0;
+  a0 = a0 - splat(m.inv_base_mass_per_kg) * r.held;
+  r.pk_base = vmax(r.pk_base, vabs(a0));
+  r.base_accel = a0;
+  x_next = base_disp(m, r);
+  add_floor_peaks<kStoryDrift>(m, s, r, x_next);
 }
 
 // The kernel steps kInterleave register sets of kW lanes in one loop, so
@@ -423,11 +530,9 @@ void advance(const SharedModel& m, LaneBlock& b) {
     s.v = load(b.base_vel_m_s + o);
     s.force = load(b.damper_force_n + o);
     s.current = load(b.current_a + o);
-    vd roof, floor_peak, x_next;
-    advance_regs<true>(m, s, load(b.command_a + o), r, roof, floor_peak, x_next);
+    vd x_next;
+    advance_regs<true>(m, s, load(b.command_a + o), r, x_next);
     store_regs(b, o, r);
-    store(b.roof_accel_m_s2 + o, roof);
-    store(b.floor_peak_m_s2 + o, floor_peak);
   }
 }
 
@@ -435,7 +540,7 @@ template <bool kStoryDrift>
 void run_ticks(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
   if (ticks == 0) return;
   Regs r[kInterleave];
-  vd u[kInterleave], roof[kInterleave], floor_peak[kInterleave], x[kInterleave];
+  vd u[kInterleave], x[kInterleave];
   for (int h = 0; h < kInterleave; ++h) {
     load_regs(b, h * kW, r[h]);
     u[h] = load(b.command_a + h * kW);
@@ -444,17 +549,13 @@ void run_ticks(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
   for (std::size_t t = 0; t < ticks; ++t) {
     Sensed s[kInterleave];
     for (int h = 0; h < kInterleave; ++h) s[h] = sense_regs(m, r[h], x[h]);
-    for (int h = 0; h < kInterleave; ++h) advance_regs<kStoryDrift>(m, s[h], u[h], r[h], roof[h], floor_peak[h], x[h]);
+    for (int h = 0; h < kInterleave; ++h) advance_regs<kStoryDrift>(m, s[h], u[h], r[h], x[h]);
   }
-  for (int h = 0; h < kInterleave; ++h) {
-    store_regs(b, h * kW, r[h]);
-    store(b.roof_accel_m_s2 + h * kW, roof[h]);
-    store(b.floor_peak_m_s2 + h * kW, floor_peak[h]);
-  }
+  for (int h = 0; h < kInterleave; ++h) store_regs(b, h * kW, r[h]);
 }
 
 void run(const SharedModel& m, LaneBlock& b, std::size_t ticks) { run_ticks<true>(m, b, ticks); }
-/// run() without the story drifts' peak (six 12-term sums a tick fewer).
+/// run() without the story drifts' peak.
 void run_without_drift(const SharedModel& m, LaneBlock& b, std::size_t ticks) { run_ticks<false>(m, b, ticks); }
 
 void exp_n(const double* x, double* y, std::size_t n) {

@@ -30,6 +30,11 @@ struct LaneSensed {
 /// and plant::CoilThermal compute theirs.
 SharedModel damper_constants(const plant::PlantSpec& spec);
 
+/// What the thesis-shape lanes share on `spec` (a thesis-shape plant:
+/// batch_run.cpp's thesis_shape): the building's stepping form, the damper's
+/// constants and the peaks' bounds (peak_bounds.hpp).
+SharedModel thesis_shared_model(const plant::PlantSpec& spec);
+
 /// plant::CoilFigureCounter::figures from a lane's running sums.
 plant::CoilFigures coil_figures(double peak_a, double peak_rise_k, double sum_sq_a2, double ticks_above_rated,
                                 double command_changes, std::size_t ticks, double step_s) noexcept;
