@@ -65,8 +65,7 @@ constexpr bool any(bool m) noexcept { return m; }
 constexpr bool all(bool m) noexcept { return m; }
 /// (Lanes: one vector test where the instruction set has it, AVX's vptest
 /// on 32 bytes, SSE2's byte masks on 16; else the mask's bytes as 64-bit
-/// words, OR-ed or AND-ed. A mask lane is 0 or −1, so "every byte set" is
-/// "every lane set". No lane by lane extraction.)
+/// words, OR-ed. No lane by lane extraction.)
 template <LaneVector M>
 [[gnu::always_inline]] inline bool any(M m) noexcept {
   static_assert(sizeof(M) % 8 == 0, "masks of an even number of 32-bit lanes");
@@ -98,33 +97,7 @@ template <LaneVector M>
 }
 template <LaneVector M>
 [[gnu::always_inline]] inline bool all(M m) noexcept {
-  static_assert(sizeof(M) % 8 == 0, "masks of an even number of 32-bit lanes");
-#if defined(__AVX__)
-  if constexpr (sizeof(M) == 32) {
-    typedef long long Words __attribute__((vector_size(32)));
-    Words w;
-    __builtin_memcpy(&w, &m, sizeof m);
-    const Words ones = ~Words{};  // every bit set
-    return __builtin_ia32_ptestc256(w, ones) != 0;
-  }
-#endif
-#if defined(__SSE2__)
-  if constexpr (sizeof(M) % 16 == 0) {
-    typedef char Bytes __attribute__((vector_size(16)));
-    int bits = 0xffff;
-    for (std::size_t k = 0; k < sizeof(M) / 16; ++k) {
-      Bytes b;
-      __builtin_memcpy(&b, reinterpret_cast<const char*>(&m) + 16 * k, 16);
-      bits &= __builtin_ia32_pmovmskb128(b);
-    }
-    return bits == 0xffff;
-  }
-#endif
-  std::uint64_t w[sizeof(M) / 8];
-  __builtin_memcpy(w, &m, sizeof m);
-  std::uint64_t r = ~std::uint64_t{0};
-  for (std::uint64_t x : w) r &= x;
-  return r == ~std::uint64_t{0};
+  return !any(~m);  // a mask lane is 0 or −1: every lane set is no lane of ~m set
 }
 
 /// `v` in every lane (T a lane vector) or `v` itself.
