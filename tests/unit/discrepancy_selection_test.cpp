@@ -27,7 +27,7 @@
 #include "host_sim/run/sine_rig.hpp"
 
 #ifndef MRD_DISCREPANCY_CASES
-#define MRD_DISCREPANCY_CASES 112
+#define MRD_DISCREPANCY_CASES 56
 #endif
 
 namespace mrd::discrepancy {
