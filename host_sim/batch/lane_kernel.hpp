@@ -357,10 +357,13 @@ struct Sensed {
   b.rate = b.rate + (splat(g.rate_per_ag) * ag_abs + splat(g.rate_per_force) * force_abs);
 }
 
-/// True when some lane's bound reaches its `peak`: its rows must be computed.
-[[gnu::always_inline]] inline bool may_rise(const BoundRegs& b, vd peak) {
+/// True when some lane's bound reaches its `peak`: its rows must be
+/// computed. Lanes in `idle` are not counted: a lane at rest with no run
+/// (ThesisLanes::rest: state, inputs and command zero) stays exactly at
+/// rest, its rows ±0.
+[[gnu::always_inline]] inline bool may_rise(const BoundRegs& b, vd peak, vi idle) {
   const vd w = b.amp < b.reach ? b.amp : b.reach;
-  return !all((vi)(w + splat(kBoundFloor) < peak));
+  return !all((vi)(w + splat(kBoundFloor) < peak) | idle);
 }
 
 /// A peak bound set anew on a tick whose rows were computed: `now` is this
@@ -403,11 +406,12 @@ template <bool kStoryDrift>
   if (m.peak_bounds) {
     const vd ag = vabs(s.ag);
     const vd force = vabs(s.force);
+    const vi idle = (vi)(r.ground_step == 0u);  // no run: its ground input does not move
     grow_bound(m.floor_bound, r.floor_bound, ag, force);
-    floors = may_rise(r.floor_bound, r.pk_floor);
+    floors = may_rise(r.floor_bound, r.pk_floor, idle);
     if constexpr (kStoryDrift) {
       grow_bound(m.drift_bound, r.drift_bound, ag, force);
-      drifts = may_rise(r.drift_bound, r.pk_drift);
+      drifts = may_rise(r.drift_bound, r.pk_drift, idle);
     }
   }
   if (!floors && !drifts) return;
