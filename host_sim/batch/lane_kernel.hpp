@@ -389,8 +389,8 @@ struct Sensed {
 /// computes it with its roundings, stays below the peak: the kernel then
 /// leaves the peak as it is, the same double, and computes the floors
 /// (drifts) only on ticks where some lane's bound reaches its peak. Two
-/// bounds hold at once and the smaller is taken (PeakBoundModel,
-/// batch_run.cpp, derives their weights):
+/// bounds hold at once and the smaller is taken (their weights, with the
+/// roundings they cover: peak_bounds.cpp):
 ///  - from the modes' amplitudes ρ_j = ‖(q_2j, q_2j+1)‖₂: a row's
 ///    Σ_k |c_k q_k| is at most Σ_j ‖c^(j)‖₂ ρ_j (Cauchy–Schwarz), and a
 ///    step moves ρ_j to at most ρ_j + ‖γ_j^a‖ |a_g| + ‖γ_j^F‖ |F| since
