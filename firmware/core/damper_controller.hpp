@@ -193,20 +193,36 @@ class DamperController {
   Current last_command_a_{};
   Count bad_run_{};
   Count drive_hold_{};
+  bool faults_clear_ = false;  ///< status_.last_faults holds no fault in any lane
   Status status_{};
 
   // The parts of step(), always inlined: step() stays one function, as
   // measured (bench/) and cross-checked (tests/cross/core_cross_check.sh).
   // Each is written with masks: `m ? a : b` per lane, and a block of state
   // changes runs when some lane needs it (`num::any`).
+  /// The tick after the input guard; kClean: no signal of any lane has a
+  /// fault (`faults` all kNone), which the compiler then knows.
+  template <bool kClean>
+  [[gnu::always_inline]] Output step_checked(const Input& in, Tick now, const Faults& faults) noexcept;
   /// Counts the guard's faults and judges the sample's age; true when stale.
+  template <bool kClean>
   [[gnu::always_inline]] Mask step_guard(const Input& in, Tick now, const Faults& faults) noexcept;
   /// RILD and the velocity estimate on a usable stroke.
   [[gnu::always_inline]] void step_filters(const Input& in, Mask disp_ok) noexcept;
   /// The mode's command (SAFE-2 in semi-active on bad input) in the lanes of
   /// `live` (the drive enabled); sets F_d in `out`.
+  template <bool kClean>
   [[gnu::always_inline]] Current step_law(const Input& in, const Faults& faults, Mask disp_ok, Mask live,
                                           Output& out) noexcept;
+  /// True where `signal` has no fault.
+  template <bool kClean>
+  static constexpr Mask ok(const Faults& faults, InputSignal signal) noexcept {
+    if constexpr (kClean) {
+      return num::all_set<Mask>();
+    } else {
+      return faults[Guard::idx(signal)] == Guard::fault(InputFault::kNone);
+    }
+  }
 
   static constexpr void bump(std::uint32_t& c) noexcept {
     if (c != 0xffffffffu) ++c;
@@ -321,12 +337,23 @@ typename DamperController<Policy>::Output DamperController<Policy>::step(const I
     return out;
   }
 
-  // 1. Input guard and staleness.
-  const Faults faults = guard_.check(in);
-  const Mask stale = step_guard(in, now, faults);
+  // 1. Input guard; the rest of the tick knows when no signal has a fault.
+  bool clean = false;
+  const Faults faults = guard_.check(in, clean);
+  if (clean) return step_checked<true>(in, now, Faults{});
+  return step_checked<false>(in, now, faults);
+}
+
+template <class Policy>
+template <bool kClean>
+inline typename DamperController<Policy>::Output DamperController<Policy>::step_checked(const Input& in, Tick now,
+                                                                                const Faults& faults) noexcept {
+  Output out;
+  // Staleness.
+  const Mask stale = step_guard<kClean>(in, now, faults);
 
   // 2. Filters on a usable stroke.
-  const Mask disp_ok = !stale && faults[Guard::idx(InputSignal::kDisp)] == Guard::fault(InputFault::kNone);
+  const Mask disp_ok = !stale && ok<kClean>(faults, InputSignal::kDisp);
   step_filters(in, disp_ok);
 
   // 3. Output: SAFE-1 (the drive's fault line) first, then the mode's law.
@@ -340,7 +367,7 @@ typename DamperController<Policy>::Output DamperController<Policy>::step(const I
     num::bump_where(status_.drive_disabled_ticks, !live);
   }
   Current command{};
-  if (num::any(live)) command = step_law(in, faults, disp_ok, live, out);
+  if (num::any(live)) command = step_law<kClean>(in, faults, disp_ok, live, out);
   last_command_a_ = num::select(live, command, Current{});
   out.current_command_a = num::select(live, num::to_float(command) * current_out_, Sample{});
   out.drive_enable = live;
@@ -348,16 +375,22 @@ typename DamperController<Policy>::Output DamperController<Policy>::step(const I
 }
 
 template <class Policy>
+template <bool kClean>
 inline typename DamperController<Policy>::Mask DamperController<Policy>::step_guard(const Input& in, Tick now,
                                                                               const Faults& faults) noexcept {
-  for (int s = 0; s < kInputSignals; ++s) {
-    const Mask bad = faults[s] != Guard::fault(InputFault::kNone);
-    if (num::any(bad)) {
-      bump_at(status_.invalid_by_kind, faults[s], bad);
-      num::bump_where(status_.invalid_by_signal[s], bad);
+  if constexpr (kClean) {
+    if (!faults_clear_) status_.last_faults = Faults{};
+  } else {
+    for (int s = 0; s < kInputSignals; ++s) {
+      const Mask bad = faults[s] != Guard::fault(InputFault::kNone);
+      if (num::any(bad)) {
+        bump_at(status_.invalid_by_kind, faults[s], bad);
+        num::bump_where(status_.invalid_by_signal[s], bad);
+      }
     }
+    status_.last_faults = faults;
   }
-  status_.last_faults = faults;
+  faults_clear_ = kClean;
   const Mask stale = in.tick > now || now - in.tick > max_input_age_ticks_ ||
                      (have_sample_ && in.tick <= last_sample_tick_);
   status_.last_input_stale = stale;
@@ -390,12 +423,12 @@ inline void DamperController<Policy>::step_filters(const Input& in, Mask disp_ok
 }
 
 template <class Policy>
+template <bool kClean>
 inline typename DamperController<Policy>::Current DamperController<Policy>::step_law(const Input& in,
                                                                              const Faults& faults, Mask disp_ok,
                                                                              Mask live, Output& out) noexcept {
-  const Mask coil_ok = faults[Guard::idx(InputSignal::kCoilCurrent)] == Guard::fault(InputFault::kNone);
-  const Mask usable =
-      disp_ok && coil_ok && faults[Guard::idx(InputSignal::kForce)] == Guard::fault(InputFault::kNone);
+  const Mask coil_ok = ok<kClean>(faults, InputSignal::kCoilCurrent);
+  const Mask usable = disp_ok && coil_ok && ok<kClean>(faults, InputSignal::kForce);
   const Current coil_a = num::from_float<Current>(in.coil_current_a * current_in_);
   const Mask heat = live && coil_ok;
   if (num::any(heat)) i2t_.step(coil_a, heat);

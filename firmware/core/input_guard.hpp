@@ -151,16 +151,28 @@ class BasicInputGuard {
     ticks_since_shaking_ = num::select(m, num::splat<Count>(kNever), ticks_since_shaking_);
   }
 
-  /// Checks one tick's input and returns each signal's fault.
-  Faults check(const Input& in) noexcept {
+  /// Checks one tick's input and returns each signal's fault; `clean` is
+  /// set when no signal of any lane has one (every fault kNone).
+  Faults check(const Input& in, bool& clean) noexcept {
     Faults f{};
-    f[idx(InputSignal::kDisp)] = basic(in.damper_disp_m, in.flags.disp_valid, limits_.disp_limit_m);
-    f[idx(InputSignal::kForce)] = basic(in.damper_force_n, in.flags.force_valid, limits_.force_limit_n);
-    f[idx(InputSignal::kGroundAccel)] =
-        basic(in.ground_accel_m_s2, in.flags.ground_accel_valid, limits_.accel_limit_m_s2);
-    f[idx(InputSignal::kBaseAccel)] = basic(in.base_accel_m_s2, in.flags.base_accel_valid, limits_.accel_limit_m_s2);
-    f[idx(InputSignal::kCoilCurrent)] =
-        basic(in.coil_current_a, num::all_set<Mask>(), limits_.coil_current_limit_a);
+    // Flags and the basic checks at once; each signal's fault only when some lane has one.
+    const bool basic_clean =
+        num::all(in.flags.disp_valid & in.flags.force_valid & in.flags.ground_accel_valid &
+                 in.flags.base_accel_valid & inside(in.damper_disp_m, limits_.disp_limit_m) &
+                 inside(in.damper_force_n, limits_.force_limit_n) &
+                 inside(in.ground_accel_m_s2, limits_.accel_limit_m_s2) &
+                 inside(in.base_accel_m_s2, limits_.accel_limit_m_s2) &
+                 inside(in.coil_current_a, limits_.coil_current_limit_a));
+    if (!basic_clean) [[unlikely]] {
+      f[idx(InputSignal::kDisp)] = basic(in.damper_disp_m, in.flags.disp_valid, limits_.disp_limit_m);
+      f[idx(InputSignal::kForce)] = basic(in.damper_force_n, in.flags.force_valid, limits_.force_limit_n);
+      f[idx(InputSignal::kGroundAccel)] =
+          basic(in.ground_accel_m_s2, in.flags.ground_accel_valid, limits_.accel_limit_m_s2);
+      f[idx(InputSignal::kBaseAccel)] =
+          basic(in.base_accel_m_s2, in.flags.base_accel_valid, limits_.accel_limit_m_s2);
+      f[idx(InputSignal::kCoilCurrent)] =
+          basic(in.coil_current_a, num::all_set<Mask>(), limits_.coil_current_limit_a);
+    }
 
     // Shaking seen by a valid ground-acceleration sensor.
     const Count t = ticks_since_shaking_;
@@ -168,9 +180,14 @@ class BasicInputGuard {
                          !(in.ground_accel_m_s2 < limits_.shaking_threshold_m_s2 &&
                            -limits_.shaking_threshold_m_s2 < in.ground_accel_m_s2);
     ticks_since_shaking_ = num::select(shaking, Count{}, num::select(t < kNever, t + 1u, t));
-    stuck(0, in.damper_disp_m, f[idx(InputSignal::kDisp)]);
-    stuck(1, in.damper_force_n, f[idx(InputSignal::kForce)]);
+    const Mask disp_stuck = stuck(0, in.damper_disp_m, f[idx(InputSignal::kDisp)]);
+    const Mask force_stuck = stuck(1, in.damper_force_n, f[idx(InputSignal::kForce)]);
+    clean = basic_clean && !num::any(disp_stuck | force_stuck);
     return f;
+  }
+  Faults check(const Input& in) noexcept {
+    bool clean = false;
+    return check(in, clean);
   }
 
   static constexpr int idx(InputSignal s) noexcept { return static_cast<int>(s); }
@@ -186,12 +203,16 @@ class BasicInputGuard {
   std::array<Mask, 2> have_last_{};
   Count ticks_since_shaking_ = num::splat<Count>(kNever);
 
+  /// |v| ≤ limit, false for NaN: the same as v ≤ limit && −limit ≤ v for
+  /// every v and limit (the sign bit cleared is |v|, NaN stays NaN); ±∞,
+  /// whose fault basic() names, is outside since limit is finite (init()).
+  static constexpr Mask inside(Sample v, float limit) noexcept {
+    return __builtin_bit_cast(Sample, __builtin_bit_cast(Bits, v) & 0x7fffffffu) <= limit;
+  }
+
   static constexpr Fault basic(Sample v, Mask flagged_valid, float limit) noexcept {
     const Bits bits = __builtin_bit_cast(Bits, v);
-    // |v| ≤ limit, false for NaN: the same as v ≤ limit && −limit ≤ v for
-    // every v and limit (the sign bit cleared is |v|, NaN stays NaN); ±∞,
-    // whose fault is named below, is outside since limit is finite (init()).
-    const Mask inside = __builtin_bit_cast(Sample, bits & 0x7fffffffu) <= limit;
+    const Mask inside = BasicInputGuard::inside(v, limit);
     Fault f = fault(InputFault::kNone);
     if (!num::all(inside)) [[unlikely]] {
       const Mask special = (bits & 0x7f800000u) == 0x7f800000u;  // NaN or infinite (classify_float)
@@ -206,8 +227,8 @@ class BasicInputGuard {
   }
 
   /// Stuck test for stroke (slot 0) and force (slot 1), only on values that
-  /// passed the basic checks.
-  void stuck(int slot, Sample v, Fault& f) noexcept {
+  /// passed the basic checks; returns where it set the fault.
+  Mask stuck(int slot, Sample v, Fault& f) noexcept {
     const Mask bad = f != fault(InputFault::kNone);
     const Bits bits = __builtin_bit_cast(Bits, v);
     const Count run = same_run_[slot];
@@ -220,6 +241,7 @@ class BasicInputGuard {
     const Mask stuck_now = !bad && same_run_[slot] >= limits_.stuck_ticks - 1u &&
                            ticks_since_shaking_ <= same_run_[slot];
     f = num::select(stuck_now, fault(InputFault::kStuck), f);
+    return stuck_now;
   }
 };
 

@@ -218,6 +218,56 @@ TYPED_TEST(BadInputTest, StuckStrokeDuringShakingIsDetected) {
   EXPECT_EQ(out.current_command_a, 2.5f);
 }
 
+// status().last_faults is the latest tick's verdict per signal: a fault is
+// reported on its tick and gone on the next tick whose inputs are clean
+// (the controller's path for clean ticks writes no faults), and a stuck run
+// is reported while it lasts.
+TYPED_TEST(BadInputTest, TheLatestTicksFaultsAreReportedAndGoneOnTheNextCleanTick) {
+  const auto faults = [this] { return this->c_.status().last_faults; };
+  const auto expect_only = [&](InputSignal signal, InputFault fault, const char* what) {
+    for (int s = 0; s < kInputSignals; ++s) {
+      EXPECT_EQ(faults()[s], s == static_cast<int>(signal) ? fault : InputFault::kNone) << what << ", signal " << s;
+    }
+  };
+  const auto expect_none = [&](const char* what) {
+    for (int s = 0; s < kInputSignals; ++s) EXPECT_EQ(faults()[s], InputFault::kNone) << what << ", signal " << s;
+  };
+  (void)this->run_good(100);
+  expect_none("clean ticks");
+
+  ControllerInput in = this->good();
+  in.damper_disp_m = kNaN;
+  in.damper_force_n = -kInf;
+  (void)this->step(in);
+  EXPECT_EQ(faults()[static_cast<int>(InputSignal::kDisp)], InputFault::kNotANumber);
+  EXPECT_EQ(faults()[static_cast<int>(InputSignal::kForce)], InputFault::kInfinite);
+  EXPECT_EQ(faults()[static_cast<int>(InputSignal::kGroundAccel)], InputFault::kNone);
+  (void)this->run_good(1);
+  expect_none("the clean tick after a NaN stroke and an infinite force");
+
+  in = this->good();
+  in.flags.ground_accel_valid = false;
+  (void)this->step(in);
+  expect_only(InputSignal::kGroundAccel, InputFault::kFlagged, "a flagged ground acceleration");
+  (void)this->run_good(1);
+  expect_none("the clean tick after a flagged ground acceleration");
+
+  // 500 identical strokes while the ground shakes: the 500th is stuck.
+  const float frozen = this->good().damper_disp_m;
+  for (int i = 0; i < 499; ++i) {
+    in = this->good();
+    in.damper_disp_m = frozen;
+    (void)this->step(in);
+  }
+  expect_none("499 identical strokes");
+  in = this->good();
+  in.damper_disp_m = frozen;
+  (void)this->step(in);
+  expect_only(InputSignal::kDisp, InputFault::kStuck, "the 500th identical stroke");
+  (void)this->run_good(1);
+  expect_none("a moving stroke again");
+}
+
 TYPED_TEST(BadInputTest, ConstantStrokeAtRestIsNotStuck) {
   // No shaking: a building at rest reports the same stroke forever.
   ControllerOutput out;

@@ -128,7 +128,7 @@ constexpr void bump_where(std::uint32_t& c, bool m) noexcept {
 }
 template <LaneVector C, LaneVector M>
 [[gnu::always_inline]] constexpr void bump_where(C& c, M m) noexcept {
-  c -= (C)(m && (c != 0xffffffffu));  // a set mask lane is −1
+  c -= (C)(m & (M)(c != 0xffffffffu));  // a mask lane is 0 or −1, so & is &&
 }
 
 /// A lane value of a scalar role: `v` in lane `l` (1 lane: `v` itself).
