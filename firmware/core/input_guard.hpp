@@ -185,6 +185,7 @@ class BasicInputGuard {
     clean = basic_clean && !num::any(disp_stuck | force_stuck);
     return f;
   }
+  /// check() when the caller does not need to know whether the tick was clean.
   Faults check(const Input& in) noexcept {
     bool clean = false;
     return check(in, clean);
