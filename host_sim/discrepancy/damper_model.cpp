@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "mrd/physics/damper_laws.hpp"
 #include "mrd/physics/series_compliance.hpp"
@@ -354,6 +355,225 @@ void play_operator(std::span<const double> time_s, std::span<const double> x, st
   }
 }
 
+
+/// The law raw_force's loop steps: Bingham (Eq. 4.1 with its transition),
+/// the normalized Bouc–Wen, or Spencer et al.'s model.
+enum class LoopLaw { bingham, bouc_wen, spencer };
+
+/// What DamperModel::raw_force's per-sample loop reads, fixed over the
+/// record: the per-sample inputs, where it writes, and the laws' constants.
+struct RawForceLoop {
+  std::size_t n = 0;
+  const double* a_y = nullptr;  ///< Eq. 5.10's terms per sample, N
+  const double* b_y = nullptr;
+  const double* a_c = nullptr;  ///< Eq. 5.11's terms per sample, N·s/m
+  const double* b_c = nullptr;
+  const double* coil_a = nullptr;     ///< coil current, A
+  const double* xd = nullptr;         ///< the damper's displacement, m (rod_disp_m with an impact spring)
+  const double* vd = nullptr;         ///< the damper's velocity, m/s (rod_vel_m_s with an impact spring)
+  const double* step_s = nullptr;     ///< dt_k, s
+  const double* act_disp_m = nullptr;  ///< the actuator's displacement, m
+  const double* act_vel_m_s = nullptr;  ///< the actuator's velocity, m/s
+  const double* accel_abs_m_s2 = nullptr;  ///< |ā| (timed transition only), m/s²
+  const double* lm_factor = nullptr;  ///< the lost motion's engagement (lost motion only)
+  double* force_n = nullptr;
+  double* rod_disp_m = nullptr;  ///< impact spring only
+  double* rod_vel_m_s = nullptr;
+  double rod_m = 0.0;  ///< the rod's first position through an impact spring's play, m
+  double impact_half_gap_m = 0.0;
+  double impact_compliance_m_per_n = 0.0;
+  physics::PrCoefficients pr_c{};
+  double q_per_m = 0.0;
+  double alpha_y_per_j = 0.0;
+  double alpha_v_per_j = 0.0;
+  double k_gas_n_m = 0.0;
+  double offset_n = 0.0;
+  double v_tf_m_s = 0.0;
+  bool timed = false;
+  bool tanh_shape = false;
+  double tau_s = 0.0;
+  double k_bingham_n_m = 0.0;
+  bool power_viscous = false;
+  double v_r_m_s = 0.0;
+  double m_minus_1 = 0.0;
+  double x_y_m = 0.0;
+  double asym = 0.0;
+  double k_0_n_m = 0.0;
+  double share = 0.0;
+  double play_band_m_s = 0.0;
+  double series_per_n = 0.0;
+  const physics::SpencerParams* spencer = nullptr;
+};
+
+/// The loop of DamperModel::raw_force, compiled for each law and each
+/// combination of the effects that change its body (settling, thermal fade,
+/// an impact spring, the lost motion, a series compliance): the flags are
+/// constants there, so a body holds only what its effects use and keeps its
+/// state in registers. Every combination performs the same floating-point
+/// operations in the same order as the general loop would, so the force is
+/// the same to the bit.
+template <LoopLaw Law, bool Idle, bool Thermal, bool Impact, bool LostMotion, bool Series>
+void raw_force_loop(const RawForceLoop& loop) {
+  constexpr bool spencer = Law == LoopLaw::spencer;
+  constexpr bool bouc_wen = Law == LoopLaw::bouc_wen;
+  const RawForceLoop c = loop;  // a local copy: the stores to the force do not alias it
+  const std::size_t n = c.n;
+  const double* xd = c.xd;
+  const double* vd = c.vd;
+  double rod_m = c.rod_m;
+  double fb_prev = 0.0;        // the law's force at the sample before, N
+  double fluid_vel_m_s = 0.0;  // the fluid's velocity behind the series compliance, m/s
+  double energy_j = 0.0;
+  double pr = 1.0;
+  double decay = 1.0;  // exp(−c_PR ∫Q dt), ∫Q dt in volume units, updated by a factor per step
+  double z = 0.0;      // Bouc–Wen variable; the record starts unloaded
+  // spencer: (y, z) from rest at the first stroke, its coefficients
+  // recomputed when the current, the participant ratio or the fade changes.
+  // The rod's first position (through a mounting's play, against the side of the first motion).
+  physics::SpencerState sp{n > 0 ? (Impact ? rod_m : xd[0]) : 0.0, 0.0};
+  physics::SpencerCoefficients sc;
+  double sc_key[4] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0};
+  for (std::size_t k = 0; k < n; ++k) {
+    if constexpr (Idle) pr = c.pr_c.b_pr + (c.pr_c.a_pr - c.pr_c.b_pr) * decay;  // Eq. 5.9
+    double fy = c.a_y[k] + pr * c.b_y[k];                                         // Eq. 5.10
+    double cv = c.a_c[k] + pr * c.b_c[k];                                         // Eq. 5.11
+    if constexpr (Thermal) {
+      fy *= std::max(1.0 - c.alpha_y_per_j * energy_j, 0.0);
+      cv *= std::max(1.0 - c.alpha_v_per_j * energy_j, 0.0);
+    }
+    const double dt = c.step_s[k];
+    if constexpr (Impact) {
+      // The step centred on the sample: rod_m is the rod at t_k − dt/2, the
+      // actuator's target at t_k + dt/2, so that v_rod is the velocity at t_k
+      // (on a hard stop, the actuator's central difference) and not half a
+      // step ahead of it.
+      const double x_half = k + 1 < n ? 0.5 * (c.act_disp_m[k] + c.act_disp_m[k + 1])
+                                      : c.act_disp_m[k] + 0.5 * dt * c.act_vel_m_s[k];
+      const double v_rod = impact_rod_velocity(x_half - rod_m, c.impact_half_gap_m, c.impact_compliance_m_per_n, dt,
+                                               std::fabs(fy), std::fabs(cv), c.v_tf_m_s);
+      c.rod_disp_m[k] = rod_m + 0.5 * dt * v_rod;
+      c.rod_vel_m_s[k] = v_rod;
+      rod_m += dt * v_rod;
+    }
+    const double v = vd[k];
+    double fb = 0.0;
+    double elastic = 0.0;
+    if constexpr (spencer) {
+      const double phi_y = Thermal ? std::max(1.0 - c.alpha_y_per_j * energy_j, 0.0) : 1.0;
+      const double phi_v = Thermal ? std::max(1.0 - c.alpha_v_per_j * energy_j, 0.0) : 1.0;
+      if (!(sc_key[0] == c.coil_a[k] && sc_key[1] == pr && sc_key[2] == phi_y && sc_key[3] == phi_v)) {
+        sc = c.spencer->at(c.coil_a[k], pr);
+        sc.alpha_n_m *= phi_y;
+        sc.c0_ns_m *= phi_v;
+        sc.c1_ns_m *= phi_v;
+        sc_key[0] = c.coil_a[k];
+        sc_key[1] = pr;
+        sc_key[2] = phi_y;
+        sc_key[3] = phi_v;
+      }
+      // Eq. (8) less its spring, which joins the elastic part.
+      fb = sc.c1_ns_m * physics::spencer_y_rate(sc, sp, xd[k], v);
+      elastic = sc.k1_n_m * (xd[k] - sc.x0_m);
+      sp = physics::spencer_state_after(sc, sp, xd[k], v, dt);
+    } else if constexpr (bouc_wen) {
+      fb = fy * z + cv * v;
+      elastic = c.k_0_n_m * xd[k];
+      z = bouc_wen_step(z, v, dt, c.x_y_m);
+    }
+    // The baseline's lost motion and a direction asymmetry on a law force
+    // f at velocity u, with its slope df (N·s/m).
+    const auto shaped = [&](double f, double df, double u) {
+      if constexpr (LostMotion) {
+        const double e = c.lm_factor[k];
+        f *= (1.0 - c.share) + c.share * e;
+        df *= (1.0 - c.share) + c.share * e;
+        // Fully engaged (e = 1) the band adds 0 · Y tanh(u/v_p), ±0, to a
+        // force (and a slope) that is not zero: they stay as they are, bit
+        // for bit, and the tanh is not taken.
+        if (c.play_band_m_s > 0.0 && !(e == 1.0 && f != 0.0 && (!Series || df != 0.0))) {
+          const double t = std::tanh(u / c.play_band_m_s);
+          f += (1.0 - e) * fy * t;
+          if constexpr (Series) df += (1.0 - e) * fy * (1.0 - t * t) / c.play_band_m_s;  // the slope only where it is solved for
+        }
+      }
+      if (c.asym != 0.0) {
+        const double g = u > 0.0 ? 1.0 + c.asym : (u < 0.0 ? 1.0 - c.asym : 1.0);
+        f *= g;
+        df *= g;
+      }
+      return physics::ForceSlope{f, df};
+    };
+    if constexpr (!spencer && !bouc_wen) {
+      const double band = c.timed ? c.v_tf_m_s + c.tau_s * c.accel_abs_m_s2[k] : c.v_tf_m_s;
+      // The law at the fluid's velocity u (the piston's, without a series
+      // compliance), and its slope for the series compliance's solve.
+      const auto law_at = [&](double u) {
+        const double au = std::fabs(u);
+        // C v_r (|u|/v_r)^m sgn u as C (|u|/v_r)^(m−1) u; its slope m C (|u|/v_r)^(m−1).
+        const double c_eff = c.power_viscous ? (au > 0.0 ? cv * std::pow(au / c.v_r_m_s, c.m_minus_1) : 0.0) : cv;
+        const double m = c.power_viscous ? c.m_minus_1 + 1.0 : 1.0;
+        // Eq. 4.1, 4.4, 5.12, or the tanh transition (baseline.hpp), and its slope when solved for.
+        if (c.tanh_shape) {
+          // bingham_tanh_force_n; behind a series compliance with the faster tanh it solves with.
+          const double t = Series ? physics::tanh_by_exp(u / band) : std::tanh(u / band);
+          const double f = fy * t + c_eff * u;
+          return shaped(f, Series ? physics::bingham_tanh_slope_ns_m(fy, c_eff, m, t, band) : 0.0, u);
+        }
+        const double f = bingham_force_n(u, fy, c_eff, band);
+        const double df = Series ? physics::bingham_slope_ns_m(fy, c_eff, m, u, band) : 0.0;
+        return shaped(f, df, u);
+      };
+      // Behind a series compliance: F = f(v − Ḟ/k_s), over the step from the sample before.
+      if (Series && k > 0) {
+        fluid_vel_m_s += v - vd[k - 1];
+        fb = physics::series_force_n(v, fb_prev, c.series_per_n / c.step_s[k - 1], law_at, fluid_vel_m_s);
+      } else {
+        fb = law_at(v).force_n;
+        fluid_vel_m_s = v;
+      }
+      fb_prev = fb;
+      elastic = c.k_bingham_n_m * xd[k];
+    } else {
+      fb = shaped(fb, 0.0, v).force_n;
+    }
+    c.force_n[k] = fb + elastic + c.k_gas_n_m * xd[k] + c.offset_n;
+    if constexpr (Idle) decay *= std::exp(-c.pr_c.c_pr * std::fabs(v) * c.q_per_m * dt);
+    if constexpr (Thermal) energy_j += fb * v * dt;
+  }
+}
+
+/// Calls f with std::bool_constant<b>.
+template <class F>
+void with_flag(bool b, F&& f) {
+  if (b) {
+    f(std::true_type{});
+  } else {
+    f(std::false_type{});
+  }
+}
+
+/// raw_force_loop for the law and the effects at run time.
+void run_raw_force_loop(const RawForceLoop& loop, LoopLaw law, bool idle, bool thermal, bool impact, bool lost_motion,
+                        bool series) {
+  with_flag(idle, [&](auto i) {
+    with_flag(thermal, [&](auto t) {
+      with_flag(impact, [&](auto m) {
+        if (law == LoopLaw::spencer) {
+          // The spencer law has neither a lost motion nor a series compliance (Baseline).
+          raw_force_loop<LoopLaw::spencer, decltype(i)::value, decltype(t)::value, decltype(m)::value, false, false>(loop);
+        } else if (law == LoopLaw::bouc_wen) {
+          // A series compliance only changes the slope, which the Bouc–Wen law does not solve for.
+          with_flag(lost_motion, [&](auto l) { raw_force_loop<LoopLaw::bouc_wen, decltype(i)::value, decltype(t)::value, decltype(m)::value, decltype(l)::value, false>(loop); });
+        } else {
+          with_flag(lost_motion, [&](auto l) {
+            with_flag(series, [&](auto s) { raw_force_loop<LoopLaw::bingham, decltype(i)::value, decltype(t)::value, decltype(m)::value, decltype(l)::value, decltype(s)::value>(loop); });
+          });
+        }
+      });
+    });
+  });
+}
+
 }  // namespace
 
 void DamperModel::backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws,
@@ -466,127 +686,50 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
 
   // A compliance in series with the Bingham law (baseline.hpp), m/N.
   const bool series = p_.has_series_compliance() && !bouc_wen;
-  const double series_per_n = series ? p_.series_compliance_m_per_n : 0.0;
-  double fb_prev = 0.0;        // the law's force at the sample before, N
-  double fluid_vel_m_s = 0.0;  // the fluid's velocity behind the series compliance, m/s
   ws.force_n.resize(n);
-  double energy_j = 0.0;
-  double pr = 1.0;
-  double decay = 1.0;  // exp(−c_PR ∫Q dt), ∫Q dt in volume units, updated by a factor per step
-  double z = 0.0;      // Bouc–Wen variable; the record starts unloaded
-  // spencer: (y, z) from rest at the first stroke, its coefficients
-  // recomputed when the current, the participant ratio or the fade changes.
-  // The rod's first position (through a mounting's play, against the side of the first motion).
-  physics::SpencerState sp{n > 0 ? (impact ? rod_m : xd[0]) : 0.0, 0.0};
-  physics::SpencerCoefficients sc;
-  double sc_key[4] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0};
-  for (std::size_t k = 0; k < n; ++k) {
-    if (idle) pr = pr_c.b_pr + (pr_c.a_pr - pr_c.b_pr) * decay;  // Eq. 5.9
-    double fy = a_y[k] + pr * b_y[k];                             // Eq. 5.10
-    double cv = a_c[k] + pr * b_c[k];                             // Eq. 5.11
-    if (thermal) {
-      fy *= std::max(1.0 - alpha_y * energy_j, 0.0);
-      cv *= std::max(1.0 - alpha_v * energy_j, 0.0);
-    }
-    const double dt = step_s_[k];
-    if (impact) {
-      // The step centred on the sample: rod_m is the rod at t_k − dt/2, the
-      // actuator's target at t_k + dt/2, so that v_rod is the velocity at t_k
-      // (on a hard stop, the actuator's central difference) and not half a
-      // step ahead of it.
-      const double x_half = k + 1 < n ? 0.5 * (in_.disp_m[k] + in_.disp_m[k + 1])
-                                      : in_.disp_m[k] + 0.5 * dt * in_.vel_m_s[k];
-      const double v_rod = impact_rod_velocity(x_half - rod_m, impact_half_gap_m, impact_compliance_m_per_n, dt,
-                                               std::fabs(fy), std::fabs(cv), v_tf);
-      ws.disp_m[k] = rod_m + 0.5 * dt * v_rod;
-      ws.vel_m_s[k] = v_rod;
-      rod_m += dt * v_rod;
-    }
-    const double v = vd[k];
-    const double av = std::fabs(v);
-    double fb = 0.0;
-    double elastic = 0.0;
-    if (spencer) {
-      const double phi_y = thermal ? std::max(1.0 - alpha_y * energy_j, 0.0) : 1.0;
-      const double phi_v = thermal ? std::max(1.0 - alpha_v * energy_j, 0.0) : 1.0;
-      if (!(sc_key[0] == coil_a[k] && sc_key[1] == pr && sc_key[2] == phi_y && sc_key[3] == phi_v)) {
-        sc = p_.spencer.at(coil_a[k], pr);
-        sc.alpha_n_m *= phi_y;
-        sc.c0_ns_m *= phi_v;
-        sc.c1_ns_m *= phi_v;
-        sc_key[0] = coil_a[k];
-        sc_key[1] = pr;
-        sc_key[2] = phi_y;
-        sc_key[3] = phi_v;
-      }
-      // Eq. (8) less its spring, which joins the elastic part.
-      fb = sc.c1_ns_m * physics::spencer_y_rate(sc, sp, xd[k], v);
-      elastic = sc.k1_n_m * (xd[k] - sc.x0_m);
-      sp = physics::spencer_state_after(sc, sp, xd[k], v, dt);
-    } else if (bouc_wen) {
-      fb = fy * z + cv * v;
-      elastic = k_0 * xd[k];
-      z = bouc_wen_step(z, v, dt, x_y);
-    }
-    // The baseline's lost motion and a direction asymmetry on a law force
-    // f at velocity u, with its slope df (N·s/m).
-    const auto shaped = [&](double f, double df, double u) {
-      if (lost_motion) {
-        const double e = ws.lm_factor[k];
-        f *= (1.0 - share) + share * e;
-        df *= (1.0 - share) + share * e;
-        if (play_band > 0.0) {
-          const double t = std::tanh(u / play_band);
-          f += (1.0 - e) * fy * t;
-          if (series) df += (1.0 - e) * fy * (1.0 - t * t) / play_band;  // the slope only where it is solved for
-        }
-      }
-      if (asym != 0.0) {
-        const double g = u > 0.0 ? 1.0 + asym : (u < 0.0 ? 1.0 - asym : 1.0);
-        f *= g;
-        df *= g;
-      }
-      return physics::ForceSlope{f, df};
-    };
-    if (!spencer && !bouc_wen) {
-      const double band = timed ? v_tf + tau_s * in_.accel_abs_m_s2[k] : v_tf;
-      // The law at the fluid's velocity u (the piston's, without a series
-      // compliance), and its slope for the series compliance's solve.
-      const auto law_at = [&](double u) {
-        const double au = std::fabs(u);
-        // C v_r (|u|/v_r)^m sgn u as C (|u|/v_r)^(m−1) u; its slope m C (|u|/v_r)^(m−1).
-        const double c_eff = power_viscous ? (au > 0.0 ? cv * std::pow(au / v_r, m_minus_1) : 0.0) : cv;
-        const double m = power_viscous ? m_minus_1 + 1.0 : 1.0;
-        // Eq. 4.1, 4.4, 5.12, or the tanh transition (baseline.hpp), and its slope when solved for.
-        if (tanh_shape) {
-          // bingham_tanh_force_n; behind a series compliance with the faster tanh it solves with.
-          const double t = series ? physics::tanh_by_exp(u / band) : std::tanh(u / band);
-          const double f = fy * t + c_eff * u;
-          return shaped(f, series ? physics::bingham_tanh_slope_ns_m(fy, c_eff, m, t, band) : 0.0, u);
-        }
-        const double f = bingham_force_n(u, fy, c_eff, band);
-        const double df = series ? physics::bingham_slope_ns_m(fy, c_eff, m, u, band) : 0.0;
-        return shaped(f, df, u);
-      };
-      // Behind a series compliance: F = f(v − Ḟ/k_s), over the step from the sample before.
-      if (series && k > 0) {
-        fluid_vel_m_s += v - vd[k - 1];
-        fb = physics::series_force_n(v, fb_prev, series_per_n / step_s_[k - 1], law_at, fluid_vel_m_s);
-      } else {
-        fb = law_at(v).force_n;
-        fluid_vel_m_s = v;
-      }
-      fb_prev = fb;
-      elastic = k_bingham * xd[k];
-    } else {
-      fb = shaped(fb, 0.0, v).force_n;
-    }
-    ws.force_n[k] = fb + elastic + k_gas * xd[k] + offset;
-    if (idle) {
-      decay *= std::exp(-pr_c.c_pr * av * q_per_m * dt);
-    }
-    if (thermal) energy_j += fb * v * dt;
-  }
+  RawForceLoop loop;
+  loop.n = n;
+  loop.a_y = a_y;
+  loop.b_y = b_y;
+  loop.a_c = a_c;
+  loop.b_c = b_c;
+  loop.coil_a = coil_a;
+  loop.xd = xd;
+  loop.vd = vd;
+  loop.step_s = step_s_.data();
+  loop.act_disp_m = in_.disp_m.data();
+  loop.act_vel_m_s = in_.vel_m_s.data();
+  loop.accel_abs_m_s2 = in_.accel_abs_m_s2.data();
+  loop.lm_factor = ws.lm_factor.data();
+  loop.force_n = ws.force_n.data();
+  loop.rod_disp_m = ws.disp_m.data();
+  loop.rod_vel_m_s = ws.vel_m_s.data();
+  loop.rod_m = rod_m;
+  loop.impact_half_gap_m = impact_half_gap_m;
+  loop.impact_compliance_m_per_n = impact_compliance_m_per_n;
+  loop.pr_c = pr_c;
+  loop.q_per_m = q_per_m;
+  loop.alpha_y_per_j = alpha_y;
+  loop.alpha_v_per_j = alpha_v;
+  loop.k_gas_n_m = k_gas;
+  loop.offset_n = offset;
+  loop.v_tf_m_s = v_tf;
+  loop.timed = timed;
+  loop.tanh_shape = tanh_shape;
+  loop.tau_s = tau_s;
+  loop.k_bingham_n_m = k_bingham;
+  loop.power_viscous = power_viscous;
+  loop.v_r_m_s = v_r;
+  loop.m_minus_1 = m_minus_1;
+  loop.x_y_m = x_y;
+  loop.asym = asym;
+  loop.k_0_n_m = k_0;
+  loop.share = share;
+  loop.play_band_m_s = play_band;
+  loop.series_per_n = series ? p_.series_compliance_m_per_n : 0.0;
+  loop.spencer = &p_.spencer;
+  const LoopLaw law = spencer ? LoopLaw::spencer : (bouc_wen ? LoopLaw::bouc_wen : LoopLaw::bingham);
+  run_raw_force_loop(loop, law, idle, thermal, impact, lost_motion, series);
 }
 
 void DamperModel::simulate(const EffectSet& set, std::span<const double> params, ModelWorkspace& ws,
