@@ -113,8 +113,15 @@ void DamperModel::set_baseline(Baseline baseline) {
   p_ = std::move(baseline);
   const double scale = p_.force_scale_n();
   force_ratio_ = scale > 0.0 ? scale / thesis_force_scale_n() : 1.0;
-  if (!same_coil) coil_current(1.0, base_current_a_);
-  coefficients(base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_);
+  if (!same_coil) {
+    coil_current(1.0, base_current_a_);
+    base_e_y_ = {};
+    base_e_c_ = {};
+  }
+  // The fits change one parameter at a time (a Jacobian's column): the
+  // exponentials of a law whose rate and exponent stayed are the same doubles.
+  law_exps(base_current_a_, p_.yield_n, base_e_y_);
+  law_exps(base_current_a_, p_.viscous_ns_m, base_e_c_);
   if (p_.has_transition_time() && in_.accel_abs_m_s2.size() != size())
     in_.accel_abs_m_s2 = averaged_abs_acceleration(in_.time_s, in_.vel_m_s);
 }
@@ -174,33 +181,25 @@ void DamperModel::single_lag_current(double tau_s, std::vector<double>& current_
   }
 }
 
-void DamperModel::coefficients(const std::vector<double>& current_a, std::vector<double>& a_y,
-                               std::vector<double>& b_y, std::vector<double>& a_c, std::vector<double>& b_c) const {
-  // Eq. 5.10–5.11 rearranged: Y = Y_a e + PR Y_b (1 − e), e = exp(−Y_c |i|); same for C.
-  const CurrentLaw& y = p_.yield_n;
-  const CurrentLaw& c = p_.viscous_ns_m;
+void DamperModel::law_exps(const std::vector<double>& current_a, const CurrentLaw& law, CurrentLawExps& cache) {
   const std::size_t n = current_a.size();
-  a_y.resize(n);
-  b_y.resize(n);
-  a_c.resize(n);
-  b_c.resize(n);
-  // A current held from one sample to the next (a constant-current test,
-  // a settled coil) reuses the previous sample's exponentials.
+  if (cache.e.size() == n && cache.rate_per_a == law.rate_per_a && cache.current_exponent == law.current_exponent)
+    return;
+  cache.e.resize(n);
+  // A current held from one sample to the next (a constant-current test, a
+  // settled coil) reuses the previous sample's exponential.
   double i_prev = std::numeric_limits<double>::quiet_NaN();
-  double e_y = 1.0;
-  double e_c = 1.0;
+  double e = 1.0;
   for (std::size_t k = 0; k < n; ++k) {
     const double i = std::fabs(current_a[k]);
     if (i != i_prev) {
-      e_y = std::exp(-y.rate_per_a * (y.current_exponent == 1.0 ? i : std::pow(i, y.current_exponent)));
-      e_c = std::exp(-c.rate_per_a * (c.current_exponent == 1.0 ? i : std::pow(i, c.current_exponent)));
+      e = std::exp(-law.rate_per_a * (law.current_exponent == 1.0 ? i : std::pow(i, law.current_exponent)));
       i_prev = i;
     }
-    a_y[k] = y.at_zero * e_y;
-    b_y[k] = y.limit * (1.0 - e_y);
-    a_c[k] = c.at_zero * e_c;
-    b_c[k] = c.limit * (1.0 - e_c);
+    cache.e[k] = e;
   }
+  cache.rate_per_a = law.rate_per_a;
+  cache.current_exponent = law.current_exponent;
 }
 
 namespace {
@@ -364,10 +363,10 @@ enum class LoopLaw { bingham, bouc_wen, spencer };
 /// record: the per-sample inputs, where it writes, and the laws' constants.
 struct RawForceLoop {
   std::size_t n = 0;
-  const double* a_y = nullptr;  ///< Eq. 5.10's terms per sample, N
-  const double* b_y = nullptr;
-  const double* a_c = nullptr;  ///< Eq. 5.11's terms per sample, N·s/m
-  const double* b_c = nullptr;
+  const double* e_y = nullptr;  ///< the yield law's exp(−rate·|i|^q) per sample
+  const double* e_c = nullptr;  ///< the viscous law's
+  double y_at_zero_n = 0.0, y_limit_n = 0.0;        ///< Eq. 5.10: Y = Y_a e + PR Y_b (1 − e), N
+  double c_at_zero_ns_m = 0.0, c_limit_ns_m = 0.0;  ///< Eq. 5.11's, N·s/m
   const double* coil_a = nullptr;     ///< coil current, A
   const double* xd = nullptr;         ///< the damper's displacement, m (rod_disp_m with an impact spring)
   const double* vd = nullptr;         ///< the damper's velocity, m/s (rod_vel_m_s with an impact spring)
@@ -435,8 +434,8 @@ void raw_force_loop(const RawForceLoop& loop) {
   double sc_key[4] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0};
   for (std::size_t k = 0; k < n; ++k) {
     if constexpr (Idle) pr = c.pr_c.b_pr + (c.pr_c.a_pr - c.pr_c.b_pr) * decay;  // Eq. 5.9
-    double fy = c.a_y[k] + pr * c.b_y[k];                                         // Eq. 5.10
-    double cv = c.a_c[k] + pr * c.b_c[k];                                         // Eq. 5.11
+    double fy = c.y_at_zero_n * c.e_y[k] + pr * (c.y_limit_n * (1.0 - c.e_y[k]));             // Eq. 5.10
+    double cv = c.c_at_zero_ns_m * c.e_c[k] + pr * (c.c_limit_ns_m * (1.0 - c.e_c[k]));       // Eq. 5.11
     if constexpr (Thermal) {
       fy *= std::max(1.0 - c.alpha_y_per_j * energy_j, 0.0);
       cv *= std::max(1.0 - c.alpha_v_per_j * energy_j, 0.0);
@@ -592,10 +591,8 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
     return off ? params[*off + i] : fallback;
   };
   const double tau_scale = param(Effect::coil_lag, 0, 1.0);
-  const double* a_y = base_a_y_.data();
-  const double* b_y = base_b_y_.data();
-  const double* a_c = base_a_c_.data();
-  const double* b_c = base_b_c_.data();
+  const double* e_y = base_e_y_.e.data();
+  const double* e_c = base_e_c_.e.data();
   const double* coil_a = base_current_a_.data();
   if (set.contains(Effect::coil_lag)) {
     if (set.form(Effect::coil_lag) == kCoilSingleLag) {
@@ -603,11 +600,12 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
     } else {
       coil_current(tau_scale, ws.current_a);
     }
-    coefficients(ws.current_a, ws.a_y, ws.b_y, ws.a_c, ws.b_c);
-    a_y = ws.a_y.data();
-    b_y = ws.b_y.data();
-    a_c = ws.a_c.data();
-    b_c = ws.b_c.data();
+    ws.e_y = {};
+    ws.e_c = {};
+    law_exps(ws.current_a, p_.yield_n, ws.e_y);
+    law_exps(ws.current_a, p_.viscous_ns_m, ws.e_c);
+    e_y = ws.e_y.e.data();
+    e_c = ws.e_c.e.data();
     coil_a = ws.current_a.data();
   }
 
@@ -678,7 +676,11 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   const double play_band = std::max(p_.lost_motion_band_m_s, 0.0);
   if (lost_motion) {
     ws.lm_half_gap.resize(n);
-    for (std::size_t k = 0; k < n; ++k) ws.lm_half_gap[k] = 0.5 * p_.lost_motion_m_per_n * std::fabs(a_y[k] + b_y[k]);
+    const CurrentLaw& y = p_.yield_n;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double y_n = y.at_zero * e_y[k] + y.limit * (1.0 - e_y[k]);  // Eq. 5.10 at PR = 1
+      ws.lm_half_gap[k] = 0.5 * p_.lost_motion_m_per_n * std::fabs(y_n);
+    }
     // Through an impact spring the rod's motion is found in the loop: the lost motion then on the actuator's.
     play_operator(in_.time_s, std::span<const double>(impact ? in_.disp_m.data() : xd, n), ws.lm_half_gap, 0.0,
                   ws.lm_driven, ws.lm_engaged, ws.lm_factor);
@@ -689,10 +691,12 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
   ws.force_n.resize(n);
   RawForceLoop loop;
   loop.n = n;
-  loop.a_y = a_y;
-  loop.b_y = b_y;
-  loop.a_c = a_c;
-  loop.b_c = b_c;
+  loop.e_y = e_y;
+  loop.e_c = e_c;
+  loop.y_at_zero_n = p_.yield_n.at_zero;
+  loop.y_limit_n = p_.yield_n.limit;
+  loop.c_at_zero_ns_m = p_.viscous_ns_m.at_zero;
+  loop.c_limit_ns_m = p_.viscous_ns_m.limit;
   loop.coil_a = coil_a;
   loop.xd = xd;
   loop.vd = vd;

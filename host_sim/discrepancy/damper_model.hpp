@@ -51,6 +51,7 @@
 /// damper_force_n(Table 4.1, i[k], v[k]) with PR = 1.
 
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -88,9 +89,19 @@ inline constexpr double kContactHalfWindow_s = 0.003;
 [[nodiscard]] ModelInput model_input(const MeasuredData& data,
                                      double smoothing_half_window_s = kDefaultSmoothingHalfWindow_s);
 
+/// A current law's exponential e = exp(−rate·|i|^q) at every sample of a
+/// coil current (Eq. 4.2–4.3; Eq. 5.10–5.11 are Y = Y_a e + PR Y_b (1 − e)),
+/// and the rate and exponent it was computed for (NaN: none).
+struct CurrentLawExps {
+  std::vector<double> e;
+  double rate_per_a = std::numeric_limits<double>::quiet_NaN();
+  double current_exponent = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// Scratch space for one thread's evaluations.
 struct ModelWorkspace {
-  std::vector<double> current_a, a_y, b_y, a_c, b_c, disp_m, vel_m_s, engaged, force_n;
+  std::vector<double> current_a, disp_m, vel_m_s, engaged, force_n;
+  CurrentLawExps e_y, e_c;  ///< the yield and viscous laws' exponentials of current_a (a coil_lag's current)
   std::vector<double> lm_half_gap, lm_driven, lm_engaged, lm_factor;  ///< the baseline's lost motion
 };
 
@@ -142,8 +153,10 @@ class DamperModel {
   /// `progressive`: a stop that engages progressively over contact_share of the whole play (backlash's
   /// progressive form) instead.
   void backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws, bool progressive) const;
-  void coefficients(const std::vector<double>& current_a, std::vector<double>& a_y, std::vector<double>& b_y,
-                    std::vector<double>& a_c, std::vector<double>& b_c) const;
+  /// `law`'s exponentials at every sample of `current_a` into `exps`,
+  /// unless `exps` already holds them for the law's rate and exponent (the
+  /// caller empties `exps` when the current changes).
+  static void law_exps(const std::vector<double>& current_a, const CurrentLaw& law, CurrentLawExps& exps);
 
   ModelInput in_;
   double play_start_side_ = 0.0;  ///< +1, −1 or 0: the side of a mounting's play the rod starts against
@@ -151,7 +164,8 @@ class DamperModel {
   double force_ratio_ = 1.0;
   std::vector<double> step_s_;  ///< dt_k; the last entry repeats the one before
   bool uniform_ = false;
-  std::vector<double> base_current_a_, base_a_y_, base_b_y_, base_a_c_, base_b_c_;
+  std::vector<double> base_current_a_;
+  CurrentLawExps base_e_y_, base_e_c_;  ///< the yield and viscous laws' exponentials of base_current_a_
 };
 
 /// `force_n` (sampled at `time_s`) delayed by `delay_s` at the samples
