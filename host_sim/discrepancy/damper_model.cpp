@@ -115,8 +115,8 @@ void DamperModel::set_baseline(Baseline baseline) {
   force_ratio_ = scale > 0.0 ? scale / thesis_force_scale_n() : 1.0;
   if (!same_coil) {
     coil_current(1.0, base_current_a_);
-    base_e_y_ = {};
-    base_e_c_ = {};
+    base_e_y_.forget();
+    base_e_c_.forget();
   }
   // The fits change one parameter at a time (a Jacobian's column): the
   // exponentials of a law whose rate and exponent stayed are the same doubles.
@@ -600,8 +600,8 @@ void DamperModel::raw_force(const EffectSet& set, std::span<const double> params
     } else {
       coil_current(tau_scale, ws.current_a);
     }
-    ws.e_y = {};
-    ws.e_c = {};
+    ws.e_y.forget();
+    ws.e_c.forget();
     law_exps(ws.current_a, p_.yield_n, ws.e_y);
     law_exps(ws.current_a, p_.viscous_ns_m, ws.e_c);
     e_y = ws.e_y.e.data();

@@ -96,6 +96,8 @@ struct CurrentLawExps {
   std::vector<double> e;
   double rate_per_a = std::numeric_limits<double>::quiet_NaN();
   double current_exponent = std::numeric_limits<double>::quiet_NaN();
+  /// For another current: the next law_exps() recomputes `e` in its buffer.
+  void forget() noexcept { rate_per_a = std::numeric_limits<double>::quiet_NaN(); }
 };
 
 /// Scratch space for one thread's evaluations.
@@ -155,7 +157,7 @@ class DamperModel {
   void backlash_motion(double half_gap_m, double contact_share, ModelWorkspace& ws, bool progressive) const;
   /// `law`'s exponentials at every sample of `current_a` into `exps`,
   /// unless `exps` already holds them for the law's rate and exponent (the
-  /// caller empties `exps` when the current changes).
+  /// caller calls exps.forget() when the current changes).
   static void law_exps(const std::vector<double>& current_a, const CurrentLaw& law, CurrentLawExps& exps);
 
   ModelInput in_;
