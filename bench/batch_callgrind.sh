@@ -4,7 +4,7 @@
 # BM_Batch<Mode>/8 of mrd_bench_closed_loop: a figure that does not depend on
 # the machine's load or clock (for a VM without hardware counters).
 # Valgrind has no AVX-512, so the lanes run the x86-64-v3 kernel (AVX2 + FMA,
-# 4 lanes); the float control core steps its 8 lanes with half of them idle.
+# two register sets of 4 lanes, the float control core's 8 lanes serving both).
 # Usage: bench/batch_callgrind.sh [BUILD_DIR]   (default build/host-release)
 set -euo pipefail
 build=${1:-build/host-release}

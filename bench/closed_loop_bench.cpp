@@ -217,7 +217,7 @@ void BM_Modes(benchmark::State& state) {
     run_batch(state, mode, 64, mrd::batch::LaneIsa::kAuto, building);
     const mrd::batch::LaneIsa isa = mrd::batch::auto_lane_isa();
     what = std::string("batch, 64 runs, ") + mrd::batch::lane_isa_name(isa) + ", " +
-           std::to_string(mrd::batch::lane_count(isa)) + " lanes";
+           std::to_string(mrd::batch::lane_count(isa, twenty_dofs)) + " lanes";
   } else {
     auto controller = mrd::run::make_controller(mode, 1e-3);
     run(state, *controller, building);

@@ -24,7 +24,7 @@ class AnyLanes {
   AnyLanes(const AnyLanes&) = delete;
   AnyLanes& operator=(const AnyLanes&) = delete;
 
-  int lanes() const noexcept { return kernel_.lanes; }
+  int lanes() const noexcept { return kernel_.any_lanes; }
   const LaneKernel& kernel() const noexcept { return kernel_; }
   /// Lane l at rest (Plant::init) with settling quotient `sq`, reading 0 m/s².
   void rest(int l, double sq);

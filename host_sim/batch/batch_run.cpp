@@ -592,7 +592,10 @@ LaneIsa auto_lane_isa() {
   return chosen;
 }
 
-int lane_count(LaneIsa isa) { return kernel_of(isa == LaneIsa::kAuto ? auto_lane_isa() : isa).lanes; }
+int lane_count(LaneIsa isa, bool any_building) {
+  const LaneKernel& k = kernel_of(isa == LaneIsa::kAuto ? auto_lane_isa() : isa);
+  return any_building ? k.any_lanes : k.lanes;
+}
 
 std::vector<plant::PlantSummary> run_closed_loop_batch(const plant::PlantSpec& plant, std::span<const BatchRun> runs,
                                                        const BatchOptions& options) {

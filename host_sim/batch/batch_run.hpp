@@ -39,7 +39,7 @@ struct BatchRun {
 enum class LaneIsa {
   kAuto,      ///< the widest this CPU runs
   kGeneric,   ///< any CPU: 2 lanes, glibc's exp() per lane
-  kX86_64V3,  ///< AVX2 + FMA: 4 lanes
+  kX86_64V3,  ///< AVX2 + FMA: 4 lanes a register (the thesis shape: two registers, 8 lanes)
   kX86_64V4,  ///< AVX-512: 8 lanes
 };
 
@@ -90,7 +90,8 @@ bool lane_isa_available(LaneIsa isa);
 /// What kAuto picks on this CPU.
 LaneIsa auto_lane_isa();
 
-/// Lanes the kernel of `isa` steps at once.
-int lane_count(LaneIsa isa);
+/// Lanes the kernel of `isa` steps at once: on a building of the thesis's
+/// shape, or (`any_building`) on any other building's lanes.
+int lane_count(LaneIsa isa, bool any_building = false);
 
 }  // namespace mrd::batch

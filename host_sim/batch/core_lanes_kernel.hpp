@@ -47,55 +47,70 @@ void core_step(void* core, const CoreLanesIn& in, CoreLanesOut& out) {
 typedef float vf __attribute__((vector_size(kW * 4)));
 typedef std::int32_t vm __attribute__((vector_size(kW * 4)));
 
-/// The kW doubles of `v` rounded to float (as static_cast<float>) into the
-/// first kW lanes of `dst`.
-[[gnu::always_inline]] inline void put_floats(CoreLanes::Sample& dst, vd v) {
+/// The kW doubles of `v` rounded to float (as static_cast<float>) into
+/// lanes o … o + kW − 1 of `dst`.
+[[gnu::always_inline]] inline void put_floats(CoreLanes::Sample& dst, int o, vd v) {
   const vf f = __builtin_convertvector(v, vf);
-  std::memcpy(&dst, &f, sizeof f);
+  std::memcpy(reinterpret_cast<float*>(&dst) + o, &f, sizeof f);
 }
 
 /// `ticks` closed-loop ticks of the thesis-shape lanes with the core in the
 /// loop, the state in registers: sense, the core's step on the sensed values
 /// rounded to float (the plant's sensor stage), the command stage (u = the
-/// command while the drive is enabled, else 0), advance. Lanes whose
-/// `active` is 0 keep their command. Lane l's controller sees ticks
-/// tick0[l], tick0[l] + 1, …
+/// command while the drive is enabled, else 0), advance. The kInterleave
+/// register sets of kW lanes share the core's one step a tick (set h in its
+/// lanes h·kW …). Lanes whose `active` is 0 keep their command. Lane l's
+/// controller sees ticks tick0[l], tick0[l] + 1, …
 template <bool kStoryDrift>
 void core_run_ticks(const SharedModel& m, LaneBlock& b, void* core_p, std::size_t ticks, const std::uint32_t* tick0,
                     const std::int32_t* active) {
-  static_assert(kInterleave == 1 && kW <= kMaxLanes, "one register set of at most the core's lanes");
+  static_assert(kW * kInterleave <= kMaxLanes, "the register sets fit the core's lanes");
   if (ticks == 0) return;
   CoreLanes& core = *std::launder(static_cast<CoreLanes*>(core_p));
-  Regs r;
-  load_regs(b, 0, r);
+  Regs r[kInterleave];
+  vd u[kInterleave], x[kInterleave];
+  vi active_wide[kInterleave];
   CoreLanes::Input in;
   std::memcpy(&in.tick, tick0, sizeof in.tick);
-  vm active_m;
-  std::memcpy(&active_m, active, sizeof active_m);
-  const vi active_wide = __builtin_convertvector(active_m, vi);
-  vd u = load(b.command_a);
-  const vd zero{};
-  vd x = base_disp(m, r);
-  for (std::size_t t = 0; t < ticks; ++t) {
-    const Sensed s = sense_regs(m, r, x);
-    put_floats(in.damper_disp_m, s.x);
-    put_floats(in.damper_force_n, s.force);
-    put_floats(in.ground_accel_m_s2, s.ag);
-    put_floats(in.base_accel_m_s2, r.base_accel);
-    put_floats(in.coil_current_a, s.current);
-    const CoreLanes::Output o = core.step(in);
-    in.tick += 1u;
-    vf command;
-    std::memcpy(&command, &o.current_command_a, sizeof command);
-    vm enable;
-    std::memcpy(&enable, &o.drive_enable, sizeof enable);
-    // run::coil_drive and plant::command_stage_a: the command while the drive is enabled, else 0 A.
-    const vd stage = __builtin_convertvector(enable, vi) ? __builtin_convertvector(command, vd) : zero;
-    u = active_wide ? stage : u;
-    advance_regs<kStoryDrift>(m, s, u, r, x);
+  for (int h = 0; h < kInterleave; ++h) {
+    const int o = h * kW;
+    load_regs(b, o, r[h]);
+    vm active_m;
+    std::memcpy(&active_m, active + o, sizeof active_m);
+    active_wide[h] = __builtin_convertvector(active_m, vi);
+    u[h] = load(b.command_a + o);
+    x[h] = base_disp(m, r[h]);
   }
-  store(b.command_a, u);
-  store_regs(b, 0, r);
+  const vd zero{};
+  for (std::size_t t = 0; t < ticks; ++t) {
+    Sensed s[kInterleave];
+    for (int h = 0; h < kInterleave; ++h) {
+      const int o = h * kW;
+      s[h] = sense_regs(m, r[h], x[h]);
+      put_floats(in.damper_disp_m, o, s[h].x);
+      put_floats(in.damper_force_n, o, s[h].force);
+      put_floats(in.ground_accel_m_s2, o, s[h].ag);
+      put_floats(in.base_accel_m_s2, o, r[h].base_accel);
+      put_floats(in.coil_current_a, o, s[h].current);
+    }
+    const CoreLanes::Output out = core.step(in);
+    in.tick += 1u;
+    for (int h = 0; h < kInterleave; ++h) {
+      const int o = h * kW;
+      vf command;
+      std::memcpy(&command, reinterpret_cast<const float*>(&out.current_command_a) + o, sizeof command);
+      vm enable;
+      std::memcpy(&enable, reinterpret_cast<const std::int32_t*>(&out.drive_enable) + o, sizeof enable);
+      // run::coil_drive and plant::command_stage_a: the command while the drive is enabled, else 0 A.
+      const vd stage = __builtin_convertvector(enable, vi) ? __builtin_convertvector(command, vd) : zero;
+      u[h] = active_wide[h] ? stage : u[h];
+      advance_regs<kStoryDrift>(m, s[h], u[h], r[h], x[h]);
+    }
+  }
+  for (int h = 0; h < kInterleave; ++h) {
+    store(b.command_a + h * kW, u[h]);
+    store_regs(b, h * kW, r[h]);
+  }
 }
 
 void core_run(const SharedModel& m, LaneBlock& b, void* core, std::size_t ticks, const std::uint32_t* tick0,

@@ -125,7 +125,8 @@ struct CoreLanesOut;
 /// One instruction set's kernel.
 struct LaneKernel {
   const char* name = "";
-  int lanes = 0;  ///< lanes it steps (≤ kMaxLanes); lanes beyond are left untouched
+  int lanes = 0;  ///< thesis-shape lanes it steps (≤ kMaxLanes); lanes beyond are left untouched
+  int any_lanes = 0;  ///< any building's lanes it steps (≤ lanes)
   /// Starts tick n: reads the ground input, fills the sensed values.
   void (*sense)(const SharedModel&, LaneBlock&) = nullptr;
   /// Completes tick n with command_a held over the step.

@@ -31,7 +31,13 @@ namespace mrd::batch::MRD_BATCH_NS {
 namespace {
 
 constexpr int kW = MRD_BATCH_LANES;  ///< lanes per register
-constexpr int kInterleave = 1;       ///< register sets stepped together (2 measured slower here: spills)
+#ifndef MRD_BATCH_INTERLEAVE
+#define MRD_BATCH_INTERLEAVE 1
+#endif
+/// Register sets of kW lanes a kernel call steps: the thesis-shape lanes are
+/// kW · kInterleave wide, so that the core's kMaxLanes float lanes, one step
+/// for all of them, serve as many runs as they hold (core_run_ticks).
+constexpr int kInterleave = MRD_BATCH_INTERLEAVE;
 static_assert(kW * kInterleave <= kMaxLanes);
 
 typedef double vd __attribute__((vector_size(kW * 8)));
@@ -77,7 +83,8 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
 }
 
 // The few operations GCC's vector extensions lack, by instruction set:
-// AVX-512 with 8 lanes; AVX2 with 4 lanes, or 8 lanes as two halves.
+// AVX-512 with 8 lanes; AVX2 with 4 lanes (8 lanes as two halves is supported, and measured 3–4×
+// slower than two register sets of 4: MRD_BATCH_INTERLEAVE).
 #if defined(__AVX512F__) && MRD_BATCH_LANES == 8
 #define MRD_BATCH_X86 512
 #elif defined(__AVX2__) && defined(__FMA__)

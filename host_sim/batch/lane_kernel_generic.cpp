@@ -9,7 +9,7 @@
 namespace mrd::batch {
 
 LaneKernel generic_lane_kernel() noexcept {
-  return LaneKernel{"generic", generic::kW * generic::kInterleave, &generic::sense, &generic::advance, &generic::run,
+  return LaneKernel{"generic", generic::kW * generic::kInterleave, generic::kW, &generic::sense, &generic::advance, &generic::run,
                     &generic::run_without_drift, &generic::exp_n,
                     &generic::any_sense, &generic::any_advance, &generic::any_run,
                     &generic::core_make, &generic::core_destroy, &generic::core_reset, &generic::core_step,

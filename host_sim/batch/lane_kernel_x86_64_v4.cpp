@@ -9,7 +9,7 @@
 namespace mrd::batch {
 
 LaneKernel x86_64_v4_lane_kernel() noexcept {
-  return LaneKernel{"x86-64-v4", x86_64_v4::kW * x86_64_v4::kInterleave, &x86_64_v4::sense, &x86_64_v4::advance, &x86_64_v4::run,
+  return LaneKernel{"x86-64-v4", x86_64_v4::kW * x86_64_v4::kInterleave, x86_64_v4::kW, &x86_64_v4::sense, &x86_64_v4::advance, &x86_64_v4::run,
                     &x86_64_v4::run_without_drift, &x86_64_v4::exp_n,
                     &x86_64_v4::any_sense, &x86_64_v4::any_advance, &x86_64_v4::any_run,
                     &x86_64_v4::core_make, &x86_64_v4::core_destroy, &x86_64_v4::core_reset, &x86_64_v4::core_step,
