@@ -10,8 +10,8 @@
 //    seconds of all runs, on one core. Issue 13's goal for the passive
 //    modes: ≥ 100 000 (its floor ≈ 90 000).
 //  - BM_BatchNoDrift/<mode>: 64 runs without the story drifts' peak.
-//  - BM_BatchIsa/<isa>: passive-on, 64 runs, with each lane kernel this CPU
-//    runs (0 generic, 1 x86-64-v3, 2 x86-64-v4).
+//  - BM_BatchIsa/<isa>/<mode>: 64 runs with each lane kernel this CPU runs
+//    (0 generic, 1 x86-64-v3, 2 x86-64-v4), passive-on (1) and semi-active (2).
 //  - BM_LeadRubber20Dof: a 20-DOF building on 40 lead-rubber bearings
 //    (lead_rubber_20dof() below), semi-active with the firmware control core,
 //    one run at a time, as `mrd sim --building` runs it.
@@ -192,9 +192,9 @@ BENCHMARK(BM_BatchNoDrift)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond
 void BM_BatchIsa(benchmark::State& state) {
   const mrd::batch::LaneIsa isas[] = {mrd::batch::LaneIsa::kGeneric, mrd::batch::LaneIsa::kX86_64V3,
                                       mrd::batch::LaneIsa::kX86_64V4};
-  run_batch(state, mrd::control::ControlMode::kPassiveOn, 64, isas[state.range(0)]);
+  run_batch(state, static_cast<mrd::control::ControlMode>(state.range(1)), 64, isas[state.range(0)]);
 }
-BENCHMARK(BM_BatchIsa)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BatchIsa)->ArgsProduct({{0, 1, 2}, {1, 2}})->ArgNames({"isa", "mode"})->Unit(benchmark::kMillisecond);
 
 /// The 20-DOF lead-rubber building in SIMD lanes, 64 runs.
 void BM_BatchLeadRubber20Dof(benchmark::State& state) {

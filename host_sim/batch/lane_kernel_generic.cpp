@@ -1,5 +1,9 @@
-// The lane kernel for any CPU: 2 lanes (SSE2 on x86-64), glibc's exp() per lane.
+// The lane kernel for any CPU: 2 lanes a register (SSE2 on x86-64, NEON on
+// AArch64), glibc's exp() per lane; the thesis-shape lanes step four register
+// sets around two cores of 4 float lanes, the register's width.
 #define MRD_BATCH_LANES 2
+#define MRD_BATCH_INTERLEAVE 4
+#define MRD_BATCH_CORE_LANES 4
 #define MRD_BATCH_NS generic
 #define MRD_BATCH_FMA_EXP 0
 #include "host_sim/batch/lane_kernel.hpp"
