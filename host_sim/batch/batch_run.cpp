@@ -525,7 +525,7 @@ class Batch {
     }
     if (core_lanes_run) {
       CoreLanesOut o;
-      core_lanes_.kernel->core_step(core_lanes(), core_in, o);
+      core_lanes_.kernel->core_step(core_lanes(), lanes_.lanes(), core_in, o);
       for (int l = 0; l < lanes_.lanes(); ++l) {
         Lane& lane = lane_[l];
         if (lane.run == kNone || !lane.in_core_lanes) continue;

@@ -38,7 +38,7 @@ struct BatchRun {
 /// Which kernel steps the lanes.
 enum class LaneIsa {
   kAuto,      ///< the widest this CPU runs
-  kGeneric,   ///< any CPU: 2 lanes, glibc's exp() per lane
+  kGeneric,   ///< any CPU: 2 lanes a register (the thesis shape: four registers, 8 lanes), glibc's exp() per lane
   kX86_64V3,  ///< AVX2 + FMA: 4 lanes a register (the thesis shape: two registers, 8 lanes)
   kX86_64V4,  ///< AVX-512: 8 lanes
 };

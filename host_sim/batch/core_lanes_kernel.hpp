@@ -63,9 +63,9 @@ void core_reset(void* core, int lane) {
   cores_of(core).c[lane / kCoreLanes].reset(only);
 }
 
-void core_step(void* core, const CoreLanesIn& in, CoreLanesOut& out) {
+void core_step(void* core, int lanes, const CoreLanesIn& in, CoreLanesOut& out) {
   Cores& cores = cores_of(core);
-  for (int c = 0; c < kCores; ++c) {
+  for (int c = 0; c < kCores && c * kCoreLanes < lanes; ++c) {
     const int o = c * kCoreLanes;
     CoreLanes::Input i;
     std::memcpy(&i.tick, in.tick + o, sizeof i.tick);

@@ -145,7 +145,8 @@ struct LaneKernel {
   void* (*core_make)(const void* prototype, std::size_t bytes) = nullptr;
   void (*core_destroy)(void* core) = nullptr;
   void (*core_reset)(void* core, int lane) = nullptr;
-  void (*core_step)(void* core, const CoreLanesIn& in, CoreLanesOut& out) = nullptr;
+  /// One tick of the cores holding lanes 0 … lanes − 1 (`out` beyond them untouched).
+  void (*core_step)(void* core, int lanes, const CoreLanesIn& in, CoreLanesOut& out) = nullptr;
   /// `ticks` × (sense, the core's step, advance) on the thesis-shape lanes, the
   /// controllers' ticks from tick0[l]; lanes with active[l] = 0 keep their command.
   void (*core_run)(const SharedModel&, LaneBlock&, void* core, std::size_t ticks, const std::uint32_t* tick0,
