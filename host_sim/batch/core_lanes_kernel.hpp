@@ -99,11 +99,13 @@ typedef std::int32_t vm __attribute__((vector_size(kW * 4)));
 /// lanes h·kW …). Lanes whose `active` is 0 keep their command. Lane l's
 /// controller sees ticks tick0[l], tick0[l] + 1, …
 template <bool kStoryDrift>
-void core_run_ticks(const SharedModel& m, LaneBlock& b, void* core_p, std::size_t ticks, const std::uint32_t* tick0,
-                    const std::int32_t* active) {
+void core_run_ticks(const SharedModel& shared, LaneBlock& b, void* core_p, std::size_t ticks,
+                    const std::uint32_t* tick0, const std::int32_t* active) {
   constexpr int kRunCores = (kW * kInterleave + kCoreLanes - 1) / kCoreLanes;
   static_assert(kRunCores <= kCores, "the register sets fit the cores' lanes");
   if (ticks == 0) return;
+  LoopModel wide;
+  const auto& m = loop_model(shared, wide);
   Cores& cores = cores_of(core_p);
   Regs r[kInterleave];
   vd u[kInterleave], x[kInterleave];

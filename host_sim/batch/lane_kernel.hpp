@@ -60,6 +60,8 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
 #error "2, 4 or 8 lanes"
 #endif
 [[gnu::always_inline]] inline vd splat(double x) { return vd MRD_BATCH_ALL(x); }
+/// A constant of WideModel is already a register's worth.
+[[gnu::always_inline]] inline vd splat(vd x) { return x; }
 [[gnu::always_inline]] inline vi splat_i(std::int64_t x) { return vi MRD_BATCH_ALL(x); }
 [[gnu::always_inline]] inline double from_bits(std::uint64_t b) {
   double d;
@@ -74,7 +76,8 @@ typedef std::uint64_t vu __attribute__((vector_size(kW * 8)));
 /// Eigen's order for a fixed 12-term dot product of a matrix row (no
 /// packets: the row is strided): halves, recursively,
 /// ((p0 + (p1 + p2)) + (p3 + (p4 + p5))) + ((p6 + (p7 + p8)) + (p9 + (p10 + p11))).
-[[gnu::always_inline]] inline vd dot_row12(const double* row, const vd* q) {
+template <class C>
+[[gnu::always_inline]] inline vd dot_row12(const C* row, const vd* q) {
   vd p[kBlockStates];
   for (int k = 0; k < kBlockStates; ++k) p[k] = splat(row[k]) * q[k];
   const vd a = (p[0] + (p[1] + p[2])) + (p[3] + (p[4] + p[5]));
@@ -327,16 +330,104 @@ struct Regs {
   __builtin_memcpy(b.ground + o, &r.ground_addr, sizeof r.ground_addr);
 }
 
+/// SharedModel's numbers, each as a register of kW copies: the kernel's
+/// loops multiply by them with the operand read from memory, where AVX2 and
+/// SSE2 would otherwise load and broadcast each constant before its use (and
+/// keep broadcast constants in the registers the lanes' state needs).
+/// Made once a kernel call (widen()); field names are SharedModel's, so that
+/// sense_regs() and advance_regs() step from either. AVX-512 broadcasts a
+/// double in the operand itself: its kernel steps from SharedModel.
+struct WidePeakBound {
+  vd weight[kBlockModes], rate_weight[kBlockModes];
+  vd per_ag, per_force, rate_per_ag, rate_per_force;
+};
+struct WideModel {
+  vd blocks[kBlockStates][2], gamma[kBlockStates][2];
+  vd disp_row[kBlockStates], vel_row[kBlockStates];
+  vd accel_rows[kBlockDofs][kBlockStates], disp_rows[kBlockDofs][kBlockStates];
+  vd inv_base_mass_per_kg;
+  bool peak_bounds;
+  WidePeakBound floor_bound, drift_bound;
+  vd fc_a_n, fc_b_n, neg_fc_c_per_a, c0_a_ns_m, c0_b_ns_m, neg_c0_c_per_a, v_tf_m_s;
+  vd a_slow, one_minus_a_slow, a_fast, one_minus_a_fast, weight_slow, weight_fast;
+  vd flow_area_m2, volume_unit_m3, step_s;
+  vd thermal_a, thermal_gain_k_w, resistance_ohm, rated_current_a;
+};
+
+[[gnu::always_inline]] inline void widen_bound(const PeakBoundModel& g, WidePeakBound& w) {
+  for (int j = 0; j < kBlockModes; ++j) {
+    w.weight[j] = splat(g.weight[j]);
+    w.rate_weight[j] = splat(g.rate_weight[j]);
+  }
+  w.per_ag = splat(g.per_ag);
+  w.per_force = splat(g.per_force);
+  w.rate_per_ag = splat(g.rate_per_ag);
+  w.rate_per_force = splat(g.rate_per_force);
+}
+
+inline void widen(const SharedModel& m, WideModel& w) {
+  for (int j = 0; j < kBlockStates; ++j) {
+    for (int c = 0; c < 2; ++c) {
+      w.blocks[j][c] = splat(m.blocks[j][c]);
+      w.gamma[j][c] = splat(m.gamma[j][c]);
+    }
+    w.disp_row[j] = splat(m.disp_row[j]);
+    w.vel_row[j] = splat(m.vel_row[j]);
+    for (int i = 0; i < kBlockDofs; ++i) {
+      w.accel_rows[i][j] = splat(m.accel_rows[i][j]);
+      w.disp_rows[i][j] = splat(m.disp_rows[i][j]);
+    }
+  }
+  w.inv_base_mass_per_kg = splat(m.inv_base_mass_per_kg);
+  w.peak_bounds = m.peak_bounds;
+  widen_bound(m.floor_bound, w.floor_bound);
+  widen_bound(m.drift_bound, w.drift_bound);
+  w.fc_a_n = splat(m.fc_a_n);
+  w.fc_b_n = splat(m.fc_b_n);
+  w.neg_fc_c_per_a = splat(m.neg_fc_c_per_a);
+  w.c0_a_ns_m = splat(m.c0_a_ns_m);
+  w.c0_b_ns_m = splat(m.c0_b_ns_m);
+  w.neg_c0_c_per_a = splat(m.neg_c0_c_per_a);
+  w.v_tf_m_s = splat(m.v_tf_m_s);
+  w.a_slow = splat(m.a_slow);
+  w.one_minus_a_slow = splat(m.one_minus_a_slow);
+  w.a_fast = splat(m.a_fast);
+  w.one_minus_a_fast = splat(m.one_minus_a_fast);
+  w.weight_slow = splat(m.weight_slow);
+  w.weight_fast = splat(m.weight_fast);
+  w.flow_area_m2 = splat(m.flow_area_m2);
+  w.volume_unit_m3 = splat(m.volume_unit_m3);
+  w.step_s = splat(m.step_s);
+  w.thermal_a = splat(m.thermal_a);
+  w.thermal_gain_k_w = splat(m.thermal_gain_k_w);
+  w.resistance_ohm = splat(m.resistance_ohm);
+  w.rated_current_a = splat(m.rated_current_a);
+}
+
+/// The model a kernel loop steps from: see WideModel.
+#if MRD_BATCH_X86 == 512
+struct LoopModel {};
+[[gnu::always_inline]] inline const SharedModel& loop_model(const SharedModel& m, LoopModel&) { return m; }
+#else
+using LoopModel = WideModel;
+[[gnu::always_inline]] inline const WideModel& loop_model(const SharedModel& m, LoopModel& w) {
+  widen(m, w);
+  return w;
+}
+#endif
+
 /// What sense() gives advance().
 struct Sensed {
   vd ag, x, v, force, current;
 };
 
 /// The base displacement from the modal coordinates (DiscreteBuilding::disp_m(0)).
-[[gnu::always_inline]] inline vd base_disp(const SharedModel& m, const Regs& r) { return dot_row12(m.disp_row, r.q); }
+template <class M>
+[[gnu::always_inline]] inline vd base_disp(const M& m, const Regs& r) { return dot_row12(m.disp_row, r.q); }
 
 /// Plant::sense on the thesis plant; `x` is base_disp(m, r).
-[[gnu::always_inline]] inline Sensed sense_regs(const SharedModel& m, Regs& r, vd x) {
+template <class M>
+[[gnu::always_inline]] inline Sensed sense_regs(const M& m, Regs& r, vd x) {
   Sensed s;
   s.ag = gather_at(r.ground_addr) * r.ground_scale;
   r.ground_addr += r.ground_step;
@@ -357,7 +448,8 @@ struct Sensed {
 /// A peak bound's step: W from the amplitudes grows by the step's inputs'
 /// term; the reach, from the last computed value, by the rate bound and the
 /// same term, and the rate bound by its own (see add_floor_peaks).
-[[gnu::always_inline]] inline void grow_bound(const PeakBoundModel& g, BoundRegs& b, vd ag_abs, vd force_abs) {
+template <class G>
+[[gnu::always_inline]] inline void grow_bound(const G& g, BoundRegs& b, vd ag_abs, vd force_abs) {
   const vd in = splat(g.per_ag) * ag_abs + splat(g.per_force) * force_abs;
   b.amp = b.amp + in;
   b.reach = b.reach + (b.rate + in);
@@ -375,7 +467,8 @@ struct Sensed {
 
 /// A peak bound set anew on a tick whose rows were computed: `now` is this
 /// tick's largest |row|, `rho` the modes' amplitudes.
-[[gnu::always_inline]] inline void reset_bound(const PeakBoundModel& g, BoundRegs& b, const vd* rho, vd now) {
+template <class G>
+[[gnu::always_inline]] inline void reset_bound(const G& g, BoundRegs& b, const vd* rho, vd now) {
   vd amp = splat(g.weight[0]) * rho[0];
   vd rate = splat(g.rate_weight[0]) * rho[0];
   for (int j = 1; j < kBlockModes; ++j) {
@@ -407,8 +500,8 @@ struct Sensed {
 ///    bound Σ_j ‖c^(j)‖ ‖B_j − I‖₂ ρ_j plus the same inputs' term, and the
 ///    rate bound grows with the amplitudes.
 /// Either is set anew on a tick that computes its rows.
-template <bool kStoryDrift>
-[[gnu::always_inline]] inline void add_floor_peaks(const SharedModel& m, const Sensed& s, Regs& r, vd x0) {
+template <bool kStoryDrift, class M>
+[[gnu::always_inline]] inline void add_floor_peaks(const M& m, const Sensed& s, Regs& r, vd x0) {
   bool floors = true, drifts = kStoryDrift;
   if (m.peak_bounds) {
     const vd ag = vabs(s.ag);
@@ -452,8 +545,8 @@ template <bool kStoryDrift>
 
 /// Plant::advance on the thesis plant with the command stage's output `u`;
 /// `x_next` becomes base_disp(m, r) of the new state.
-template <bool kStoryDrift>
-[[gnu::always_inline]] inline void advance_regs(const SharedModel& m, const Sensed& s, vd u, Regs& r, vd& x_next) {
+template <bool kStoryDrift, class M>
+[[gnu::always_inline]] inline void advance_regs(const M& m, const Sensed& s, vd u, Regs& r, vd& x_next) {
   // MrDamper::step: coil (Eq. 4.5), then PR (Eq. 5.9), then f_c, c_0.
   r.y_slow = splat(m.a_slow) * r.y_slow + splat(m.one_minus_a_slow) * u;
   r.y_fast = splat(m.a_fast) * r.y_fast + splat(m.one_minus_a_fast) * u;
@@ -548,8 +641,10 @@ void advance(const SharedModel& m, LaneBlock& b) {
 }
 
 template <bool kStoryDrift>
-void run_ticks(const SharedModel& m, LaneBlock& b, std::size_t ticks) {
+void run_ticks(const SharedModel& shared, LaneBlock& b, std::size_t ticks) {
   if (ticks == 0) return;
+  LoopModel wide;
+  const auto& m = loop_model(shared, wide);
   Regs r[kInterleave];
   vd u[kInterleave], x[kInterleave];
   for (int h = 0; h < kInterleave; ++h) {
