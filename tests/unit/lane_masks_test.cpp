@@ -1,12 +1,15 @@
 // num::any and num::all on lane masks (mrd/num/policy.hpp) for every lane
 // count the lanes use, each lane alone set or alone clear, none and all:
-// the answers a loop over the lanes gives. The file is compiled twice, for
+// the answers a loop over the lanes gives; num::bump_where's saturating
+// count per lane, against the one-counter rule and its hand values at the
+// top of the range. The file is compiled twice, for
 // the baseline (SSE2's byte masks) and, on x86-64, for x86-64-v3 (AVX's
 // vptest on 32 bytes), the instruction sets the controller's lanes are built
 // for (host_sim/batch).
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <cstdint>
 
 #include "mrd/num/policy.hpp"
 
@@ -59,6 +62,40 @@ void check_every_pattern() {
   EXPECT_EQ(mrd::num::all(x > -2.0f), true);
   EXPECT_EQ(mrd::num::any(x > static_cast<float>(N) - 3.0f), true);  // the last lane, N − 2.5
   EXPECT_EQ(mrd::num::all(x < static_cast<float>(N) - 3.0f), false);
+}
+
+template <int N>
+void check_bump_where() {
+  using Mask = mrd::num::LaneMask<N>;
+  using Count = mrd::num::LaneCount<N>;
+  // Each lane a start count and a mask: every pair of {0, 1, 2^32 − 2, 2^32 − 1} × {clear, set}
+  // over the lanes, shifted by `s` so that each lane meets each pair.
+  constexpr std::uint32_t kStarts[] = {0u, 1u, 0xfffffffeu, 0xffffffffu};
+  // Hand values: one more where set, except at 2^32 − 1, which stays.
+  constexpr std::uint32_t kAfterSet[] = {1u, 2u, 0xffffffffu, 0xffffffffu};
+  for (int s = 0; s < 8; ++s) {
+    Count c{};
+    Mask m{};
+    for (int l = 0; l < N; ++l) {
+      c[l] = kStarts[(l + s) % 4];
+      m[l] = ((l + s) / 4) % 2 == 0 ? 0 : -1;
+    }
+    Count lanes = c;
+    mrd::num::bump_where(lanes, m);
+    for (int l = 0; l < N; ++l) {
+      std::uint32_t one = c[l];
+      mrd::num::bump_where(one, m[l] != 0);
+      EXPECT_EQ(lanes[l], one) << "lane " << l << " from " << c[l] << (m[l] != 0 ? ", set" : ", clear");
+      EXPECT_EQ(lanes[l], m[l] != 0 ? kAfterSet[(l + s) % 4] : c[l]) << "lane " << l;
+    }
+  }
+}
+
+TEST(MRD_LANE_MASKS_SUITE, BumpWhereCountsOneMoreWhereSetAndStopsAtTheTop) {
+  check_bump_where<2>();
+  check_bump_where<4>();
+  check_bump_where<8>();
+  check_bump_where<16>();
 }
 
 TEST(MRD_LANE_MASKS_SUITE, AnyAndAllAgreeWithALoopOverTheLanes) {
