@@ -128,11 +128,16 @@ constexpr void bump_where(std::uint32_t& c, bool m) noexcept {
 }
 template <LaneVector C, LaneVector M>
 [[gnu::always_inline]] constexpr void bump_where(C& c, M m) noexcept {
+#if defined(__SSE4_1__) || defined(__ARM_NEON)
   // A mask lane is 0 or −1, so c − m counts one more where m is set; the one
   // count that wraps (2^32 − 1 to 0) falls below c, and the larger of the two
-  // keeps 2^32 − 1 there (an unsigned max, one instruction).
+  // keeps 2^32 − 1 there: an unsigned max, one instruction (pmaxud, umax).
   const C more = c - (C)m;
   c = more < c ? c : more;
+#else
+  // SSE2 has no unsigned compare: the count's top is tested with pcmpeqd.
+  c -= (C)(m & (M)(c != 0xffffffffu));  // a mask lane is 0 or −1, so & is &&
+#endif
 }
 
 /// A lane value of a scalar role: `v` in lane `l` (1 lane: `v` itself).
