@@ -335,8 +335,10 @@ struct Regs {
 /// SSE2 would otherwise load and broadcast each constant before its use (and
 /// keep broadcast constants in the registers the lanes' state needs).
 /// Made once a kernel call (widen()); field names are SharedModel's, so that
-/// sense_regs() and advance_regs() step from either. AVX-512 broadcasts a
-/// double in the operand itself: its kernel steps from SharedModel.
+/// sense_regs() and advance_regs() step from either: a constant the loops
+/// read that is missing here fails to compile, and one widen() leaves unset
+/// fails plant_batch_test's equality with the scalar loop. AVX-512
+/// broadcasts a double in the operand itself: its kernel steps from SharedModel.
 struct WidePeakBound {
   vd weight[kBlockModes], rate_weight[kBlockModes];
   vd per_ag, per_force, rate_per_ag, rate_per_force;

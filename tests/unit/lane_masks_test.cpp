@@ -3,9 +3,10 @@
 // the answers a loop over the lanes gives; num::bump_where's saturating
 // count per lane, against the one-counter rule and its hand values at the
 // top of the range. The file is compiled twice, for
-// the baseline (SSE2's byte masks) and, on x86-64, for x86-64-v3 (AVX's
-// vptest on 32 bytes), the instruction sets the controller's lanes are built
-// for (host_sim/batch).
+// the baseline (SSE2's byte masks; bump_where's comparison with 2^32 − 1)
+// and, on x86-64, for x86-64-v3 (AVX's vptest on 32 bytes; bump_where's
+// unsigned max), the instruction sets the controller's lanes are built for
+// (host_sim/batch).
 #include <gtest/gtest.h>
 
 #include <cstddef>
