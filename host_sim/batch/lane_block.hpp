@@ -28,38 +28,114 @@ inline constexpr double kBoundRounding = 1e-12;
 /// accelerations, m/s², or the story drifts, m; add_floor_peaks in
 /// lane_kernel.hpp): the amplitude bound Σ_j weight[j] ρ_j grows by
 /// per_ag |a_g| + per_force |F| a step; the rate bound Σ_j rate_weight[j] ρ_j
-/// by rate_per_ag |a_g| + rate_per_force |F|.
-struct PeakBoundModel {
-  double weight[kBlockModes] = {}, rate_weight[kBlockModes] = {};
-  double per_ag = 0.0, per_force = 0.0;            ///< per m/s², per N
-  double rate_per_ag = 0.0, rate_per_force = 0.0;  ///< per m/s², per N
+/// by rate_per_ag |a_g| + rate_per_force |F|. Each number a T: a double
+/// here (PeakBoundModel), a register of copies in the kernels' WideModel.
+template <class T>
+struct PeakBoundFields {
+  T weight[kBlockModes], rate_weight[kBlockModes];
+  T per_ag, per_force;            ///< per m/s², per N
+  T rate_per_ag, rate_per_force;  ///< per m/s², per N
+};
+using PeakBoundModel = PeakBoundFields<double>;
+
+/// f(a.x, b.x) for every field x of two PeakBoundFields (of any T each).
+template <class A, class B, class F>
+[[gnu::always_inline]] constexpr void zip_bound_fields(A& a, B& b, F& f) {
+  f(a.weight, b.weight);
+  f(a.rate_weight, b.rate_weight);
+  f(a.per_ag, b.per_ag);
+  f(a.per_force, b.per_force);
+  f(a.rate_per_ag, b.rate_per_ag);
+  f(a.rate_per_force, b.rate_per_force);
+}
+
+/// The numbers of a batch's building, damper, coil and fluid that the
+/// kernels' loops read, each a T: a double in SharedModel, a register of
+/// copies in the AVX2 and generic kernels' WideModel (lane_kernel.hpp),
+/// which zip_loop_fields() fills field by field. No member initializers:
+/// the register form's default constructor stays trivial, so that no
+/// out-of-line copy of it is emitted with one kernel's instruction set and
+/// picked by the linker for another's (SharedModel zeroes its own).
+template <class T>
+struct LoopConstants {
+  // Building (structure::DiscreteBuilding's modal stepping form).
+  T blocks[kBlockStates][2];                 ///< rows (2j, 2j+1) of the 2×2 modal blocks B_j
+  T gamma[kBlockStates][2];                  ///< T⁻¹Γ: columns a_g (m/s²) and F (N)
+  T disp_row[kBlockStates];                  ///< row 0 of T: base displacement from q, m
+  T vel_row[kBlockStates];                   ///< row 6 of T: base velocity from q, m/s
+  T accel_rows[kBlockDofs][kBlockStates];    ///< rows 6..11 of A·T: ẍ from q
+  T disp_rows[kBlockDofs][kBlockStates];     ///< rows 0..5 of T: displacements from q
+  T inv_base_mass_per_kg;
+  // Bounds on the floors' absolute accelerations and the story drifts.
+  PeakBoundFields<T> floor_bound, drift_bound;
+  // Damper, Eq. 4.4, 5.10–5.11.
+  T fc_a_n, fc_b_n, neg_fc_c_per_a;
+  T c0_a_ns_m, c0_b_ns_m, neg_c0_c_per_a;
+  T v_tf_m_s;
+  // Coil, Eq. 4.5: y ← a y + (1 − a) u per branch, i = w_slow y_slow + w_fast y_fast.
+  T a_slow, one_minus_a_slow, a_fast, one_minus_a_fast;
+  T weight_slow, weight_fast;
+  // Participant ratio, Eq. 5.9: ∫Q += |v| A T.
+  T flow_area_m2, volume_unit_m3, step_s;
+  // Coil heating: ΔT ← a ΔT + ((1 − a) R_th) i² R.
+  T thermal_a, thermal_gain_k_w, resistance_ohm;
+  T rated_current_a;  ///< for the time above the rating
 };
 
-/// What every lane of a batch shares.
-struct SharedModel {
-  // Building (structure::DiscreteBuilding's modal stepping form).
-  double blocks[kBlockStates][2] = {};            ///< rows (2j, 2j+1) of the 2×2 modal blocks B_j
-  double gamma[kBlockStates][2] = {};             ///< T⁻¹Γ: columns a_g (m/s²) and F (N)
-  double disp_row[kBlockStates] = {};             ///< row 0 of T: base displacement from q, m
-  double vel_row[kBlockStates] = {};              ///< row 6 of T: base velocity from q, m/s
-  double accel_rows[kBlockDofs][kBlockStates] = {};  ///< rows 6..11 of A·T: ẍ from q
-  double disp_rows[kBlockDofs][kBlockStates] = {};   ///< rows 0..5 of T: displacements from q
-  double inv_base_mass_per_kg = 0.0;
-  // Bounds on the floors' absolute accelerations and the story drifts.
+/// f(a.x, b.x) for every field x of two LoopConstants (of any T each; a
+/// field that is an array is passed whole).
+template <class A, class B, class F>
+[[gnu::always_inline]] constexpr void zip_loop_fields(A& a, B& b, F& f) {
+  f(a.blocks, b.blocks);
+  f(a.gamma, b.gamma);
+  f(a.disp_row, b.disp_row);
+  f(a.vel_row, b.vel_row);
+  f(a.accel_rows, b.accel_rows);
+  f(a.disp_rows, b.disp_rows);
+  f(a.inv_base_mass_per_kg, b.inv_base_mass_per_kg);
+  zip_bound_fields(a.floor_bound, b.floor_bound, f);
+  zip_bound_fields(a.drift_bound, b.drift_bound, f);
+  f(a.fc_a_n, b.fc_a_n);
+  f(a.fc_b_n, b.fc_b_n);
+  f(a.neg_fc_c_per_a, b.neg_fc_c_per_a);
+  f(a.c0_a_ns_m, b.c0_a_ns_m);
+  f(a.c0_b_ns_m, b.c0_b_ns_m);
+  f(a.neg_c0_c_per_a, b.neg_c0_c_per_a);
+  f(a.v_tf_m_s, b.v_tf_m_s);
+  f(a.a_slow, b.a_slow);
+  f(a.one_minus_a_slow, b.one_minus_a_slow);
+  f(a.a_fast, b.a_fast);
+  f(a.one_minus_a_fast, b.one_minus_a_fast);
+  f(a.weight_slow, b.weight_slow);
+  f(a.weight_fast, b.weight_fast);
+  f(a.flow_area_m2, b.flow_area_m2);
+  f(a.volume_unit_m3, b.volume_unit_m3);
+  f(a.step_s, b.step_s);
+  f(a.thermal_a, b.thermal_a);
+  f(a.thermal_gain_k_w, b.thermal_gain_k_w);
+  f(a.resistance_ohm, b.resistance_ohm);
+  f(a.rated_current_a, b.rated_current_a);
+}
+
+namespace detail {
+/// The bytes zip_loop_fields() passes: every field once, so they add up to
+/// the struct's (doubles only: no padding).
+consteval std::size_t zipped_bytes() {
+  LoopConstants<double> c{};
+  std::size_t bytes = 0;
+  auto count = [&bytes](const auto& x, const auto&) { bytes += sizeof x; };
+  zip_loop_fields(c, c, count);
+  return bytes;
+}
+}  // namespace detail
+static_assert(detail::zipped_bytes() == sizeof(LoopConstants<double>),
+              "a field of LoopConstants is missing from zip_loop_fields(), or listed twice");
+
+/// What every lane of a batch shares: the loops' constants (zeroed until
+/// set) and how the lanes step the law.
+struct SharedModel : LoopConstants<double> {
+  SharedModel() : LoopConstants<double>() {}
   bool peak_bounds = false;  ///< every block contracts: the bounds hold (else the floors every tick)
-  PeakBoundModel floor_bound, drift_bound;
-  // Damper, Eq. 4.4, 5.10–5.11.
-  double fc_a_n = 0.0, fc_b_n = 0.0, neg_fc_c_per_a = 0.0;
-  double c0_a_ns_m = 0.0, c0_b_ns_m = 0.0, neg_c0_c_per_a = 0.0;
-  double v_tf_m_s = 0.0;
-  // Coil, Eq. 4.5: y ← a y + (1 − a) u per branch, i = w_slow y_slow + w_fast y_fast.
-  double a_slow = 0.0, one_minus_a_slow = 0.0, a_fast = 0.0, one_minus_a_fast = 0.0;
-  double weight_slow = 0.0, weight_fast = 0.0;
-  // Participant ratio, Eq. 5.9: ∫Q += |v| A T.
-  double flow_area_m2 = 0.0, volume_unit_m3 = 0.0, step_s = 0.0;
-  // Coil heating: ΔT ← a ΔT + ((1 − a) R_th) i² R.
-  double thermal_a = 0.0, thermal_gain_k_w = 0.0, resistance_ohm = 0.0;
-  double rated_current_a = 0.0;  ///< for the time above the rating
   // The law's form and a calibration's bends of it (physics::LawShape) the
   // lanes step: Eq. 4.4's transition or a tanh one, the current exponents of
   // Eq. 4.2–4.3, the viscous exponent, the spring and the transition time.

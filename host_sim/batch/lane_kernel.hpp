@@ -334,76 +334,28 @@ struct Regs {
 /// loops multiply by them with the operand read from memory, where AVX2 and
 /// SSE2 would otherwise load and broadcast each constant before its use (and
 /// keep broadcast constants in the registers the lanes' state needs).
-/// Made once a kernel call (widen()); field names are SharedModel's, so that
-/// sense_regs() and advance_regs() step from either: a constant the loops
-/// read that is missing here fails to compile, and one widen() leaves unset
-/// fails plant_batch_test's equality with the scalar loop. AVX-512
-/// broadcasts a double in the operand itself: its kernel steps from SharedModel.
-struct WidePeakBound {
-  vd weight[kBlockModes], rate_weight[kBlockModes];
-  vd per_ag, per_force, rate_per_ag, rate_per_force;
-};
-struct WideModel {
-  vd blocks[kBlockStates][2], gamma[kBlockStates][2];
-  vd disp_row[kBlockStates], vel_row[kBlockStates];
-  vd accel_rows[kBlockDofs][kBlockStates], disp_rows[kBlockDofs][kBlockStates];
-  vd inv_base_mass_per_kg;
+/// Made once a kernel call (widen()); the fields are SharedModel's own
+/// (LoopConstants), so that sense_regs() and advance_regs() step from
+/// either, and widen() fills every one of them (zip_loop_fields(), checked
+/// against the struct's size in lane_block.hpp). AVX-512 broadcasts a
+/// double in the operand itself: its kernel steps from SharedModel.
+struct WideModel : LoopConstants<vd> {
   bool peak_bounds;
-  WidePeakBound floor_bound, drift_bound;
-  vd fc_a_n, fc_b_n, neg_fc_c_per_a, c0_a_ns_m, c0_b_ns_m, neg_c0_c_per_a, v_tf_m_s;
-  vd a_slow, one_minus_a_slow, a_fast, one_minus_a_fast, weight_slow, weight_fast;
-  vd flow_area_m2, volume_unit_m3, step_s;
-  vd thermal_a, thermal_gain_k_w, resistance_ohm, rated_current_a;
 };
 
-[[gnu::always_inline]] inline void widen_bound(const PeakBoundModel& g, WidePeakBound& w) {
-  for (int j = 0; j < kBlockModes; ++j) {
-    w.weight[j] = splat(g.weight[j]);
-    w.rate_weight[j] = splat(g.rate_weight[j]);
+/// w = s copied into every lane, element by element for an array.
+struct Splat {
+  [[gnu::always_inline]] void operator()(const double& s, vd& w) const { w = splat(s); }
+  template <class S, class W, std::size_t N>
+  [[gnu::always_inline]] void operator()(const S (&s)[N], W (&w)[N]) const {
+    for (std::size_t i = 0; i < N; ++i) (*this)(s[i], w[i]);
   }
-  w.per_ag = splat(g.per_ag);
-  w.per_force = splat(g.per_force);
-  w.rate_per_ag = splat(g.rate_per_ag);
-  w.rate_per_force = splat(g.rate_per_force);
-}
+};
 
 inline void widen(const SharedModel& m, WideModel& w) {
-  for (int j = 0; j < kBlockStates; ++j) {
-    for (int c = 0; c < 2; ++c) {
-      w.blocks[j][c] = splat(m.blocks[j][c]);
-      w.gamma[j][c] = splat(m.gamma[j][c]);
-    }
-    w.disp_row[j] = splat(m.disp_row[j]);
-    w.vel_row[j] = splat(m.vel_row[j]);
-    for (int i = 0; i < kBlockDofs; ++i) {
-      w.accel_rows[i][j] = splat(m.accel_rows[i][j]);
-      w.disp_rows[i][j] = splat(m.disp_rows[i][j]);
-    }
-  }
-  w.inv_base_mass_per_kg = splat(m.inv_base_mass_per_kg);
+  Splat splat_field;
+  zip_loop_fields(m, w, splat_field);
   w.peak_bounds = m.peak_bounds;
-  widen_bound(m.floor_bound, w.floor_bound);
-  widen_bound(m.drift_bound, w.drift_bound);
-  w.fc_a_n = splat(m.fc_a_n);
-  w.fc_b_n = splat(m.fc_b_n);
-  w.neg_fc_c_per_a = splat(m.neg_fc_c_per_a);
-  w.c0_a_ns_m = splat(m.c0_a_ns_m);
-  w.c0_b_ns_m = splat(m.c0_b_ns_m);
-  w.neg_c0_c_per_a = splat(m.neg_c0_c_per_a);
-  w.v_tf_m_s = splat(m.v_tf_m_s);
-  w.a_slow = splat(m.a_slow);
-  w.one_minus_a_slow = splat(m.one_minus_a_slow);
-  w.a_fast = splat(m.a_fast);
-  w.one_minus_a_fast = splat(m.one_minus_a_fast);
-  w.weight_slow = splat(m.weight_slow);
-  w.weight_fast = splat(m.weight_fast);
-  w.flow_area_m2 = splat(m.flow_area_m2);
-  w.volume_unit_m3 = splat(m.volume_unit_m3);
-  w.step_s = splat(m.step_s);
-  w.thermal_a = splat(m.thermal_a);
-  w.thermal_gain_k_w = splat(m.thermal_gain_k_w);
-  w.resistance_ohm = splat(m.resistance_ohm);
-  w.rated_current_a = splat(m.rated_current_a);
 }
 
 /// The model a kernel loop steps from: see WideModel.
