@@ -155,14 +155,18 @@ class BasicInputGuard {
   /// set when no signal of any lane has one (every fault kNone).
   Faults check(const Input& in, bool& clean) noexcept {
     Faults f{};
-    // Flags and the basic checks at once; each signal's fault only when some lane has one.
+    // Flags and the basic checks at once, without a branch between them (&,
+    // not &&: the scalar build's masks are bools); each signal's fault only
+    // when some lane has one.
+    const Mask disp_inside = inside(in.damper_disp_m, limits_.disp_limit_m);
+    const Mask force_inside = inside(in.damper_force_n, limits_.force_limit_n);
+    const Mask ground_inside = inside(in.ground_accel_m_s2, limits_.accel_limit_m_s2);
+    const Mask base_inside = inside(in.base_accel_m_s2, limits_.accel_limit_m_s2);
+    const Mask current_inside = inside(in.coil_current_a, limits_.coil_current_limit_a);
     const bool basic_clean =
         num::all(in.flags.disp_valid & in.flags.force_valid & in.flags.ground_accel_valid &
-                 in.flags.base_accel_valid & inside(in.damper_disp_m, limits_.disp_limit_m) &
-                 inside(in.damper_force_n, limits_.force_limit_n) &
-                 inside(in.ground_accel_m_s2, limits_.accel_limit_m_s2) &
-                 inside(in.base_accel_m_s2, limits_.accel_limit_m_s2) &
-                 inside(in.coil_current_a, limits_.coil_current_limit_a));
+                 in.flags.base_accel_valid & disp_inside & force_inside & ground_inside & base_inside &
+                 current_inside);
     if (!basic_clean) [[unlikely]] {
       f[idx(InputSignal::kDisp)] = basic(in.damper_disp_m, in.flags.disp_valid, limits_.disp_limit_m);
       f[idx(InputSignal::kForce)] = basic(in.damper_force_n, in.flags.force_valid, limits_.force_limit_n);
