@@ -24,5 +24,6 @@ for preset in host-release host-debug-asan; do
   ctest --preset "$preset" -j "$jobs" || status=1
   times+=("$preset tests $((SECONDS - t)) s")
 done
-echo "== wall time: $(IFS=,; echo "${times[*]}" | sed 's/,/, /g'); total ${SECONDS} s"
+printf -v summary '%s, ' "${times[@]}"
+echo "== wall time: ${summary}total ${SECONDS} s"
 exit $status

@@ -7,6 +7,9 @@
 /// form, the damper, coil and thermal constants) is in SharedModel.
 ///
 /// Plain data only: this header is compiled for several instruction sets.
+/// Its structs' special members are trivial or made outside the kernels, and
+/// its field walks are instantiated by a kernel only with its own functors
+/// (internal linkage), so no copy built for one instruction set is shared.
 
 #include <cstddef>
 #include <cstdint>
